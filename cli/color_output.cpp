@@ -1,0 +1,80 @@
+#include "cli/color_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace skinspec::cli {
+namespace {
+
+// OpenColorIO computes in 32-bit float: report RGB to the 6 decimals that carries.
+nlohmann::ordered_json rgb_json(const RGB& rgb) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const double c : rgb) out.push_back(std::round(c * 1e6) / 1e6);
+    return out;
+}
+
+std::string hex(const RGB& encoded) {
+    std::string out = "#";
+    for (const double c : encoded) out += fmt::format("{:02X}", static_cast<int>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0)));
+    return out;
+}
+
+}  // namespace
+
+ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, IlluminantKind illuminant,
+                             ObserverKind observer, const std::vector<std::string>& extra_spaces) {
+    const auto& cm = ColorManagement::builtin();
+    ColorSummary s{illuminant, observer, xyz, weights.white(), chromaticity(xyz), xyz_to_lab(xyz, weights.white()),
+                   cm.from_xyz(xyz, weights.white(), "sRGB"), true, "", cm.from_xyz(xyz, weights.white(), "Linear Rec.709"),
+                   cm.from_xyz(xyz, weights.white(), "ACEScg"), {}};
+    s.srgb_in_gamut = std::all_of(s.srgb.begin(), s.srgb.end(), [](double c) { return c >= 0.0 && c <= 1.0; });
+    s.srgb_hex = hex(s.srgb);
+    for (const auto& space : extra_spaces) {
+        const auto name = cm.canonical_space(space, "--space");
+        s.extra_spaces[name] = cm.from_xyz(xyz, weights.white(), name);
+    }
+    return s;
+}
+
+nlohmann::ordered_json to_json(const ColorSummary& s) {
+    nlohmann::ordered_json j;
+    j["illuminant"] = std::string(short_name(s.illuminant));
+    j["observer"] = std::string(display_name(s.observer));
+    j["XYZ"] = {s.xyz.X, s.xyz.Y, s.xyz.Z};
+    j["white_XYZ"] = {s.white.X, s.white.Y, s.white.Z};
+    j["xy"] = {s.xy.x, s.xy.y};
+    j["Lab"] = {s.lab.L, s.lab.a, s.lab.b};
+    j["srgb"] = rgb_json(s.srgb);
+    j["srgb_hex"] = s.srgb_hex;
+    j["srgb_in_gamut"] = s.srgb_in_gamut;
+    j["linear_rec709"] = rgb_json(s.linear_rec709);
+    j["acescg"] = rgb_json(s.acescg);
+    if (!s.extra_spaces.empty()) {
+        auto& spaces = j["spaces"];
+        for (const auto& [name, rgb] : s.extra_spaces) spaces[name] = rgb_json(rgb);
+    }
+    return j;
+}
+
+std::string to_table(const ColorSummary& s) {
+    const auto row = [](std::string_view label, const RGB& v) {
+        return fmt::format("{:<16}{:9.6f} {:9.6f} {:9.6f}\n", label, v[0], v[1], v[2]);
+    };
+    std::string out;
+    out += fmt::format("{:<16}{} (observer {}; white XYZ {:.5f} {:.5f} {:.5f})\n", "illuminant", short_name(s.illuminant),
+                       display_name(s.observer), s.white.X, s.white.Y, s.white.Z);
+    out += row("XYZ", {s.xyz.X, s.xyz.Y, s.xyz.Z});
+    out += fmt::format("{:<16}{:9.6f} {:9.6f}\n", "xy", s.xy.x, s.xy.y);
+    out += fmt::format("{:<16}{:9.4f} {:9.4f} {:9.4f}\n", "Lab", s.lab.L, s.lab.a, s.lab.b);
+    out += row("sRGB", s.srgb);
+    out += fmt::format("{:<16}{}{}\n", "sRGB hex", s.srgb_hex,
+                       s.srgb_in_gamut ? "" : "  (outside the sRGB gamut: channels clipped to [0, 1] for the hex code)");
+    out += row("Linear Rec.709", s.linear_rec709);
+    out += row("ACEScg", s.acescg);
+    for (const auto& [name, rgb] : s.extra_spaces) out += row(name, rgb);
+    return out;
+}
+
+}  // namespace skinspec::cli

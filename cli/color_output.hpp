@@ -1,0 +1,36 @@
+#pragma once
+// Colour summaries shared by every command that reports colours: one computation, two renderings
+// (a readable table and JSON).
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "spectral/color_management.hpp"
+#include "spectral/colorimetry.hpp"
+
+namespace skinspec::cli {
+
+struct ColorSummary {
+    IlluminantKind illuminant;
+    ObserverKind observer;
+    XYZ xyz;
+    XYZ white;
+    Chromaticity xy;
+    Lab lab;
+    RGB srgb;            // encoded, unclipped
+    bool srgb_in_gamut;  // all three channels in [0, 1]
+    std::string srgb_hex;  // from sRGB clipped to [0, 1] (clipping reported by srgb_in_gamut)
+    RGB linear_rec709;
+    RGB acescg;
+    std::map<std::string, RGB> extra_spaces;  // spaces asked for with --space
+};
+
+ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, IlluminantKind illuminant,
+                             ObserverKind observer, const std::vector<std::string>& extra_spaces);
+
+nlohmann::ordered_json to_json(const ColorSummary& summary);
+std::string to_table(const ColorSummary& summary);
+
+}  // namespace skinspec::cli

@@ -1,0 +1,49 @@
+# Finds every third-party dependency from Debian 12 packages and repairs the two known packaging faults,
+# so nobody has to patch system files:
+#  1. OpenImageIO's exported target lists /usr/include/opencv4 (absent unless OpenCV is installed), and
+#     CMake refuses imported targets with non-existent include directories.
+#  2. OpenColorIO's config is installed under /usr/share/cmake, from where it computes its prefix four
+#     levels up and exports "/include". We build the imported target from the real header and library.
+
+find_package(Threads REQUIRED)
+find_package(fmt REQUIRED)
+find_package(glm REQUIRED)
+find_package(TBB REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(tomlplusplus REQUIRED)
+find_package(OpenImageIO REQUIRED CONFIG)
+
+function(skinspec_drop_missing_include_dirs target)
+  foreach(property INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+    get_target_property(dirs ${target} ${property})
+    if(dirs)
+      set(kept "")
+      foreach(dir IN LISTS dirs)
+        if(dir MATCHES "^\\$<" OR EXISTS "${dir}")
+          list(APPEND kept "${dir}")
+        endif()
+      endforeach()
+      set_target_properties(${target} PROPERTIES ${property} "${kept}")
+    endif()
+  endforeach()
+endfunction()
+
+foreach(target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
+  if(TARGET ${target})
+    skinspec_drop_missing_include_dirs(${target})
+  endif()
+endforeach()
+
+if(NOT TARGET OpenColorIO::OpenColorIO)
+  find_path(OpenColorIO_INCLUDE_DIR OpenColorIO/OpenColorIO.h REQUIRED)
+  find_library(OpenColorIO_LIBRARY NAMES OpenColorIO REQUIRED)
+  add_library(OpenColorIO::OpenColorIO UNKNOWN IMPORTED)
+  set_target_properties(OpenColorIO::OpenColorIO PROPERTIES
+    IMPORTED_LOCATION "${OpenColorIO_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${OpenColorIO_INCLUDE_DIR}")
+endif()
+
+if(SKINSPEC_BUILD_TESTS)
+  find_package(Catch2 2 REQUIRED)
+endif()

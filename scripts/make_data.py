@@ -1,0 +1,290 @@
+#!/usr/bin/env python3
+"""Generate skinspec's own data tables in data/ from the raw public sources in ../shared/data-sources.
+
+Usage: scripts/make_data.py [--sources DIR] [--out DIR]
+
+Every table is written in the one skinspec table format (docs/DATA_FORMAT.md):
+
+    # skinspec-table: 1
+    # title: ...
+    # source: ...                 provenance of the raw numbers
+    # generated_by: scripts/make_data.py
+    # units: column [unit]; ...
+    # domain_nm: first last        tabulated range
+    # outside_domain: error|zero|hold
+    # note: ...                    (optional, repeatable)
+    wavelength_nm,column,...
+    360,...
+
+The generated files are committed, so a fresh clone needs nothing from ../shared. Only the Python
+standard library is used.
+"""
+
+import argparse
+import pathlib
+import sys
+
+HERE = pathlib.Path(__file__).resolve().parent
+ROOT = HERE.parent
+GENERATOR = "scripts/make_data.py"
+
+
+def read_columns(path, skip_header=True, delimiter=None):
+    """Rows of floats from a whitespace- or comma-separated file; '#' lines and a text header skipped."""
+    rows = []
+    for line in pathlib.Path(path).read_text(encoding="utf-8").splitlines():
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        fields = line.split(delimiter) if delimiter else line.replace(",", " ").split()
+        try:
+            rows.append([float(f) for f in fields])
+        except ValueError:
+            if rows or not skip_header:
+                raise
+    return rows
+
+
+def fmt(value):
+    return f"{value:.10g}"
+
+
+def write_table(path, title, source, units, columns, rows, outside, notes=()):
+    lo, hi = rows[0][0], rows[-1][0]
+    lines = [
+        "# skinspec-table: 1",
+        f"# title: {title}",
+        f"# source: {source}",
+        f"# generated_by: {GENERATOR}",
+        f"# units: {units}",
+        f"# domain_nm: {fmt(lo)} {fmt(hi)}",
+        f"# outside_domain: {outside}",
+    ]
+    lines += [f"# note: {n}" for n in notes]
+    lines.append(",".join(columns))
+    lines += [",".join(fmt(v) for v in row) for row in rows]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    print(f"wrote {path.relative_to(ROOT)} ({len(rows)} rows)")
+
+
+def window(rows, lo=360, hi=830):
+    return [r for r in rows if lo <= r[0] <= hi]
+
+
+# --- CIE observers and illuminants -----------------------------------------------------------------
+
+def make_cie(src, out):
+    cmfs = window(read_columns(src / "cie_cmfs_2deg_10deg.txt"))
+    cie_source = ("CIE colour matching functions, CIE 015:2018 / CIE data sets (CC BY-SA 4.0, "
+                  "DOI 10.25039/CIE.DS.xvudnb9b); raw file cie_cmfs_2deg_10deg.txt")
+    write_table(out / "cie" / "observer_cie1931_2deg.csv",
+                "CIE 1931 2-degree standard observer colour matching functions",
+                cie_source, "wavelength_nm [nm]; xbar, ybar, zbar [dimensionless]",
+                ["wavelength_nm", "xbar", "ybar", "zbar"],
+                [[r[0], r[1], r[2], r[3]] for r in cmfs], "zero",
+                ["zero outside 360-830 nm, where the CIE tables end (values there are below 1e-4 of peak)"])
+    write_table(out / "cie" / "observer_cie1964_10deg.csv",
+                "CIE 1964 10-degree supplementary standard observer colour matching functions",
+                cie_source, "wavelength_nm [nm]; xbar, ybar, zbar [dimensionless]",
+                ["wavelength_nm", "xbar", "ybar", "zbar"],
+                [[r[0], r[4], r[5], r[6]] for r in cmfs], "zero",
+                ["zero outside 360-830 nm, where the CIE tables end (values there are below 1e-4 of peak)"])
+    for name, raw in (("d65", "cie_illuminant_d65.csv"), ("d50", "cie_illuminant_d50.csv"),
+                      ("a", "cie_illuminant_a.csv")):
+        rows = window(read_columns(src / raw))
+        write_table(out / "cie" / f"illuminant_{name}.csv",
+                    f"CIE standard illuminant {name.upper()} relative spectral power distribution",
+                    f"CIE data sets (CC BY-SA 4.0); raw file {raw}, cut to 360-830 nm",
+                    "wavelength_nm [nm]; power [relative, 100 at 560 nm]",
+                    ["wavelength_nm", "power"], rows, "error")
+    write_table(out / "cie" / "illuminant_e.csv",
+                "CIE equal-energy illuminant E", "definition (CIE 015:2018 Sec. 11.1): constant power",
+                "wavelength_nm [nm]; power [relative, 100 everywhere]",
+                ["wavelength_nm", "power"], [[float(w), 100.0] for w in range(360, 831)], "error")
+
+
+# --- OpenColorIO config --------------------------------------------------------------------------------
+
+D65_XY = (0.3127, 0.3290)          # ITU-R BT.709-6 / IEC 61966-2-1 white
+ACES_WHITE_XY = (0.32168, 0.33767)  # SMPTE ST 2065-1
+BRADFORD = [[0.8951, 0.2664, -0.1614], [-0.7502, 1.7135, 0.0367], [0.0389, -0.0685, 1.0296]]
+
+PRIMARIES = {  # (red, green, blue) xy chromaticities and white xy
+    "Rec.709": (((0.64, 0.33), (0.30, 0.60), (0.15, 0.06)), D65_XY),        # ITU-R BT.709-6
+    "P3-D65": (((0.680, 0.320), (0.265, 0.690), (0.150, 0.060)), D65_XY),   # SMPTE EG 432-1
+    "Rec.2020": (((0.708, 0.292), (0.170, 0.797), (0.131, 0.046)), D65_XY),  # ITU-R BT.2020-2
+    "AP1": (((0.713, 0.293), (0.165, 0.830), (0.128, 0.044)), ACES_WHITE_XY),  # SMPTE ST 2065-1 / S-2014-004
+    "AP0": (((0.7347, 0.2653), (0.0, 1.0), (0.0001, -0.0770)), ACES_WHITE_XY),  # SMPTE ST 2065-1
+}
+
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def matvec(a, v):
+    return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
+
+
+def inverse(m):
+    (a, b, c), (d, e, f), (g, h, i) = m
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    return [[(e * i - f * h) / det, (c * h - b * i) / det, (b * f - c * e) / det],
+            [(f * g - d * i) / det, (a * i - c * g) / det, (c * d - a * f) / det],
+            [(d * h - e * g) / det, (b * g - a * h) / det, (a * e - b * d) / det]]
+
+
+def xy_to_xyz(xy):
+    x, y = xy
+    return [x / y, 1.0, (1.0 - x - y) / y]
+
+
+def rgb_to_xyz(name):
+    """SMPTE RP 177-1993 Eq. 3-6: RGB -> XYZ from primaries and white, white mapped to Y = 1."""
+    prims, white = PRIMARIES[name]
+    p = [[xy_to_xyz(c)[row] for c in prims] for row in range(3)]
+    s = matvec(inverse(p), xy_to_xyz(white))
+    return [[p[r][c] * s[c] for c in range(3)] for r in range(3)]
+
+
+def bradford(src_xy, dst_xy):
+    """von Kries adaptation in the Bradford cone space (Lam 1985; CIE 160:2004 Sec. 5)."""
+    src = matvec(BRADFORD, xy_to_xyz(src_xy))
+    dst = matvec(BRADFORD, xy_to_xyz(dst_xy))
+    scale = [[dst[i] / src[i] if i == j else 0.0 for j in range(3)] for i in range(3)]
+    return matmul(inverse(BRADFORD), matmul(scale, BRADFORD))
+
+
+def to_xyz_d65(name):
+    m = rgb_to_xyz(name)
+    white = PRIMARIES[name][1]
+    return m if white == D65_XY else matmul(bradford(white, D65_XY), m)
+
+
+def ocio_matrix(m):
+    flat = [m[0][0], m[0][1], m[0][2], 0, m[1][0], m[1][1], m[1][2], 0,
+            m[2][0], m[2][1], m[2][2], 0, 0, 0, 0, 1]
+    return "[" + ", ".join(f"{v:.12g}" for v in flat) + "]"
+
+
+def make_ocio(out):
+    def space(name, family, encoding, description, to_ref, isdata=False):
+        body = [f"  - !<ColorSpace>",
+                f"    name: {name}",
+                f"    family: {family}",
+                f"    equalitygroup: \"\"",
+                f"    bitdepth: 32f",
+                f"    description: \"{description}\"",
+                f"    isdata: {'true' if isdata else 'false'}",
+                f"    encoding: {encoding}",
+                f"    allocation: uniform"]
+        if to_ref:
+            body.append(f"    to_scene_reference: {to_ref}")
+        return "\n".join(body)
+
+    def linear(prim):
+        return f"!<MatrixTransform> {{matrix: {ocio_matrix(to_xyz_d65(prim))}}}"
+
+    def encoded(prim):
+        curve = "!<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055}"
+        return f"!<GroupTransform> {{children: [{curve}, {linear(prim)}]}}"
+
+    spaces = [
+        space("CIE-XYZ-D65", "Reference", "scene-linear",
+              "CIE 1931 XYZ, D65 white at Y = 1; the reference space of this config", None),
+        space("Linear Rec.709", "Scene-linear", "scene-linear",
+              "Linear ITU-R BT.709 primaries, D65 white (linear sRGB)", linear("Rec.709")),
+        space("sRGB", "Display-encoded", "sdr-video",
+              "IEC 61966-2-1 sRGB: BT.709 primaries, D65, piecewise sRGB encoding", encoded("Rec.709")),
+        space("Linear Display P3", "Scene-linear", "scene-linear",
+              "Linear P3 primaries, D65 white (SMPTE EG 432-1)", linear("P3-D65")),
+        space("Display P3", "Display-encoded", "sdr-video",
+              "Apple Display P3: P3 primaries, D65, sRGB piecewise encoding", encoded("P3-D65")),
+        space("Linear Rec.2020", "Scene-linear", "scene-linear",
+              "Linear ITU-R BT.2020 primaries, D65 white", linear("Rec.2020")),
+        space("ACEScg", "ACES", "scene-linear",
+              "ACEScg: AP1 primaries, ACES white; Bradford-adapted to and from the D65 reference",
+              linear("AP1")),
+        space("ACES2065-1", "ACES", "scene-linear",
+              "ACES2065-1: AP0 primaries, ACES white; Bradford-adapted to and from the D65 reference",
+              linear("AP0")),
+        space("Raw", "Utility", "data", "Data: no colour transform", None, isdata=True),
+    ]
+    text = f"""# skinspec OpenColorIO config. Generated by {GENERATOR}; do not edit by hand.
+# Reference space: CIE-XYZ-D65 (CIE 1931 XYZ, white D65 at Y = 1). Matrices are computed from the published
+# primaries and white points (SMPTE RP 177-1993); spaces with the ACES white are Bradford-adapted to D65.
+ocio_profile_version: 2
+
+environment: {{}}
+search_path: ""
+strictparsing: true
+luma: [0.2126, 0.7152, 0.0722]
+description: skinspec colour management (CIE-XYZ-D65 reference)
+
+roles:
+  aces_interchange: ACES2065-1
+  cie_xyz_d65_interchange: CIE-XYZ-D65
+  color_picking: sRGB
+  color_timing: sRGB
+  compositing_log: sRGB
+  data: Raw
+  default: sRGB
+  matte_paint: sRGB
+  reference: CIE-XYZ-D65
+  rendering: Linear Rec.709
+  scene_linear: Linear Rec.709
+  texture_paint: sRGB
+
+file_rules:
+  - !<Rule> {{name: Default, colorspace: default}}
+
+displays:
+  sRGB:
+    - !<View> {{name: Standard, colorspace: sRGB}}
+    - !<View> {{name: Raw, colorspace: Raw}}
+  Display P3:
+    - !<View> {{name: Standard, colorspace: Display P3}}
+    - !<View> {{name: Raw, colorspace: Raw}}
+
+active_displays: [sRGB, Display P3]
+active_views: [Standard, Raw]
+
+colorspaces:
+""" + "\n\n".join(spaces) + "\n"
+    path = out / "ocio" / "config.ocio"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    print(f"wrote {path.relative_to(ROOT)}")
+
+
+# --- example spectrum -----------------------------------------------------------------------------------
+
+def make_example(out):
+    """A smooth synthetic reflectance (not a measurement) for the `color` command's built-in default."""
+    import math
+    rows = []
+    for w in range(380, 781, 5):
+        # logistic rise from 0.25 to 0.60 centred at 590 nm: the general shape of light skin reflectance
+        rows.append([float(w), 0.25 + 0.35 / (1.0 + math.exp(-(w - 590.0) / 18.0))])
+    write_table(out / "spectra" / "example_reflectance.csv",
+                "Synthetic example reflectance (logistic 0.25 -> 0.60, midpoint 590 nm, width 18 nm)",
+                "synthetic: R(lambda) = 0.25 + 0.35 / (1 + exp(-(lambda - 590) / 18)); not a measurement",
+                "wavelength_nm [nm]; reflectance [fraction, 0-1]",
+                ["wavelength_nm", "reflectance"], rows, "hold")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--sources", type=pathlib.Path, default=ROOT.parent / "shared" / "data-sources")
+    parser.add_argument("--out", type=pathlib.Path, default=ROOT / "data")
+    args = parser.parse_args()
+    if not args.sources.is_dir():
+        sys.exit(f"make_data.py: raw source folder {args.sources} not found (use --sources DIR)")
+    make_cie(args.sources, args.out)
+    make_ocio(args.out)
+    make_example(args.out)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,113 @@
+#include "spectral/color_management.hpp"
+
+#include <OpenColorIO/OpenColorIO.h>
+
+#include "spectral/chromatic_adaptation.hpp"
+#include "spectral/data_paths.hpp"
+#include "spectral/input_error.hpp"
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace skinspec {
+
+struct ColorManagement::Impl {
+    OCIO::ConstConfigRcPtr config;
+    mutable std::mutex mutex;
+    mutable std::map<std::string, OCIO::ConstCPUProcessorRcPtr> processors;
+
+    // One CPU processor per transform, built on first use and cached (OCIO processors are thread-safe).
+    OCIO::ConstCPUProcessorRcPtr processor(const std::string& key, const OCIO::ConstTransformRcPtr& transform) const {
+        std::lock_guard lock(mutex);
+        auto& slot = processors[key];
+        if (!slot) {
+            slot = config->getProcessor(transform)->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
+                                                                             OCIO::OPTIMIZATION_LOSSLESS);
+        }
+        return slot;
+    }
+
+    RGB apply(const OCIO::ConstCPUProcessorRcPtr& cpu, const RGB& rgb) const {
+        float pixel[3] = {static_cast<float>(rgb[0]), static_cast<float>(rgb[1]), static_cast<float>(rgb[2])};
+        cpu->applyRGB(pixel);
+        return {pixel[0], pixel[1], pixel[2]};
+    }
+};
+
+ColorManagement::ColorManagement(const std::filesystem::path& config_file)
+    : config_file_(config_file), impl_(std::make_unique<Impl>()) {
+    try {
+        impl_->config = OCIO::Config::CreateFromFile(config_file.string().c_str());
+        impl_->config->validate();
+    } catch (const OCIO::Exception& e) {
+        throw InputError("OpenColorIO config " + config_file.string() + ": " + e.what());
+    }
+}
+
+ColorManagement::~ColorManagement() = default;
+
+const ColorManagement& ColorManagement::builtin() {
+    static const ColorManagement cm(data_file("ocio/config.ocio"));
+    return cm;
+}
+
+XYZ ColorManagement::reference_white() { return white_from_chromaticity({0.3127, 0.3290}); }
+
+std::vector<std::string> ColorManagement::color_spaces() const {
+    std::vector<std::string> names;
+    for (int i = 0; i < impl_->config->getNumColorSpaces(); ++i) names.emplace_back(impl_->config->getColorSpaceNameByIndex(i));
+    return names;
+}
+
+std::vector<std::string> ColorManagement::displays() const {
+    std::vector<std::string> names;
+    for (int i = 0; i < impl_->config->getNumDisplays(); ++i) names.emplace_back(impl_->config->getDisplay(i));
+    return names;
+}
+
+std::vector<std::string> ColorManagement::views(std::string_view display) const {
+    const std::string d(display);
+    std::vector<std::string> names;
+    for (int i = 0; i < impl_->config->getNumViews(d.c_str()); ++i) names.emplace_back(impl_->config->getView(d.c_str(), i));
+    return names;
+}
+
+std::string ColorManagement::canonical_space(std::string_view name, std::string_view what) const {
+    const std::string n(name);
+    if (const auto cs = impl_->config->getColorSpace(n.c_str())) return cs->getName();
+    std::string allowed;
+    for (const auto& s : color_spaces()) allowed += (allowed.empty() ? "" : ", ") + s;
+    throw InputError(std::string(what) + ": '" + n + "' is not a colour space of " + config_file_.string() +
+                     " (allowed: " + allowed + ")");
+}
+
+RGB ColorManagement::from_xyz(const XYZ& xyz, const XYZ& white, std::string_view space) const {
+    const XYZ adapted = bradford_adapt(xyz, white, reference_white());
+    return convert({adapted.X, adapted.Y, adapted.Z}, OCIO::ROLE_REFERENCE, space);
+}
+
+RGB ColorManagement::convert(const RGB& rgb, std::string_view from_space, std::string_view to_space) const {
+    const std::string from = canonical_space(from_space, "source colour space");
+    const std::string to = canonical_space(to_space, "destination colour space");
+    auto transform = OCIO::ColorSpaceTransform::Create();
+    transform->setSrc(from.c_str());
+    transform->setDst(to.c_str());
+    return impl_->apply(impl_->processor("cs:" + from + "\n" + to, transform), rgb);
+}
+
+RGB ColorManagement::display_view(const RGB& rgb, std::string_view from_space, std::string_view display,
+                                  std::string_view view) const {
+    const std::string from = canonical_space(from_space, "source colour space");
+    const std::string d(display);
+    const std::string v(view);
+    auto transform = OCIO::DisplayViewTransform::Create();
+    transform->setSrc(from.c_str());
+    transform->setDisplay(d.c_str());
+    transform->setView(v.c_str());
+    try {
+        return impl_->apply(impl_->processor("dv:" + from + "\n" + d + "\n" + v, transform), rgb);
+    } catch (const OCIO::Exception& e) {
+        throw InputError("display '" + d + "', view '" + v + "': " + e.what());
+    }
+}
+
+}  // namespace skinspec

@@ -1,0 +1,23 @@
+#pragma once
+// Small helpers for the text formats skinspec reads (CSV tables, option values).
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skinspec {
+
+// Leading and trailing blanks (space, tab, CR) removed.
+std::string_view trim(std::string_view text);
+
+// The whole field as a double (std::from_chars, no locale); nullopt when any character is left over or
+// nothing parses. "nan"/"inf" parse: callers decide whether non-finite values are allowed.
+std::optional<double> parse_double(std::string_view field);
+
+// Fields separated by commas, or by runs of blanks when the line has no comma; each trimmed.
+std::vector<std::string_view> split_fields(std::string_view line);
+
+// Shortest round-trip text of a double, for messages ("0.1", not "0.100000").
+std::string format_number(double value);
+
+}  // namespace skinspec
