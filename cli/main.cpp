@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/color_command.hpp"
+#include "cli/materials_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("skinspec ") + skinspec::version);
     app.require_subcommand(1);
     skinspec::cli::add_color_command(app);
+    skinspec::cli::add_materials_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generate skinspec's own data tables in data/ from the raw public sources in ../shared/data-sources.
 
-Usage: scripts/make_data.py [--sources DIR] [--out DIR]
+Usage: scripts/make_data.py [--sources DIR] [--reference DIR] [--out DIR]
 
 Every table is written in the one skinspec table format (docs/DATA_FORMAT.md):
 
@@ -258,6 +258,176 @@ colorspaces:
     print(f"wrote {path.relative_to(ROOT)}")
 
 
+# --- chromophores and tissue optics ---------------------------------------------------------------------
+
+def clamp_negative(rows, column=1):
+    count = sum(1 for r in rows if r[column] < 0.0)
+    return [r[:column] + [max(r[column], 0.0)] + r[column + 1:] for r in rows], count
+
+
+def make_chromophores(src, out):
+    d = out / "chromophores"
+    rows = read_columns(src / "eumelanin_sarna.txt")
+    write_table(d / "eumelanin.csv", "Eumelanin mass extinction coefficient (Sarna & Swartz)",
+                "Sarna T., Swartz H.M. (1988), The physical properties of melanins, digitised by OMLC; "
+                "raw file eumelanin_sarna.txt (column ext)",
+                "wavelength_nm [nm]; mass_extinction [cm^-1 / (mg/mL)]",
+                ["wavelength_nm", "mass_extinction"], [[r[0], r[1]] for r in rows], "error",
+                ["BioSpec uses this as mu_a = eps * c without ln(10) (docs/MATERIALS.md)",
+                 "no value outside the measured range: asking there is an error"])
+    rows = read_columns(src / "pheomelanin_sarna.txt")
+    write_table(d / "pheomelanin.csv", "Pheomelanin mass extinction coefficient (Sarna & Swartz)",
+                "Sarna T., Swartz H.M. (1988), digitised by OMLC; raw file pheomelanin_sarna.txt (column ext)",
+                "wavelength_nm [nm]; mass_extinction [cm^-1 / (mg/mL)]",
+                ["wavelength_nm", "mass_extinction"], [[r[0], r[1]] for r in rows], "error",
+                ["no value outside the measured range: asking there is an error"])
+    rows = read_columns(src / "hemoglobin_prahl.txt")
+    write_table(d / "hemoglobin.csv", "Molar extinction of oxy- and deoxy-haemoglobin (decadic)",
+                "S. Prahl (OMLC) compilation of W.B. Gratzer and N. Kollias; raw file hemoglobin_prahl.txt",
+                "wavelength_nm [nm]; oxy, deoxy [cm^-1 / M, decadic]",
+                ["wavelength_nm", "oxy", "deoxy"], rows, "error",
+                ["per mole of haemoglobin tetramer; mu_a = ln(10) eps c / M with M = 64,500 (Prahl) or 66,500 g/mol"])
+    for name, raw, title, solvent in (
+            ("beta_carotene", "beta_carotene_photochemcad.txt", "Beta-carotene", "hexane"),
+            ("bilirubin", "bilirubin_photochemcad.txt", "Bilirubin", "chloroform")):
+        rows, negatives = clamp_negative(read_columns(src / raw))
+        write_table(d / f"{name}.csv", f"{title} molar extinction in {solvent} (decadic)",
+                    f"PhotochemCAD 2.1a (Du et al. 1998; Dixon et al. 2005) via OMLC; raw file {raw}",
+                    "wavelength_nm [nm]; molar_extinction [cm^-1 / M, decadic]",
+                    ["wavelength_nm", "molar_extinction"], rows, "zero",
+                    [f"{negatives} noisy negative values of the raw table set to 0",
+                     "zero outside the table: the absorption band lies in 350-550 nm and the raw tail past "
+                     "~620 nm is noise around 0, so 0 above 700 nm is the measured value, not a guess; "
+                     "below the table (UV-C) the model is not used"])
+    rows = [r for r in read_columns(src / "water_segelstein.txt") if 200 <= r[0] <= 2500]
+    write_table(d / "water.csv", "Absorption coefficient of pure water (Segelstein)",
+                "Segelstein D. (1981), M.Sc. thesis, University of Missouri-Kansas City, via OMLC; "
+                "raw file water_segelstein.txt cut to 200-2500 nm",
+                "wavelength_nm [nm]; mu_a [cm^-1]", ["wavelength_nm", "mu_a"], rows, "error")
+    rows = [[float(w), 0.244 + 85.3 * pow(2.718281828459045, -(w - 154.0) / 66.2)] for w in range(250, 1001)]
+    write_table(d / "baseline_tissue.csv", "Baseline absorption of bloodless skin tissue (Jacques)",
+                "formula mu_base = 0.244 + 85.3 exp(-(lambda - 154) / 66.2) cm^-1 (S. Jacques, OMLC 'Skin optics' "
+                "summary 1998; used by BioSpec, Krishnaswamy & Baranoski 2004), tabulated at 1 nm",
+                "wavelength_nm [nm]; mu_a [cm^-1]", ["wavelength_nm", "mu_a"], rows, "error",
+                ["linear interpolation between 1 nm samples is within 3e-5 (relative) of the formula",
+                 "range limited to 250-1000 nm, where the formula was fitted"])
+
+
+def make_tissue(src, out):
+    for short, name in (("EP", "epidermis"), ("DE", "dermis"), ("HY", "hypodermis")):
+        rows = read_columns(src / f"salomatina_{short}.txt")
+        write_table(out / "tissue" / f"salomatina_{name}.csv",
+                    f"Measured ex-vivo human {name} absorption and reduced scattering (Salomatina)",
+                    f"Salomatina E. et al. (2006), J. Biomed. Opt. 11(6):064026; raw file salomatina_{short}.txt",
+                    "wavelength_nm [nm]; mu_a, mu_a_std, mu_s_reduced, mu_s_reduced_std [mm^-1]",
+                    ["wavelength_nm", "mu_a_per_mm", "mu_a_std_per_mm", "mu_s_reduced_per_mm",
+                     "mu_s_reduced_std_per_mm"], rows, "error",
+                    ["std is the spread over the measured samples", "no value outside the measured range"])
+
+
+BIOSPEC_PRESETS = (  # name, melanosome volume fraction (docs/biospec-model.md)
+    ("biospec-lightly", 0.019, "lightly pigmented"),
+    ("biospec-moderately", 0.052, "moderately pigmented"),
+    ("biospec-heavily", 0.12, "heavily pigmented"),
+    ("biospec-very-heavily", 0.42, "very heavily pigmented"),
+)
+
+
+def make_biospec_presets(out):
+    for name, melanosomes, label in BIOSPEC_PRESETS:
+        text = f"""# BioSpec layered skin, {label} (melanosome volume fraction {melanosomes}).
+# Krishnaswamy & Baranoski 2004, as specified in docs/MATERIALS.md. Generated by {GENERATOR};
+# copy it and edit freely: every key carries its unit in its name, ranges are checked on load.
+kind = "layered"
+name = "{name}"
+description = "BioSpec skin, {label} (melanosome fraction {melanosomes})"
+
+[model]
+variant = "biospec"                  # or "biospec-2004"; any switch below overrides the variant
+hemoglobin_molar_mass_g_per_mol = 66500
+
+[surface]
+above_refractive_index = 1.0         # air
+fold_aspect_ratio = 0.75             # skin-fold perturbation of surface reflection, (0, 1]
+
+[bottom]
+boundary = "diffuse_reflector"       # the hypodermis (R = 1); "exit" tallies transmittance instead
+below_refractive_index = 1.0
+
+[[layers]]
+name = "stratum_corneum"
+thickness_cm = 0.001
+refractive_index = 1.55
+scattering = "measured_stratum_corneum"
+carotene_g_per_l = 2.1e-4
+reduced_scattering_table = "salomatina_epidermis"
+
+[[layers]]
+name = "epidermis"
+thickness_cm = 0.01
+refractive_index = 1.40
+scattering = "measured_epidermis"
+melanosome_fraction = {melanosomes}
+eumelanin_mg_per_ml = 80
+pheomelanin_mg_per_ml = 12
+carotene_g_per_l = 2.1e-4
+reduced_scattering_table = "salomatina_epidermis"
+
+[[layers]]
+name = "papillary_dermis"
+thickness_cm = 0.02
+refractive_index = 1.36
+scattering = "rayleigh_cosine"
+blood_fraction = 0.012
+oxygen_saturation = 0.75
+hemoglobin_g_per_l = 150
+bilirubin_g_per_l = 0.05
+carotene_g_per_l = 7e-5
+reduced_scattering_table = "salomatina_dermis"
+
+[[layers]]
+name = "reticular_dermis"
+thickness_cm = 0.18
+refractive_index = 1.38
+scattering = "rayleigh_cosine"
+blood_fraction = 0.0091
+oxygen_saturation = 0.75
+hemoglobin_g_per_l = 150
+bilirubin_g_per_l = 0.05
+carotene_g_per_l = 7e-5
+reduced_scattering_table = "salomatina_dermis"
+"""
+        path = out / "materials" / f"{name}.toml"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+        print(f"wrote {path.relative_to(ROOT)}")
+
+
+def make_jensen_materials(reference, out):
+    """Homogeneous RGB-band materials of Jensen et al. 2001 Fig. 5(b) as material presets (TOML)."""
+    lines = [l for l in reference.read_text(encoding="utf-8").splitlines() if l and not l.startswith("#")]
+    header = lines[0].split(",")
+    for line in lines[1:]:
+        row = dict(zip(header, line.split(",")))
+        name = row["material"]
+        text = f"""# Homogeneous material '{name}' for the diffusion modes: Jensen, Marschner, Levoy & Hanrahan 2001,
+# "A practical model for subsurface light transport", Fig. 5(b) (measured, R G B bands of a 3-CCD camera).
+# Generated by {GENERATOR} from shared/reference/jensen2001_measured_materials.csv.
+kind = "homogeneous"
+name = "jensen2001-{name}"
+description = "Jensen et al. 2001 measured material: {name}"
+relative_refractive_index = {row['eta']}
+bands = ["R", "G", "B"]
+reduced_scattering_per_mm = [{row['sigma_s_prime_r']}, {row['sigma_s_prime_g']}, {row['sigma_s_prime_b']}]
+absorption_per_mm = [{row['sigma_a_r']}, {row['sigma_a_g']}, {row['sigma_a_b']}]
+published_diffuse_reflectance = [{row['rd_r']}, {row['rd_g']}, {row['rd_b']}]
+"""
+        path = out / "materials" / f"jensen2001-{name}.toml"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+    print(f"wrote {len(lines) - 1} Jensen 2001 materials to data/materials/")
+
+
 # --- example spectrum -----------------------------------------------------------------------------------
 
 def make_example(out):
@@ -277,6 +447,7 @@ def make_example(out):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--sources", type=pathlib.Path, default=ROOT.parent / "shared" / "data-sources")
+    parser.add_argument("--reference", type=pathlib.Path, default=ROOT.parent / "shared" / "reference")
     parser.add_argument("--out", type=pathlib.Path, default=ROOT / "data")
     args = parser.parse_args()
     if not args.sources.is_dir():
@@ -284,6 +455,10 @@ def main():
     make_cie(args.sources, args.out)
     make_ocio(args.out)
     make_example(args.out)
+    make_chromophores(args.sources, args.out)
+    make_tissue(args.sources, args.out)
+    make_biospec_presets(args.out)
+    make_jensen_materials(args.reference / "jensen2001_measured_materials.csv", args.out)
 
 
 if __name__ == "__main__":

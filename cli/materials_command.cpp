@@ -1,0 +1,195 @@
+#include "cli/materials_command.hpp"
+
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "materials/material_file.hpp"
+#include "spectral/wavelength_grid.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct MaterialsOptions {
+    std::string material;
+    std::string wavelengths = "400:700:10";
+    std::vector<std::string> overrides;
+    std::string output;
+    bool json = false;
+    bool force = false;
+};
+
+std::vector<MaterialOverride> parse_overrides(const std::vector<std::string>& texts) {
+    std::vector<MaterialOverride> out;
+    for (const auto& t : texts) out.push_back(parse_override(t));
+    return out;
+}
+
+Json model_json(const ModelOptions& m) {
+    return Json{{"variant", m.variant},
+                {"dermal_rayleigh", m.dermal_rayleigh},
+                {"ln10_molar_tables", m.molar_tables == DecadicConversion::multiply_ln10},
+                {"ln10_melanin_tables", m.melanin_tables == DecadicConversion::multiply_ln10},
+                {"baseline_absorption", m.baseline_absorption},
+                {"hemoglobin_molar_mass_g_per_mol", m.hemoglobin_molar_mass_g_per_mol},
+                {"bilirubin_molar_mass_g_per_mol", m.bilirubin_molar_mass_g_per_mol},
+                {"carotene_molar_mass_g_per_mol", m.carotene_molar_mass_g_per_mol}};
+}
+
+// Per-layer optics over the grid: one vector per layer per quantity.
+struct StackOpticsTable {
+    std::vector<std::vector<LayerOptics>> by_wavelength;  // [wavelength][layer]
+};
+
+StackOpticsTable tabulate(const LayerStack& stack, const WavelengthGrid& grid) {
+    StackOpticsTable t;
+    for (const double nm : grid.nm()) t.by_wavelength.push_back(stack.optics(nm));
+    return t;
+}
+
+void show_stack(const LayerStack& stack, const WavelengthGrid& grid, bool json) {
+    const auto optics = tabulate(stack, grid);
+    if (json) {
+        Json j{{"kind", "layered"}, {"name", stack.name}, {"description", stack.description}, {"model", model_json(stack.model)},
+               {"above_refractive_index", stack.above_refractive_index}, {"fold_aspect_ratio", stack.fold_aspect_ratio},
+               {"bottom", std::string(to_string(stack.bottom))}, {"below_refractive_index", stack.below_refractive_index},
+               {"wavelength_nm", std::vector<double>(grid.nm().begin(), grid.nm().end())}};
+        Json layers = Json::array();
+        for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+            const auto& l = stack.layers[k];
+            Json layer{{"name", l.name}, {"thickness_cm", l.thickness_cm}, {"refractive_index", l.refractive_index},
+                       {"scattering", std::string(to_string(optics.by_wavelength.front()[k].crossing))}};
+            std::vector<double> mu_a, rayleigh, reduced;
+            for (const auto& row : optics.by_wavelength) {
+                mu_a.push_back(row[k].mu_a_per_cm);
+                rayleigh.push_back(row[k].rayleigh_per_cm);
+                if (row[k].mu_s_reduced_per_cm) reduced.push_back(*row[k].mu_s_reduced_per_cm);
+            }
+            layer["mu_a_per_cm"] = mu_a;
+            if (optics.by_wavelength.front()[k].crossing == CrossingScattering::rayleigh_cosine) layer["rayleigh_per_cm"] = rayleigh;
+            if (!reduced.empty()) layer["mu_s_reduced_per_cm"] = reduced;
+            layers.push_back(layer);
+        }
+        j["layers"] = layers;
+        std::cout << j.dump(2) << '\n';
+        return;
+    }
+    const auto& m = stack.model;
+    std::cout << fmt::format("{}: {}\n", stack.name, stack.description)
+              << fmt::format("model {}: dermal Rayleigh {}, ln10 on molar tables {}, ln10 on melanin {}, baseline absorption {}, "
+                             "haemoglobin M = {} g/mol\n",
+                             m.variant, m.dermal_rayleigh ? "on" : "off",
+                             m.molar_tables == DecadicConversion::multiply_ln10 ? "on" : "off",
+                             m.melanin_tables == DecadicConversion::multiply_ln10 ? "on" : "off",
+                             m.baseline_absorption ? "on" : "off", m.hemoglobin_molar_mass_g_per_mol)
+              << fmt::format("above: n = {}, fold aspect ratio {}; bottom: {} (below n = {})\n\n", stack.above_refractive_index,
+                             stack.fold_aspect_ratio, to_string(stack.bottom), stack.below_refractive_index);
+    std::cout << fmt::format("{:<20}{:>13}{:>7}{:>8}{:>8}  {}\n", "layer", "thickness_cm", "n", "v_mel", "v_blood", "scattering");
+    for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+        const auto& l = stack.layers[k];
+        std::cout << fmt::format("{:<20}{:>13g}{:>7g}{:>8g}{:>8g}  {}\n", l.name, l.thickness_cm, l.refractive_index,
+                                 l.melanosome_fraction, l.blood_fraction, to_string(optics.by_wavelength.front()[k].crossing));
+    }
+    const auto block = [&](const char* title, auto value) {
+        std::cout << '\n' << title << '\n' << fmt::format("{:>13}", "wavelength_nm");
+        for (const auto& l : stack.layers) std::cout << fmt::format("{:>18}", l.name.substr(0, 17));
+        std::cout << '\n';
+        for (std::size_t w = 0; w < grid.size(); ++w) {
+            std::cout << fmt::format("{:>13g}", grid[w]);
+            for (const auto& o : optics.by_wavelength[w]) std::cout << value(o);
+            std::cout << '\n';
+        }
+    };
+    block("absorption coefficient mu_a [1/cm]", [](const LayerOptics& o) { return fmt::format("{:>18.5g}", o.mu_a_per_cm); });
+    block("scattering: Rayleigh coefficient beta [1/cm] (rayleigh_cosine layers) / reduced scattering mu_s' [1/cm]",
+          [](const LayerOptics& o) {
+              const auto beta = o.crossing == CrossingScattering::rayleigh_cosine ? fmt::format("{:.4g}", o.rayleigh_per_cm) : "-";
+              const auto reduced = o.mu_s_reduced_per_cm ? fmt::format("{:.4g}", *o.mu_s_reduced_per_cm) : "-";
+              return fmt::format("{:>18}", beta + " / " + reduced);
+          });
+}
+
+void show_homogeneous(const HomogeneousMaterial& m, bool json) {
+    if (json) {
+        std::cout << Json{{"kind", "homogeneous"}, {"name", m.name}, {"description", m.description},
+                          {"relative_refractive_index", m.relative_refractive_index}, {"bands", m.bands},
+                          {"reduced_scattering_per_mm", m.reduced_scattering_per_mm}, {"absorption_per_mm", m.absorption_per_mm},
+                          {"published_diffuse_reflectance", m.published_diffuse_reflectance}}
+                         .dump(2)
+                  << '\n';
+        return;
+    }
+    std::cout << fmt::format("{}: {}\nhomogeneous, relative refractive index {}\n\n", m.name, m.description, m.relative_refractive_index)
+              << fmt::format("{:<6}{:>22}{:>18}{:>16}\n", "band", "mu_s' [1/mm]", "mu_a [1/mm]", "published Rd");
+    for (std::size_t b = 0; b < m.bands.size(); ++b) {
+        std::cout << fmt::format("{:<6}{:>22g}{:>18g}{:>16}\n", m.bands[b], m.reduced_scattering_per_mm[b], m.absorption_per_mm[b],
+                                 m.published_diffuse_reflectance.empty() ? "-" : fmt::format("{:g}", m.published_diffuse_reflectance[b]));
+    }
+}
+
+void run_list(bool json) {
+    Json j = Json::array();
+    for (const auto& file : preset_files()) {
+        const auto material = read_material(file);
+        const bool layered = std::holds_alternative<LayerStack>(material);
+        if (json) {
+            j.push_back(Json{{"name", file.stem().string()}, {"kind", layered ? "layered" : "homogeneous"},
+                             {"description", material_description(material)}, {"file", file.string()}});
+        } else {
+            std::cout << fmt::format("{:<28}{:<13}{}\n", file.stem().string(), layered ? "layered" : "homogeneous",
+                                     material_description(material));
+        }
+    }
+    if (json) std::cout << j.dump(2) << '\n';
+}
+
+void run_show(const MaterialsOptions& o) {
+    const auto material = load_material(o.material, parse_overrides(o.overrides));
+    if (const auto* stack = std::get_if<LayerStack>(&material)) {
+        show_stack(*stack, WavelengthGrid::parse(o.wavelengths, "--wavelengths"), o.json);
+    } else {
+        show_homogeneous(std::get<HomogeneousMaterial>(material), o.json);
+    }
+}
+
+void run_save(const MaterialsOptions& o) {
+    const auto material = load_material(o.material, parse_overrides(o.overrides));
+    write_material(material, o.output, o.force);
+    std::cout << "wrote " << o.output << '\n';
+}
+
+}  // namespace
+
+void add_materials_command(CLI::App& app) {
+    auto options = std::make_shared<MaterialsOptions>();
+    auto* cmd = app.add_subcommand("materials", "Material presets: list them, show a stack's per-layer optics, save a customised copy");
+    cmd->require_subcommand(1);
+
+    auto* list = cmd->add_subcommand("list", "List the presets in data/materials");
+    list->add_flag("--json", options->json, "Print JSON");
+    list->callback([options] { run_list(options->json); });
+
+    const auto add_material_options = [&](CLI::App* sub) {
+        sub->add_option("material", options->material, "Preset name (see 'materials list') or a .toml file")->required();
+        sub->add_option("--set", options->overrides,
+                        "Override a field, KEY=VALUE (repeatable), e.g. epidermis.melanosome_fraction=0.1, dermis.blood_fraction=0.02, "
+                        "model.variant=biospec-2004");
+    };
+    auto* show = cmd->add_subcommand("show", "Show a material: layers and per-layer mu_a and scattering with units");
+    add_material_options(show);
+    show->add_option("--wavelengths", options->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
+    show->add_flag("--json", options->json, "Print JSON");
+    show->callback([options] { run_show(*options); });
+
+    auto* save = cmd->add_subcommand("save", "Write a material (with --set overrides applied) as a TOML file");
+    add_material_options(save);
+    save->add_option("output", options->output, "Output .toml file")->required();
+    save->add_flag("--force", options->force, "Replace the output file if it exists");
+    save->callback([options] { run_save(*options); });
+}
+
+}  // namespace skinspec::cli

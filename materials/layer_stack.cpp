@@ -1,0 +1,72 @@
+#include "materials/layer_stack.hpp"
+
+#include <cmath>
+#include <map>
+
+#include "spectral/data_paths.hpp"
+#include "spectral/data_table.hpp"
+#include "spectral/input_error.hpp"
+
+namespace skinspec {
+namespace {
+
+// Measured reduced-scattering tables (data/tissue), loaded once.
+const TabulatedSpectrum& reduced_scattering_table(const std::string& table) {
+    static const std::map<std::string, TabulatedSpectrum, std::less<>> loaded = [] {
+        std::map<std::string, TabulatedSpectrum, std::less<>> all;
+        for (const auto name : reduced_scattering_tables()) {
+            const std::string file = "tissue/" + std::string(name) + ".csv";
+            all.emplace(name, DataTable::read(data_file(file)).spectrum("mu_s_reduced_per_mm", std::string(name)));
+        }
+        return all;
+    }();
+    const auto it = loaded.find(table);
+    if (it == loaded.end()) throw InputError("reduced scattering table '" + table + "' is not known");
+    return it->second;
+}
+
+double power_law(double at_500nm, double power, double wavelength_nm) {
+    return at_500nm * std::pow(wavelength_nm / 500.0, -power);
+}
+
+}  // namespace
+
+std::string_view to_string(BottomBoundary kind) {
+    return kind == BottomBoundary::diffuse_reflector ? "diffuse_reflector" : "exit";
+}
+
+BottomBoundary parse_bottom_boundary(std::string_view text, std::string_view what) {
+    if (text == "diffuse_reflector") return BottomBoundary::diffuse_reflector;
+    if (text == "exit") return BottomBoundary::exit;
+    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a bottom boundary (allowed: diffuse_reflector, exit)");
+}
+
+LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm) const {
+    const auto& layer = layers.at(index);
+    LayerOptics o{layer.thickness_cm, layer.refractive_index, absorption_per_cm(layer, wavelength_nm, model),
+                  layer.crossing, layer.hg_g, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt};
+    if (layer.crossing == CrossingScattering::rayleigh_cosine) {
+        if (model.dermal_rayleigh) o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
+        else o.crossing = CrossingScattering::cosine;
+    }
+    if (layer.volumetric) {
+        o.mu_s_per_cm = power_law(layer.volumetric->mu_s_per_cm_at_500nm, layer.volumetric->power, wavelength_nm);
+        o.phase = layer.volumetric->phase;
+        o.g = layer.volumetric->g;
+    }
+    if (layer.reduced) {
+        o.mu_s_reduced_per_cm = layer.reduced->table.empty()
+                                    ? power_law(layer.reduced->per_cm_at_500nm, layer.reduced->power, wavelength_nm)
+                                    : per_cm_from_per_mm(reduced_scattering_table(layer.reduced->table)(wavelength_nm));
+    }
+    return o;
+}
+
+std::vector<LayerOptics> LayerStack::optics(double wavelength_nm) const {
+    std::vector<LayerOptics> out;
+    out.reserve(layers.size());
+    for (std::size_t i = 0; i < layers.size(); ++i) out.push_back(optics(i, wavelength_nm));
+    return out;
+}
+
+}  // namespace skinspec

@@ -1,0 +1,50 @@
+#pragma once
+// A layer stack: the medium above, ordered tissue layers (top first), the bottom boundary, the surface's
+// fold aspect ratio and the model options. Answers "what are the optics of layer k at wavelength lambda?".
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "materials/tissue_layer.hpp"
+
+namespace skinspec {
+
+enum class BottomBoundary {
+    diffuse_reflector,  // the hypodermis: ideal Lambertian reflector, R = 1
+    exit,               // light leaving the last layer enters a medium of below_refractive_index (transmittance)
+};
+std::string_view to_string(BottomBoundary kind);
+BottomBoundary parse_bottom_boundary(std::string_view text, std::string_view what);
+
+// Optics of one layer at one wavelength, in the units the solvers use.
+struct LayerOptics {
+    double thickness_cm;
+    double refractive_index;
+    double mu_a_per_cm;
+    CrossingScattering crossing;          // effective: rayleigh_cosine becomes cosine when Rayleigh is off
+    double hg_g;                          // for henyey_greenstein crossings
+    double rayleigh_per_cm;               // collagen Rayleigh coefficient (0 unless rayleigh_cosine)
+    std::optional<double> mu_s_per_cm;    // volumetric scattering, when described
+    std::optional<PhaseFunctionKind> phase;
+    std::optional<double> g;
+    std::optional<double> mu_s_reduced_per_cm;  // reduced scattering, when described
+};
+
+struct LayerStack {
+    std::string name;
+    std::string description;
+    double above_refractive_index = 1.0;
+    std::vector<TissueLayer> layers;
+    BottomBoundary bottom = BottomBoundary::diffuse_reflector;
+    double below_refractive_index = 1.0;
+    double fold_aspect_ratio = 0.75;  // skin-fold perturbation of surface reflection, sigma in (0, 1]
+    ModelOptions model;
+
+    LayerOptics optics(std::size_t layer, double wavelength_nm) const;
+    std::vector<LayerOptics> optics(double wavelength_nm) const;
+
+    bool operator==(const LayerStack&) const = default;
+};
+
+}  // namespace skinspec

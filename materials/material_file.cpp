@@ -1,0 +1,521 @@
+#include "materials/material_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "spectral/data_paths.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+struct Range {
+    double lo;
+    double hi;
+    bool lo_open;
+    bool hi_open;
+    bool contains(double v) const {
+        return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    }
+    std::string text() const {
+        const auto bound = [](double b) { return std::isinf(b) ? std::string("inf") : format_number(b); };
+        return std::string(lo_open ? "(" : "[") + bound(lo) + ", " + bound(hi) + (hi_open ? ")" : "]");
+    }
+};
+
+constexpr Range fraction{0.0, 1.0, false, false};
+constexpr Range positive{0.0, inf, true, true};
+constexpr Range non_negative{0.0, inf, false, true};
+constexpr Range refractive_index{1.0, 4.0, false, false};
+constexpr Range anisotropy{-1.0, 1.0, false, false};
+constexpr Range fold_ratio{0.0, 1.0, true, false};
+constexpr Range power_law_exponent{-10.0, 10.0, false, false};
+
+// Reads typed, range-checked values out of a toml table and reports where a bad one came from.
+class Reader {
+public:
+    Reader(std::string file, std::set<std::string> overridden) : file_(std::move(file)), overridden_(std::move(overridden)) {}
+
+    std::string where(const toml::node* node, const std::string& path) const {
+        if (overridden_.count(path)) return file_ + " (--set " + path + "): ";
+        if (node && node->source().begin.line > 0) {
+            return file_ + ":" + std::to_string(node->source().begin.line) + ": ";
+        }
+        return file_ + ": ";
+    }
+
+    void reject_unknown(const toml::table& table, const std::string& prefix, std::initializer_list<std::string_view> known) const {
+        for (const auto& [key, node] : table) {
+            if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
+            std::string allowed;
+            for (const auto k : known) allowed += (allowed.empty() ? "" : ", ") + std::string(k);
+            throw InputError(where(&node, prefix + std::string(key.str())) + "unknown key '" + prefix +
+                             std::string(key.str()) + "' (allowed: " + allowed + ")");
+        }
+    }
+
+    const toml::node* require(const toml::table& table, std::string_view key, const std::string& path) const {
+        const auto* node = table.get(key);
+        if (!node) throw InputError(where(&table, path) + "key '" + path + "' is missing");
+        return node;
+    }
+
+    double number(const toml::table& table, std::string_view key, const std::string& path, Range range,
+                  std::optional<double> fallback) const {
+        const auto* node = fallback ? table.get(key) : require(table, key, path);
+        if (!node) return *fallback;
+        const auto value = node->value<double>();
+        if (!value) throw InputError(where(node, path) + "key '" + path + "' must be a number in " + range.text());
+        if (!range.contains(*value)) {
+            throw InputError(where(node, path) + "key '" + path + "' = " + format_number(*value) + " is outside " + range.text());
+        }
+        return *value;
+    }
+
+    std::string string(const toml::table& table, std::string_view key, const std::string& path,
+                       std::optional<std::string> fallback) const {
+        const auto* node = fallback ? table.get(key) : require(table, key, path);
+        if (!node) return *fallback;
+        const auto value = node->value<std::string>();
+        if (!value) throw InputError(where(node, path) + "key '" + path + "' must be a string");
+        return *value;
+    }
+
+    bool boolean(const toml::table& table, std::string_view key, const std::string& path, bool fallback) const {
+        const auto* node = table.get(key);
+        if (!node) return fallback;
+        const auto value = node->value<bool>();
+        if (!value) throw InputError(where(node, path) + "key '" + path + "' must be true or false");
+        return *value;
+    }
+
+    std::vector<double> numbers(const toml::table& table, std::string_view key, const std::string& path, Range range,
+                                bool required) const {
+        const auto* node = required ? require(table, key, path) : table.get(key);
+        std::vector<double> out;
+        if (!node) return out;
+        const auto* array = node->as_array();
+        if (!array) throw InputError(where(node, path) + "key '" + path + "' must be an array of numbers in " + range.text());
+        for (const auto& element : *array) {
+            const auto value = element.value<double>();
+            if (!value || !range.contains(*value)) {
+                throw InputError(where(node, path) + "key '" + path + "' has an entry outside " + range.text());
+            }
+            out.push_back(*value);
+        }
+        return out;
+    }
+
+    const toml::table* section(const toml::table& table, std::string_view key, const std::string& path) const {
+        const auto* node = table.get(key);
+        if (!node) return nullptr;
+        if (!node->as_table()) throw InputError(where(node, path) + "'" + path + "' must be a table ([" + path + "])");
+        return node->as_table();
+    }
+
+private:
+    std::string file_;
+    std::set<std::string> overridden_;
+};
+
+bool valid_layer_name(const std::string& name) {
+    return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+    });
+}
+
+ModelOptions read_model(const Reader& r, const toml::table* model) {
+    if (!model) return ModelOptions{};
+    r.reject_unknown(*model, "model.",
+                     {"variant", "dermal_rayleigh", "ln10_molar_tables", "ln10_melanin_tables", "baseline_absorption",
+                      "hemoglobin_molar_mass_g_per_mol", "bilirubin_molar_mass_g_per_mol",
+                      "carotene_molar_mass_g_per_mol"});
+    const auto variant_name = r.string(*model, "variant", "model.variant", std::string("biospec"));
+    ModelOptions o = model_variant(variant_name, r.where(model->get("variant"), "model.variant") + "key 'model.variant'");
+    const auto ln10 = [](bool on) { return on ? DecadicConversion::multiply_ln10 : DecadicConversion::omit_ln10; };
+    o.dermal_rayleigh = r.boolean(*model, "dermal_rayleigh", "model.dermal_rayleigh", o.dermal_rayleigh);
+    o.molar_tables = ln10(r.boolean(*model, "ln10_molar_tables", "model.ln10_molar_tables",
+                                    o.molar_tables == DecadicConversion::multiply_ln10));
+    o.melanin_tables = ln10(r.boolean(*model, "ln10_melanin_tables", "model.ln10_melanin_tables",
+                                      o.melanin_tables == DecadicConversion::multiply_ln10));
+    o.baseline_absorption = r.boolean(*model, "baseline_absorption", "model.baseline_absorption", o.baseline_absorption);
+    o.hemoglobin_molar_mass_g_per_mol = r.number(*model, "hemoglobin_molar_mass_g_per_mol",
+                                                 "model.hemoglobin_molar_mass_g_per_mol", positive,
+                                                 o.hemoglobin_molar_mass_g_per_mol);
+    o.bilirubin_molar_mass_g_per_mol = r.number(*model, "bilirubin_molar_mass_g_per_mol",
+                                                "model.bilirubin_molar_mass_g_per_mol", positive,
+                                                o.bilirubin_molar_mass_g_per_mol);
+    o.carotene_molar_mass_g_per_mol = r.number(*model, "carotene_molar_mass_g_per_mol",
+                                               "model.carotene_molar_mass_g_per_mol", positive,
+                                               o.carotene_molar_mass_g_per_mol);
+    return o;
+}
+
+TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index) {
+    TissueLayer layer;
+    const std::string fallback_path = "layers[" + std::to_string(index) + "].";
+    layer.name = r.string(t, "name", fallback_path + "name", std::nullopt);
+    if (!valid_layer_name(layer.name)) {
+        throw InputError(r.where(t.get("name"), fallback_path + "name") + "layer name '" + layer.name +
+                         "' is not allowed (allowed: lower-case letters, digits and _)");
+    }
+    const std::string p = layer.name + ".";
+    r.reject_unknown(t, p,
+                     {"name", "thickness_cm", "refractive_index", "melanosome_fraction", "eumelanin_mg_per_ml",
+                      "pheomelanin_mg_per_ml", "blood_fraction", "oxygen_saturation", "hemoglobin_g_per_l",
+                      "bilirubin_g_per_l", "carotene_g_per_l", "scattering", "hg_g", "collagen_fibre_fraction",
+                      "collagen_fibre_radius_nm", "collagen_fibre_index", "volumetric_mu_s_per_cm_at_500nm",
+                      "volumetric_mu_s_power", "volumetric_phase", "volumetric_g", "reduced_scattering_table",
+                      "reduced_scattering_per_cm_at_500nm", "reduced_scattering_power"});
+    const auto num = [&](std::string_view key, Range range, std::optional<double> fallback) {
+        return r.number(t, key, p + std::string(key), range, fallback);
+    };
+    layer.thickness_cm = num("thickness_cm", positive, std::nullopt);
+    layer.refractive_index = num("refractive_index", refractive_index, std::nullopt);
+    layer.melanosome_fraction = num("melanosome_fraction", fraction, layer.melanosome_fraction);
+    layer.eumelanin_mg_per_ml = num("eumelanin_mg_per_ml", non_negative, layer.eumelanin_mg_per_ml);
+    layer.pheomelanin_mg_per_ml = num("pheomelanin_mg_per_ml", non_negative, layer.pheomelanin_mg_per_ml);
+    layer.blood_fraction = num("blood_fraction", fraction, layer.blood_fraction);
+    layer.oxygen_saturation = num("oxygen_saturation", fraction, layer.oxygen_saturation);
+    layer.hemoglobin_g_per_l = num("hemoglobin_g_per_l", non_negative, layer.hemoglobin_g_per_l);
+    layer.bilirubin_g_per_l = num("bilirubin_g_per_l", non_negative, layer.bilirubin_g_per_l);
+    layer.carotene_g_per_l = num("carotene_g_per_l", non_negative, layer.carotene_g_per_l);
+    if (layer.melanosome_fraction + layer.blood_fraction > 1.0) {
+        throw InputError(r.where(t.get("blood_fraction"), p + "blood_fraction") + "layer '" + layer.name +
+                         "': melanosome_fraction + blood_fraction = " +
+                         format_number(layer.melanosome_fraction + layer.blood_fraction) + " is outside [0, 1]");
+    }
+    layer.crossing = parse_crossing_scattering(r.string(t, "scattering", p + "scattering", std::nullopt),
+                                               r.where(t.get("scattering"), p + "scattering") + "key '" + p + "scattering'");
+    layer.hg_g = num("hg_g", anisotropy, layer.hg_g);
+    layer.collagen_fibre_fraction = num("collagen_fibre_fraction", fraction, layer.collagen_fibre_fraction);
+    layer.collagen_fibre_radius_nm = num("collagen_fibre_radius_nm", positive, layer.collagen_fibre_radius_nm);
+    layer.collagen_fibre_index = num("collagen_fibre_index", refractive_index, layer.collagen_fibre_index);
+
+    if (t.contains("volumetric_mu_s_per_cm_at_500nm") || t.contains("volumetric_g") || t.contains("volumetric_phase") ||
+        t.contains("volumetric_mu_s_power")) {
+        VolumetricScattering v;
+        v.mu_s_per_cm_at_500nm = num("volumetric_mu_s_per_cm_at_500nm", non_negative, std::nullopt);
+        v.power = num("volumetric_mu_s_power", power_law_exponent, 0.0);
+        v.phase = parse_phase_function(r.string(t, "volumetric_phase", p + "volumetric_phase", "henyey_greenstein"),
+                                       r.where(t.get("volumetric_phase"), p + "volumetric_phase") + "key '" + p +
+                                           "volumetric_phase'");
+        v.g = num("volumetric_g", anisotropy, 0.0);
+        layer.volumetric = v;
+    }
+    const bool has_table = t.contains("reduced_scattering_table");
+    const bool has_law = t.contains("reduced_scattering_per_cm_at_500nm") || t.contains("reduced_scattering_power");
+    if (has_table && has_law) {
+        throw InputError(r.where(t.get("reduced_scattering_table"), p + "reduced_scattering_table") + "layer '" +
+                         layer.name + "': give reduced_scattering_table or the power law, not both");
+    }
+    if (has_table) {
+        ReducedScattering reduced;
+        reduced.table = r.string(t, "reduced_scattering_table", p + "reduced_scattering_table", std::nullopt);
+        const auto& known = reduced_scattering_tables();
+        if (std::find(known.begin(), known.end(), reduced.table) == known.end()) {
+            throw InputError(r.where(t.get("reduced_scattering_table"), p + "reduced_scattering_table") + "key '" + p +
+                             "reduced_scattering_table' = '" + reduced.table +
+                             "' is not a table (allowed: salomatina_epidermis, salomatina_dermis, salomatina_hypodermis)");
+        }
+        layer.reduced = reduced;
+    } else if (has_law) {
+        ReducedScattering reduced;
+        reduced.per_cm_at_500nm = num("reduced_scattering_per_cm_at_500nm", non_negative, std::nullopt);
+        reduced.power = num("reduced_scattering_power", power_law_exponent, 0.0);
+        layer.reduced = reduced;
+    }
+    return layer;
+}
+
+LayerStack read_stack(const Reader& r, const toml::table& root) {
+    r.reject_unknown(root, "", {"kind", "name", "description", "model", "surface", "bottom", "layers"});
+    LayerStack stack;
+    stack.name = r.string(root, "name", "name", std::nullopt);
+    stack.description = r.string(root, "description", "description", std::string());
+    stack.model = read_model(r, r.section(root, "model", "model"));
+    if (const auto* surface = r.section(root, "surface", "surface")) {
+        r.reject_unknown(*surface, "surface.", {"above_refractive_index", "fold_aspect_ratio"});
+        stack.above_refractive_index = r.number(*surface, "above_refractive_index", "surface.above_refractive_index",
+                                                refractive_index, stack.above_refractive_index);
+        stack.fold_aspect_ratio = r.number(*surface, "fold_aspect_ratio", "surface.fold_aspect_ratio", fold_ratio,
+                                           stack.fold_aspect_ratio);
+    }
+    if (const auto* bottom = r.section(root, "bottom", "bottom")) {
+        r.reject_unknown(*bottom, "bottom.", {"boundary", "below_refractive_index"});
+        stack.bottom = parse_bottom_boundary(r.string(*bottom, "boundary", "bottom.boundary", "diffuse_reflector"),
+                                             r.where(bottom->get("boundary"), "bottom.boundary") + "key 'bottom.boundary'");
+        stack.below_refractive_index = r.number(*bottom, "below_refractive_index", "bottom.below_refractive_index",
+                                                refractive_index, stack.below_refractive_index);
+    }
+    const auto* layers = root.get("layers");
+    if (!layers || !layers->as_array() || layers->as_array()->empty()) {
+        throw InputError(r.where(layers, "layers") + "a layered material needs at least one [[layers]] table");
+    }
+    std::size_t index = 0;
+    for (const auto& node : *layers->as_array()) {
+        const auto* table = node.as_table();
+        if (!table) throw InputError(r.where(&node, "layers") + "every entry of 'layers' must be a table ([[layers]])");
+        auto layer = read_layer(r, *table, index++);
+        for (const auto& other : stack.layers) {
+            if (other.name == layer.name) {
+                throw InputError(r.where(table->get("name"), layer.name + ".name") + "layer name '" + layer.name + "' is used twice");
+            }
+        }
+        stack.layers.push_back(std::move(layer));
+    }
+    return stack;
+}
+
+HomogeneousMaterial read_homogeneous(const Reader& r, const toml::table& root) {
+    r.reject_unknown(root, "", {"kind", "name", "description", "relative_refractive_index", "bands",
+                                "reduced_scattering_per_mm", "absorption_per_mm", "published_diffuse_reflectance"});
+    HomogeneousMaterial m;
+    m.name = r.string(root, "name", "name", std::nullopt);
+    m.description = r.string(root, "description", "description", std::string());
+    m.relative_refractive_index = r.number(root, "relative_refractive_index", "relative_refractive_index",
+                                           Range{0.2, 5.0, false, false}, std::nullopt);
+    const auto* bands = r.require(root, "bands", "bands");
+    if (!bands->as_array()) throw InputError(r.where(bands, "bands") + "key 'bands' must be an array of names");
+    for (const auto& b : *bands->as_array()) {
+        const auto name = b.value<std::string>();
+        if (!name) throw InputError(r.where(bands, "bands") + "key 'bands' must be an array of names");
+        m.bands.push_back(*name);
+    }
+    m.reduced_scattering_per_mm = r.numbers(root, "reduced_scattering_per_mm", "reduced_scattering_per_mm", non_negative, true);
+    m.absorption_per_mm = r.numbers(root, "absorption_per_mm", "absorption_per_mm", non_negative, true);
+    m.published_diffuse_reflectance =
+        r.numbers(root, "published_diffuse_reflectance", "published_diffuse_reflectance", fraction, false);
+    const auto n = m.bands.size();
+    if (n == 0 || m.reduced_scattering_per_mm.size() != n || m.absorption_per_mm.size() != n ||
+        (!m.published_diffuse_reflectance.empty() && m.published_diffuse_reflectance.size() != n)) {
+        throw InputError(r.where(bands, "bands") + "bands, reduced_scattering_per_mm, absorption_per_mm (and "
+                         "published_diffuse_reflectance) must have the same, non-zero length");
+    }
+    return m;
+}
+
+// Parses "--set" value text as a TOML value (held in a one-key table under "v"); text that is not one is a string.
+toml::table override_value(const std::string& text) {
+    try {
+        return toml::parse("v = " + text);
+    } catch (const toml::parse_error&) {
+        return toml::table{{"v", text}};
+    }
+}
+
+// Applies overrides to the parsed document; returns the set of overridden key paths (for messages).
+std::set<std::string> apply_overrides(toml::table& root, const std::vector<MaterialOverride>& overrides) {
+    std::set<std::string> paths;
+    for (const auto& o : overrides) {
+        const auto dot = o.key.find('.');
+        auto set = [&](toml::table& table, const std::string& key, const std::string& path) {
+            auto value = override_value(o.value);
+            table.insert_or_assign(key, std::move(*value.get("v")));
+            paths.insert(path);
+        };
+        if (dot == std::string::npos) {
+            set(root, o.key, o.key);
+            continue;
+        }
+        const std::string head = o.key.substr(0, dot);
+        const std::string key = o.key.substr(dot + 1);
+        if (key.empty() || key.find('.') != std::string::npos) {
+            throw InputError("--set " + o.key + ": key must be NAME or SECTION.NAME (e.g. epidermis.melanosome_fraction)");
+        }
+        if (head == "model" || head == "surface" || head == "bottom") {
+            if (!root.contains(head)) root.insert(head, toml::table{});
+            if (auto* section = root.get(head)->as_table()) {
+                set(*section, key, o.key);
+                continue;
+            }
+        }
+        std::vector<std::string> names;
+        bool matched = false;
+        if (auto* layers = root.get("layers"); layers && layers->as_array()) {
+            for (auto& node : *layers->as_array()) {
+                auto* layer = node.as_table();
+                if (!layer) continue;
+                const auto name = (*layer)["name"].value_or(std::string());
+                names.push_back(name);
+                const bool suffix = name.size() > head.size() && name.ends_with("_" + head);
+                if (name == head || suffix) {
+                    set(*layer, key, name + "." + key);
+                    matched = true;
+                }
+            }
+        }
+        if (!matched) {
+            std::string allowed = "model, surface, bottom";
+            for (const auto& n : names) allowed += ", " + n;
+            throw InputError("--set " + o.key + ": no layer or section '" + head + "' (allowed: " + allowed + ")");
+        }
+    }
+    return paths;
+}
+
+toml::array array_of(const std::vector<double>& values) {
+    toml::array out;
+    for (const double v : values) out.push_back(v);
+    return out;
+}
+
+toml::table stack_table(const LayerStack& s) {
+    toml::table root{{"kind", "layered"}, {"name", s.name}, {"description", s.description}};
+    root.insert("model", toml::table{
+                             {"variant", s.model.variant},
+                             {"dermal_rayleigh", s.model.dermal_rayleigh},
+                             {"ln10_molar_tables", s.model.molar_tables == DecadicConversion::multiply_ln10},
+                             {"ln10_melanin_tables", s.model.melanin_tables == DecadicConversion::multiply_ln10},
+                             {"baseline_absorption", s.model.baseline_absorption},
+                             {"hemoglobin_molar_mass_g_per_mol", s.model.hemoglobin_molar_mass_g_per_mol},
+                             {"bilirubin_molar_mass_g_per_mol", s.model.bilirubin_molar_mass_g_per_mol},
+                             {"carotene_molar_mass_g_per_mol", s.model.carotene_molar_mass_g_per_mol},
+                         });
+    root.insert("surface", toml::table{{"above_refractive_index", s.above_refractive_index},
+                                       {"fold_aspect_ratio", s.fold_aspect_ratio}});
+    root.insert("bottom", toml::table{{"boundary", std::string(to_string(s.bottom))},
+                                      {"below_refractive_index", s.below_refractive_index}});
+    toml::array layers;
+    for (const auto& l : s.layers) {
+        toml::table t{{"name", l.name},
+                      {"thickness_cm", l.thickness_cm},
+                      {"refractive_index", l.refractive_index},
+                      {"melanosome_fraction", l.melanosome_fraction},
+                      {"eumelanin_mg_per_ml", l.eumelanin_mg_per_ml},
+                      {"pheomelanin_mg_per_ml", l.pheomelanin_mg_per_ml},
+                      {"blood_fraction", l.blood_fraction},
+                      {"oxygen_saturation", l.oxygen_saturation},
+                      {"hemoglobin_g_per_l", l.hemoglobin_g_per_l},
+                      {"bilirubin_g_per_l", l.bilirubin_g_per_l},
+                      {"carotene_g_per_l", l.carotene_g_per_l},
+                      {"scattering", std::string(to_string(l.crossing))},
+                      {"hg_g", l.hg_g},
+                      {"collagen_fibre_fraction", l.collagen_fibre_fraction},
+                      {"collagen_fibre_radius_nm", l.collagen_fibre_radius_nm},
+                      {"collagen_fibre_index", l.collagen_fibre_index}};
+        if (l.volumetric) {
+            t.insert("volumetric_mu_s_per_cm_at_500nm", l.volumetric->mu_s_per_cm_at_500nm);
+            t.insert("volumetric_mu_s_power", l.volumetric->power);
+            t.insert("volumetric_phase", std::string(to_string(l.volumetric->phase)));
+            t.insert("volumetric_g", l.volumetric->g);
+        }
+        if (l.reduced && !l.reduced->table.empty()) t.insert("reduced_scattering_table", l.reduced->table);
+        if (l.reduced && l.reduced->table.empty()) {
+            t.insert("reduced_scattering_per_cm_at_500nm", l.reduced->per_cm_at_500nm);
+            t.insert("reduced_scattering_power", l.reduced->power);
+        }
+        layers.push_back(std::move(t));
+    }
+    root.insert("layers", std::move(layers));
+    return root;
+}
+
+toml::table homogeneous_table(const HomogeneousMaterial& m) {
+    toml::array bands;
+    for (const auto& b : m.bands) bands.push_back(b);
+    toml::table root{{"kind", "homogeneous"},
+                     {"name", m.name},
+                     {"description", m.description},
+                     {"relative_refractive_index", m.relative_refractive_index}};
+    root.insert("bands", std::move(bands));
+    root.insert("reduced_scattering_per_mm", array_of(m.reduced_scattering_per_mm));
+    root.insert("absorption_per_mm", array_of(m.absorption_per_mm));
+    if (!m.published_diffuse_reflectance.empty()) {
+        root.insert("published_diffuse_reflectance", array_of(m.published_diffuse_reflectance));
+    }
+    return root;
+}
+
+}  // namespace
+
+MaterialOverride parse_override(std::string_view text) {
+    const auto eq = text.find('=');
+    if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size()) {
+        throw InputError("--set '" + std::string(text) + "' must have the form KEY=VALUE (e.g. epidermis.melanosome_fraction=0.1)");
+    }
+    return {std::string(trim(text.substr(0, eq))), std::string(trim(text.substr(eq + 1)))};
+}
+
+Material read_material(const std::filesystem::path& file, const std::vector<MaterialOverride>& overrides) {
+    const std::string name = file.string();
+    if (!std::filesystem::is_regular_file(file)) throw InputError(name + ": material file not found");
+    toml::table root;
+    try {
+        root = toml::parse_file(name);
+    } catch (const toml::parse_error& e) {
+        throw InputError(name + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column) +
+                         ": TOML syntax error: " + std::string(e.description()));
+    }
+    const Reader reader(name, apply_overrides(root, overrides));
+    const auto kind = reader.string(root, "kind", "kind", std::string("layered"));
+    if (kind == "layered") return read_stack(reader, root);
+    if (kind == "homogeneous") return read_homogeneous(reader, root);
+    throw InputError(reader.where(root.get("kind"), "kind") + "key 'kind' = '" + kind + "' is not allowed (allowed: layered, homogeneous)");
+}
+
+std::vector<std::filesystem::path> preset_files() {
+    std::vector<std::filesystem::path> files;
+    const auto folder = data_directory() / "materials";
+    if (!std::filesystem::is_directory(folder)) throw InputError("preset folder " + folder.string() + " not found");
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        if (entry.is_regular_file() && entry.path().extension() == ".toml") files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+Material load_material(std::string_view name_or_file, const std::vector<MaterialOverride>& overrides) {
+    const std::filesystem::path as_path(name_or_file);
+    if (as_path.extension() == ".toml" || name_or_file.find('/') != std::string_view::npos) {
+        return read_material(as_path, overrides);
+    }
+    std::string allowed;
+    for (const auto& file : preset_files()) {
+        if (file.stem() == name_or_file) return read_material(file, overrides);
+        allowed += (allowed.empty() ? "" : ", ") + file.stem().string();
+    }
+    throw InputError("material '" + std::string(name_or_file) + "' is neither a preset nor a .toml file (presets: " + allowed + ")");
+}
+
+const std::string& material_name(const Material& material) {
+    return std::visit([](const auto& m) -> const std::string& { return m.name; }, material);
+}
+
+const std::string& material_description(const Material& material) {
+    return std::visit([](const auto& m) -> const std::string& { return m.description; }, material);
+}
+
+std::string to_toml(const Material& material) {
+    std::ostringstream out;
+    out << "# skinspec material, written by skinspec " << "(units in the key names; see docs/MATERIALS.md)\n";
+    std::visit(
+        [&](const auto& m) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, LayerStack>) out << stack_table(m);
+            else out << homogeneous_table(m);
+        },
+        material);
+    out << '\n';
+    return out.str();
+}
+
+void write_material(const Material& material, const std::filesystem::path& file, bool overwrite) {
+    if (std::filesystem::exists(file) && !overwrite) {
+        throw InputError(file.string() + ": exists already (use --force to overwrite it)");
+    }
+    std::ofstream out(file);
+    if (!out) throw InputError(file.string() + ": cannot be written");
+    out << to_toml(material);
+    if (!out) throw InputError(file.string() + ": write failed");
+}
+
+}  // namespace skinspec

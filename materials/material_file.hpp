@@ -1,0 +1,51 @@
+#pragma once
+// Material presets: hand-editable TOML files in data/materials (docs/MATERIALS.md). Two kinds:
+//   kind = "layered":     a LayerStack (BioSpec skin and any other stack);
+//   kind = "homogeneous": a semi-infinite material given by RGB-band (or other band) optical parameters.
+// Every field is range-checked; unknown keys are errors; messages name file, line, key, value and range.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "materials/layer_stack.hpp"
+
+namespace skinspec {
+
+struct HomogeneousMaterial {
+    std::string name;
+    std::string description;
+    double relative_refractive_index = 1.0;
+    std::vector<std::string> bands;
+    std::vector<double> reduced_scattering_per_mm;
+    std::vector<double> absorption_per_mm;
+    std::vector<double> published_diffuse_reflectance;  // optional, as printed by the source
+    bool operator==(const HomogeneousMaterial&) const = default;
+};
+
+using Material = std::variant<LayerStack, HomogeneousMaterial>;
+
+// One "--set KEY=VALUE": KEY is name | description | model.K | surface.K | bottom.K | LAYER.K, where LAYER is a
+// layer name or the suffix shared by several ("dermis" sets papillary_dermis and reticular_dermis). VALUE is a
+// TOML value (number, true/false, [array]); anything else is taken as a string.
+struct MaterialOverride {
+    std::string key;
+    std::string value;
+};
+MaterialOverride parse_override(std::string_view text);
+
+// Reads a material file and applies the overrides before validation.
+Material read_material(const std::filesystem::path& file, const std::vector<MaterialOverride>& overrides = {});
+// A preset name (file stem in data/materials) or a path to a .toml file.
+Material load_material(std::string_view name_or_file, const std::vector<MaterialOverride>& overrides = {});
+std::vector<std::filesystem::path> preset_files();
+const std::string& material_name(const Material& material);
+const std::string& material_description(const Material& material);
+
+// TOML text that read_material turns back into an equal Material.
+std::string to_toml(const Material& material);
+// Writes to_toml(material) to `file`; an existing file is only replaced when `overwrite` is set.
+void write_material(const Material& material, const std::filesystem::path& file, bool overwrite);
+
+}  // namespace skinspec

@@ -1,0 +1,87 @@
+#pragma once
+// A tissue layer: geometry, refractive index, absorbers, and the scattering descriptions that the solvers
+// use (per-crossing BioSpec scattering, and optionally volumetric mu_s with a phase function and reduced
+// scattering mu_s' for diffusion), so one description feeds every solver.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "materials/model_options.hpp"
+
+namespace skinspec {
+
+// What happens to a ray's direction each time it crosses the layer (BioSpec walk).
+enum class CrossingScattering {
+    measured_stratum_corneum,  // Bruls & van der Leun SC profile, randomized table look-up
+    measured_epidermis,        // Bruls & van der Leun epidermis profile
+    rayleigh_cosine,           // Rayleigh by collagen fibres with probability 1 - exp(-beta d / |cos|), else cosine
+    cosine,                    // cosine-distributed about the normal
+    henyey_greenstein,         // HG with asymmetry hg_g about the current direction
+};
+std::string_view to_string(CrossingScattering kind);
+CrossingScattering parse_crossing_scattering(std::string_view text, std::string_view what);
+
+enum class PhaseFunctionKind { henyey_greenstein, isotropic, rayleigh };
+std::string_view to_string(PhaseFunctionKind kind);
+PhaseFunctionKind parse_phase_function(std::string_view text, std::string_view what);
+
+// Volumetric scattering for radiative-transfer walks: mu_s(lambda) = mu_s(500 nm) * (lambda / 500 nm)^-power.
+struct VolumetricScattering {
+    double mu_s_per_cm_at_500nm = 0.0;
+    double power = 0.0;
+    PhaseFunctionKind phase = PhaseFunctionKind::henyey_greenstein;
+    double g = 0.0;
+    bool operator==(const VolumetricScattering&) const = default;
+};
+
+// Reduced scattering for diffusion: either a measured table (data/tissue/<table>.csv, column
+// mu_s_reduced_per_mm) or the power law mu_s'(lambda) = a * (lambda / 500 nm)^-b.
+struct ReducedScattering {
+    std::string table;  // "salomatina_epidermis", "salomatina_dermis", "salomatina_hypodermis", or empty
+    double per_cm_at_500nm = 0.0;
+    double power = 0.0;
+    bool operator==(const ReducedScattering&) const = default;
+};
+
+// Names of the measured reduced-scattering tables in data/tissue.
+const std::vector<std::string_view>& reduced_scattering_tables();
+
+struct TissueLayer {
+    std::string name;
+    double thickness_cm = 0.0;
+    double refractive_index = 1.0;
+
+    // Absorbers. The layer is a mixture: melanosomes (volume fraction), whole blood (volume fraction) and a
+    // background of the remaining volume holding carotene and the baseline tissue absorption.
+    double melanosome_fraction = 0.0;
+    double eumelanin_mg_per_ml = 80.0;     // inside melanosomes
+    double pheomelanin_mg_per_ml = 12.0;   // inside melanosomes
+    double blood_fraction = 0.0;
+    double oxygen_saturation = 0.75;
+    double hemoglobin_g_per_l = 150.0;     // in whole blood
+    double bilirubin_g_per_l = 0.05;       // in whole blood
+    double carotene_g_per_l = 0.0;         // in the background
+
+    CrossingScattering crossing = CrossingScattering::cosine;
+    double hg_g = 0.0;                         // for henyey_greenstein
+    double collagen_fibre_fraction = 0.21;     // for rayleigh_cosine
+    double collagen_fibre_radius_nm = 25.0;
+    double collagen_fibre_index = 1.5;
+    std::optional<VolumetricScattering> volumetric;
+    std::optional<ReducedScattering> reduced;
+
+    bool operator==(const TissueLayer&) const = default;
+};
+
+// Absorption coefficient [1/cm] at a wavelength (shared spec "Absorption coefficients"):
+//   mu_a = v_m (mu_eu + mu_ph) + v_b (S mu_HbO2 + (1 - S) mu_Hb + mu_bili) + (1 - v_m - v_b) (mu_car + mu_base).
+// Terms with zero weight are not evaluated, so a chromophore's table range only matters where it is present.
+double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const ModelOptions& model);
+
+// Rayleigh coefficient of the collagen fibres [1/cm] (shared spec step 3):
+//   beta = 8 pi^3 (eta^2 - 1)^2 / (3 N lambda^4), eta = n_fibre / n_layer, N = f / (4/3 pi r^3),
+// with lambda and r in cm.
+double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_nm);
+
+}  // namespace skinspec

@@ -1,0 +1,73 @@
+#include <catch2/catch.hpp>
+
+#include "materials/layer_stack.hpp"
+#include "materials/material_file.hpp"
+#include "spectral/input_error.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+LayerStack preset(const char* name) { return std::get<LayerStack>(load_material(name)); }
+
+}  // namespace
+
+TEST_CASE("optics of every layer come with their units and descriptions", "[layer_stack]") {
+    const auto stack = preset("biospec-moderately");
+    const auto optics = stack.optics(550.0);
+    REQUIRE(optics.size() == 4);
+    CHECK(optics[0].thickness_cm == 0.001);
+    CHECK(optics[0].refractive_index == 1.55);
+    CHECK(optics[0].crossing == CrossingScattering::measured_stratum_corneum);
+    CHECK(optics[1].crossing == CrossingScattering::measured_epidermis);
+    CHECK(optics[2].crossing == CrossingScattering::rayleigh_cosine);
+    CHECK(optics[2].rayleigh_per_cm > 0.0);
+    CHECK(optics[0].rayleigh_per_cm == 0.0);
+    for (const auto& o : optics) {
+        CHECK(o.mu_a_per_cm > 0.0);
+        CHECK(o.mu_s_reduced_per_cm.has_value());
+        CHECK_FALSE(o.mu_s_per_cm.has_value());
+    }
+    CHECK(stack.optics(2, 550.0).mu_a_per_cm == optics[2].mu_a_per_cm);
+}
+
+TEST_CASE("measured reduced scattering comes from Salomatina in 1/cm", "[layer_stack]") {
+    // salomatina_HY.txt row 400.42421 nm: mu_s' = 4.94648525691597 /mm.
+    auto stack = preset("biospec-lightly");
+    stack.layers[0].reduced = ReducedScattering{"salomatina_hypodermis", 0.0, 0.0};
+    CHECK(*stack.optics(0, 400.42421).mu_s_reduced_per_cm == Approx(49.4648525691597));
+    // Power law: a (lambda / 500)^-b.
+    stack.layers[0].reduced = ReducedScattering{"", 40.0, 1.5};
+    CHECK(*stack.optics(0, 1000.0).mu_s_reduced_per_cm == Approx(40.0 * std::pow(2.0, -1.5)));
+}
+
+TEST_CASE("the 2004 variant turns Rayleigh into cosine and drops ln 10 and the baseline", "[layer_stack]") {
+    auto stack = preset("biospec-lightly");
+    const double corrected = stack.optics(2, 576.0).mu_a_per_cm;
+    stack.model = model_variant("biospec-2004", "test");
+    const auto o = stack.optics(2, 576.0);
+    CHECK(o.crossing == CrossingScattering::cosine);
+    CHECK(o.rayleigh_per_cm == 0.0);
+    CHECK(o.mu_a_per_cm < corrected / 2.0);
+}
+
+TEST_CASE("volumetric scattering follows its power law", "[layer_stack]") {
+    auto stack = preset("biospec-lightly");
+    stack.layers[3].volumetric = VolumetricScattering{200.0, 1.0, PhaseFunctionKind::henyey_greenstein, 0.8};
+    const auto o = stack.optics(3, 250.0 * 2.0);
+    CHECK(*o.mu_s_per_cm == Approx(200.0));
+    CHECK(*stack.optics(3, 1000.0).mu_s_per_cm == Approx(100.0));
+    CHECK(*o.g == 0.8);
+    CHECK(*o.phase == PhaseFunctionKind::henyey_greenstein);
+}
+
+TEST_CASE("wavelengths outside a present chromophore's table are errors, not extrapolations", "[layer_stack]") {
+    const auto stack = preset("biospec-lightly");
+    CHECK_THROWS_WITH(stack.optics(1, 900.0), Catch::Contains("eumelanin: wavelength 900 nm"));
+    CHECK_THROWS_AS(stack.optics(0, 300.0), InputError);  // Salomatina starts at 369 nm
+}
+
+TEST_CASE("bottom boundary names", "[layer_stack]") {
+    CHECK(parse_bottom_boundary("exit", "b") == BottomBoundary::exit);
+    CHECK_THROWS_WITH(parse_bottom_boundary("mirror", "bottom.boundary"), Catch::Contains("allowed: diffuse_reflector, exit"));
+}

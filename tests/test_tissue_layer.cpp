@@ -1,0 +1,106 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "materials/tissue_layer.hpp"
+#include "spectral/input_error.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+TissueLayer blood_only() {
+    TissueLayer l;
+    l.name = "blood";
+    l.thickness_cm = 0.1;
+    l.refractive_index = 1.4;
+    l.blood_fraction = 1.0;
+    l.oxygen_saturation = 1.0;
+    l.bilirubin_g_per_l = 0.0;
+    return l;
+}
+
+}  // namespace
+
+TEST_CASE("whole oxygenated blood reproduces the hand-computed mu_a", "[tissue_layer]") {
+    ModelOptions prahl;
+    prahl.hemoglobin_molar_mass_g_per_mol = 64500.0;
+    CHECK(absorption_per_cm(blood_only(), 576.0, prahl) == Approx(297.408).margin(1e-3));
+}
+
+TEST_CASE("the layer mixture weights each compartment by its volume fraction", "[tissue_layer]") {
+    const ModelOptions model;
+    TissueLayer epidermis;
+    epidermis.name = "epidermis";
+    epidermis.thickness_cm = 0.01;
+    epidermis.refractive_index = 1.4;
+    epidermis.melanosome_fraction = 0.1;
+    epidermis.pheomelanin_mg_per_ml = 0.0;
+    epidermis.carotene_g_per_l = 0.0;
+    // 0.1 * 3.28 * 80 (eumelanin at 642.77 nm, no ln 10) + 0.9 * baseline(642.77).
+    const double baseline = 0.244 + 85.3 * std::exp(-(642.77 - 154.0) / 66.2);
+    CHECK(absorption_per_cm(epidermis, 642.77, model) == Approx(0.1 * 3.28 * 80.0 + 0.9 * baseline).epsilon(1e-4));
+    // Without baseline and melanin the layer is transparent.
+    ModelOptions bare = model;
+    bare.baseline_absorption = false;
+    epidermis.melanosome_fraction = 0.0;
+    CHECK(absorption_per_cm(epidermis, 500.0, bare) == 0.0);
+}
+
+TEST_CASE("more melanin and more blood absorb more at every visible wavelength", "[tissue_layer]") {
+    const ModelOptions model;
+    TissueLayer l;
+    l.name = "l";
+    l.thickness_cm = 0.01;
+    l.refractive_index = 1.4;
+    l.carotene_g_per_l = 2.1e-4;
+    for (double nm = 400.0; nm <= 700.0; nm += 5.0) {
+        INFO(nm << " nm");
+        double previous = -1.0;
+        for (const double v : {0.0, 0.019, 0.052, 0.12, 0.42}) {
+            l.melanosome_fraction = v;
+            const double mu = absorption_per_cm(l, nm, model);
+            CHECK(mu > previous);
+            previous = mu;
+        }
+        l.melanosome_fraction = 0.0;
+        previous = -1.0;
+        for (const double v : {0.0, 0.002, 0.0091, 0.012, 0.05}) {
+            l.blood_fraction = v;
+            const double mu = absorption_per_cm(l, nm, model);
+            CHECK(mu > previous);
+            previous = mu;
+        }
+        l.blood_fraction = 0.0;
+    }
+}
+
+TEST_CASE("absent chromophores are not evaluated, present ones keep their range", "[tissue_layer]") {
+    TissueLayer l = blood_only();
+    l.blood_fraction = 0.0;
+    l.melanosome_fraction = 0.0;
+    ModelOptions bare;
+    bare.baseline_absorption = false;
+    CHECK(absorption_per_cm(l, 2000.0, bare) == 0.0);
+    l.melanosome_fraction = 0.1;
+    CHECK_THROWS_WITH(absorption_per_cm(l, 900.0, bare), Catch::Contains("eumelanin: wavelength 900 nm"));
+}
+
+TEST_CASE("collagen Rayleigh coefficient matches the hand computation", "[tissue_layer]") {
+    // Papillary dermis n = 1.36, fibres n = 1.5, f = 0.21, r = 25 nm, lambda = 500 nm:
+    // beta = 8 pi^3 (eta^2 - 1)^2 / (3 N lambda^4) = 193.22 /cm (computed by hand from the spec formula).
+    TissueLayer l;
+    l.refractive_index = 1.36;
+    CHECK(rayleigh_coefficient_per_cm(l, 500.0) == Approx(193.2236).epsilon(1e-6));
+    // lambda^-4 law.
+    CHECK(rayleigh_coefficient_per_cm(l, 1000.0) == Approx(193.2236 / 16.0).epsilon(1e-6));
+    l.collagen_fibre_fraction = 0.0;
+    CHECK(rayleigh_coefficient_per_cm(l, 500.0) == 0.0);
+}
+
+TEST_CASE("scattering names parse and print", "[tissue_layer]") {
+    CHECK(parse_crossing_scattering("rayleigh_cosine", "x") == CrossingScattering::rayleigh_cosine);
+    CHECK_THROWS_WITH(parse_crossing_scattering("mie", "scattering"), Catch::Contains("allowed: measured_stratum_corneum"));
+    CHECK(parse_phase_function("isotropic", "x") == PhaseFunctionKind::isotropic);
+    CHECK_THROWS_AS(parse_phase_function("hg2", "x"), InputError);
+}
