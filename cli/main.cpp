@@ -7,6 +7,7 @@
 
 #include "cli/color_command.hpp"
 #include "cli/materials_command.hpp"
+#include "cli/spectrum_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     skinspec::cli::add_color_command(app);
     skinspec::cli::add_materials_command(app);
+    skinspec::cli::add_spectrum_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

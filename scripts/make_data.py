@@ -428,6 +428,31 @@ published_diffuse_reflectance = [{row['rd_r']}, {row['rd_g']}, {row['rd_b']}]
     print(f"wrote {len(lines) - 1} Jensen 2001 materials to data/materials/")
 
 
+# --- measured angular scattering profiles ---------------------------------------------------------------
+
+def make_profiles(reference, out):
+    """Bruls & van der Leun 1984 cumulative profiles, transposed to one row per wavelength."""
+    lines = [l for l in reference.read_text(encoding="utf-8").splitlines() if l and not l.startswith("#")]
+    header = lines[0].split(",")
+    rows = [[float(v) for v in l.split(",")] for l in lines[1:]]
+    angles = [r[0] for r in rows]
+    columns = ["wavelength_nm"] + [f"cumulative_percent_within_{a:g}deg" for a in angles]
+    for tissue, prefix in (("stratum_corneum", "sc_"), ("epidermis", "ep_")):
+        table = []
+        for c, name in enumerate(header):
+            if name.startswith(prefix):
+                table.append([float(name[len(prefix):])] + [r[c] for r in rows])
+        write_table(out / "scattering" / f"bruls_vanderleun_{tissue}.csv",
+                    f"Cumulative forward-scattering profile of human {tissue.replace('_', ' ')} (Bruls & van der Leun 1984)",
+                    "Bruls W.A.G., van der Leun J.C. (1984), Photochem. Photobiol. 40(2):231-242; 436/546 nm = Table 1 "
+                    "of Baranoski et al. 2005, other wavelengths as used by the BioSpec implementations; "
+                    "from shared/reference/bruls_vanderleun_1984_cumulative.csv",
+                    "wavelength_nm [nm]; cumulative_percent_within_<angle>deg [% of transmitted radiation within the "
+                    "polar angle, 100 at 62.5 deg]", columns, table, "hold",
+                    ["rows are wavelengths; between them profiles are interpolated linearly in wavelength, outside "
+                     "they are held (clamped): 546 nm is used for all longer wavelengths"])
+
+
 # --- example spectrum -----------------------------------------------------------------------------------
 
 def make_example(out):
@@ -457,6 +482,7 @@ def main():
     make_example(args.out)
     make_chromophores(args.sources, args.out)
     make_tissue(args.sources, args.out)
+    make_profiles(args.reference / "bruls_vanderleun_1984_cumulative.csv", args.out)
     make_biospec_presets(args.out)
     make_jensen_materials(args.reference / "jensen2001_measured_materials.csv", args.out)
 

@@ -1,0 +1,235 @@
+#include "cli/spectral_output.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "skinspec/version.hpp"
+#include "spectral/input_error.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json setting_json(const SettingValue& v) {
+    return std::visit([](const auto& x) { return Json(x); }, v);
+}
+
+// Column names, in order, with a getter each; shared by JSON and CSV so both carry the same quantities.
+struct Column {
+    std::string name;
+    std::function<Estimate(const WavelengthResult&)> get;
+};
+
+std::vector<Column> scalar_columns(const SpectralResult& r) {
+    std::vector<Column> cols;
+    const auto& q = r.quantities;
+    if (q.reflectance) {
+        cols.push_back({"R", [](const WavelengthResult& w) { return w.reflectance; }});
+        cols.push_back({"R_specular", [](const WavelengthResult& w) { return w.specular_reflectance; }});
+    }
+    if (q.transmittance) cols.push_back({"T", [](const WavelengthResult& w) { return w.transmittance; }});
+    if (q.absorptance) {
+        for (std::size_t k = 0; k < r.layer_names.size(); ++k) {
+            cols.push_back({"A_" + r.layer_names[k], [k](const WavelengthResult& w) { return w.absorptance_layers[k]; }});
+        }
+        cols.push_back({"A_surface", [](const WavelengthResult& w) { return w.absorptance_surface; }});
+    }
+    if (q.angular) {
+        const auto& e = r.angular_bin_edges_deg;
+        for (std::size_t b = 0; b + 1 < e.size(); ++b) {
+            cols.push_back({fmt::format("BRDF_{:g}-{:g}deg_per_sr", e[b], e[b + 1]),
+                            [b](const WavelengthResult& w) { return w.brdf_per_sr[b]; }});
+        }
+        for (std::size_t b = 0; b + 1 < e.size(); ++b) {
+            cols.push_back({fmt::format("BTDF_{:g}-{:g}deg_per_sr", e[b], e[b + 1]),
+                            [b](const WavelengthResult& w) { return w.btdf_per_sr[b]; }});
+        }
+    }
+    return cols;
+}
+
+Json result_json(const ReportedSpectrum& s) {
+    const auto& r = s.result;
+    Json j{{"model", r.model}, {"material", r.material}, {"partial", r.partial}};
+    Json settings = Json::object();
+    for (const auto& [k, v] : r.settings) settings[k] = setting_json(v);
+    j["settings"] = settings;
+    j["layers"] = r.layer_names;
+    std::vector<double> nm, truncated;
+    std::vector<std::uint64_t> rays;
+    std::vector<bool> converged;
+    for (const auto& w : r.wavelengths) {
+        nm.push_back(w.wavelength_nm);
+        rays.push_back(w.rays);
+        converged.push_back(w.converged);
+        truncated.push_back(static_cast<double>(w.truncated_rays));
+    }
+    j["wavelength_nm"] = nm;
+    const auto series = [&](const std::function<Estimate(const WavelengthResult&)>& get, const std::string& key) {
+        std::vector<double> v, e;
+        for (const auto& w : r.wavelengths) {
+            v.push_back(get(w).value);
+            e.push_back(get(w).stderr);
+        }
+        j[key] = v;
+        j[key + "_stderr"] = e;
+    };
+    const auto& q = r.quantities;
+    if (q.reflectance) {
+        series([](const WavelengthResult& w) { return w.reflectance; }, "R");
+        series([](const WavelengthResult& w) { return w.specular_reflectance; }, "R_specular");
+    }
+    if (q.transmittance) series([](const WavelengthResult& w) { return w.transmittance; }, "T");
+    if (q.absorptance) {
+        Json a = Json::array(), ae = Json::array();
+        for (const auto& w : r.wavelengths) {
+            std::vector<double> v, e;
+            for (const auto& x : w.absorptance_layers) {
+                v.push_back(x.value);
+                e.push_back(x.stderr);
+            }
+            a.push_back(v);
+            ae.push_back(e);
+        }
+        j["A_layers"] = a;
+        j["A_layers_stderr"] = ae;
+        series([](const WavelengthResult& w) { return w.absorptance_surface; }, "A_surface");
+    }
+    if (q.angular) {
+        j["angular_bin_edges_deg"] = r.angular_bin_edges_deg;
+        for (const auto* key : {"BRDF_per_sr", "BTDF_per_sr"}) {
+            Json v = Json::array(), e = Json::array();
+            const bool brdf = std::string(key) == "BRDF_per_sr";
+            for (const auto& w : r.wavelengths) {
+                std::vector<double> vv, ee;
+                for (const auto& x : brdf ? w.brdf_per_sr : w.btdf_per_sr) {
+                    vv.push_back(x.value);
+                    ee.push_back(x.stderr);
+                }
+                v.push_back(vv);
+                e.push_back(ee);
+            }
+            j[key] = v;
+            j[std::string(key) + "_stderr"] = e;
+        }
+    }
+    j["rays"] = rays;
+    j["converged"] = converged;
+    j["truncated_rays"] = truncated;
+    j["seconds"] = s.seconds;
+    if (s.color) j["color"] = to_json(*s.color);
+    return j;
+}
+
+}  // namespace
+
+std::optional<ColorSummary> reflectance_color(const SpectralResult& result, IlluminantKind illuminant, ObserverKind observer) {
+    if (!result.quantities.reflectance || result.wavelengths.size() < 2) return std::nullopt;
+    std::vector<double> nm, r;
+    for (const auto& w : result.wavelengths) {
+        nm.push_back(w.wavelength_nm);
+        r.push_back(w.reflectance.value);
+    }
+    if (nm.front() > 400.0 || nm.back() < 700.0) return std::nullopt;
+    const TristimulusWeights weights(nm, illuminant, observer, OutOfRangePolicy::hold);
+    return summarize_color(weights.integrate(r), weights, illuminant, observer, {});
+}
+
+Json to_json(const std::vector<ReportedSpectrum>& spectra) {
+    Json results = Json::array();
+    for (const auto& s : spectra) results.push_back(result_json(s));
+    return Json{{"skinspec_version", version}, {"schema", "skinspec-spectral-result/1"}, {"results", results}};
+}
+
+std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
+    std::string out = fmt::format("# skinspec {} spectral result (docs/RESULTS_SCHEMA.md)\n", version);
+    out += "# units: wavelength_nm [nm]; R, R_specular, T, A_* [fraction of incident flux]; BRDF/BTDF [1/sr]; "
+           "*_stderr: standard error of the column before it\n";
+    for (const auto& s : spectra) {
+        out += fmt::format("# material {}: model {}, partial {}", s.result.material, s.result.model, s.result.partial);
+        for (const auto& [k, v] : s.result.settings) {
+            out += ", " + k + " " + std::visit([](const auto& x) { return fmt::format("{}", x); }, v);
+        }
+        out += '\n';
+    }
+    const auto columns = spectra.empty() ? std::vector<Column>{} : scalar_columns(spectra.front().result);
+    out += "material,wavelength_nm";
+    for (const auto& c : columns) out += "," + c.name + "," + c.name + "_stderr";
+    out += ",rays,converged\n";
+    for (const auto& s : spectra) {
+        for (const auto& w : s.result.wavelengths) {
+            out += fmt::format("{},{:g}", s.result.material, w.wavelength_nm);
+            for (const auto& c : columns) out += fmt::format(",{:.9g},{:.3g}", c.get(w).value, c.get(w).stderr);
+            out += fmt::format(",{},{}\n", w.rays, w.converged ? 1 : 0);
+        }
+    }
+    return out;
+}
+
+std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
+    std::string out;
+    if (spectra.empty()) return out;
+    if (spectra.size() > 1) {
+        // Side by side: total reflectance of every material.
+        out += fmt::format("{:>13}", "wavelength_nm");
+        for (const auto& s : spectra) out += fmt::format("  {:>22}", s.result.material.substr(0, 22));
+        out += '\n';
+        const auto rows = spectra.front().result.wavelengths.size();
+        for (std::size_t i = 0; i < rows; ++i) {
+            out += fmt::format("{:>13g}", spectra.front().result.wavelengths[i].wavelength_nm);
+            for (const auto& s : spectra) {
+                if (i < s.result.wavelengths.size()) {
+                    const auto& e = s.result.wavelengths[i].reflectance;
+                    out += fmt::format("  {:>22}", fmt::format("R {:.4f} +- {:.4f}", e.value, e.stderr));
+                }
+            }
+            out += '\n';
+        }
+    } else {
+        const auto columns = scalar_columns(spectra.front().result);
+        out += fmt::format("{:>13}", "wavelength_nm");
+        for (const auto& c : columns) out += fmt::format("  {:>20}", c.name.substr(0, 20));
+        out += fmt::format("  {:>10}\n", "rays");
+        for (const auto& w : spectra.front().result.wavelengths) {
+            out += fmt::format("{:>13g}", w.wavelength_nm);
+            for (const auto& c : columns) out += fmt::format("  {:>20}", fmt::format("{:.4f} +- {:.4f}", c.get(w).value, c.get(w).stderr));
+            out += fmt::format("  {:>10}\n", w.rays);
+        }
+    }
+    out += '\n';
+    for (const auto& s : spectra) {
+        std::uint64_t rays = 0, truncated = 0;
+        bool all_converged = true;
+        for (const auto& w : s.result.wavelengths) {
+            rays += w.rays;
+            truncated += w.truncated_rays;
+            all_converged = all_converged && w.converged;
+        }
+        out += fmt::format("{}: {} wavelengths, {} rays in {:.2f} s{}{}{}\n", s.result.material, s.result.wavelengths.size(), rays,
+                           s.seconds, all_converged ? "" : "; standard error target NOT met at some wavelengths (budget spent)",
+                           truncated ? fmt::format("; {} rays stopped at the event limit", truncated) : "",
+                           s.result.partial ? "; PARTIAL (interrupted)" : "");
+        if (s.color) {
+            out += fmt::format("  colour of R under {} ({} observer, held outside {:g}-{:g} nm): XYZ {:.4f} {:.4f} {:.4f}, "
+                               "Lab {:.2f} {:.2f} {:.2f}, sRGB {}{}\n",
+                               short_name(s.color->illuminant), display_name(s.color->observer),
+                               s.result.wavelengths.front().wavelength_nm, s.result.wavelengths.back().wavelength_nm,
+                               s.color->xyz.X, s.color->xyz.Y, s.color->xyz.Z, s.color->lab.L, s.color->lab.a, s.color->lab.b,
+                               s.color->srgb_hex, s.color->srgb_in_gamut ? "" : " (clipped: outside sRGB)");
+        }
+    }
+    return out;
+}
+
+void write_text_file(const std::string& file, const std::string& text, bool overwrite) {
+    if (std::filesystem::exists(file) && !overwrite) throw InputError(file + ": exists already (use --force to overwrite it)");
+    std::ofstream out(file);
+    if (!out) throw InputError(file + ": cannot be written");
+    out << text;
+    if (!out) throw InputError(file + ": write failed");
+}
+
+}  // namespace skinspec::cli

@@ -1,0 +1,33 @@
+#pragma once
+// Renderings of spectral results shared by every solver's command: the JSON schema of
+// docs/RESULTS_SCHEMA.md, CSV with the same columns and units in the header, and readable tables.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/color_output.hpp"
+#include "layers/spectral_request.hpp"
+
+namespace skinspec::cli {
+
+// A solver's result with the colour of its reflectance (when the grid spans 400-700 nm).
+struct ReportedSpectrum {
+    SpectralResult result;
+    std::optional<ColorSummary> color;
+    double seconds = 0.0;
+};
+
+// Colour of the total reflectance, held outside the computed wavelengths; nullopt when the computed
+// wavelengths do not span 400-700 nm.
+std::optional<ColorSummary> reflectance_color(const SpectralResult& result, IlluminantKind illuminant, ObserverKind observer);
+
+nlohmann::ordered_json to_json(const std::vector<ReportedSpectrum>& spectra);
+std::string to_csv(const std::vector<ReportedSpectrum>& spectra);
+std::string to_table(const std::vector<ReportedSpectrum>& spectra);
+
+// Writes `text` to `file`; refuses to replace an existing file unless `overwrite`.
+void write_text_file(const std::string& file, const std::string& text, bool overwrite);
+
+}  // namespace skinspec::cli

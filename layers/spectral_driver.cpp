@@ -1,0 +1,99 @@
+#include "layers/spectral_driver.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+
+#include <tbb/parallel_for.h>
+
+namespace skinspec {
+namespace {
+
+struct Task {
+    std::size_t wavelength;
+    std::uint64_t batch;
+    std::uint64_t rays;
+};
+
+std::uint64_t batches_for(std::uint64_t rays) { return (rays + rays_per_batch - 1) / rays_per_batch; }
+
+}  // namespace
+
+DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels,
+                          const std::vector<std::size_t>& target_channels, const BatchTracer& trace) {
+    const std::size_t n = request.wavelengths.size();
+    const std::uint64_t budget = request.max_rays_per_wavelength;
+    DriverOutcome out{std::vector<RayTally>(n, RayTally(channels)), std::vector<bool>(n, false),
+                      std::vector<bool>(n, !request.stderr_target.has_value()), false};
+    std::vector<std::uint64_t> next_batch(n, 0);
+    // Rays planned for the next round, per wavelength: all of the budget without a target, else a first
+    // estimate of 8 batches.
+    std::vector<std::uint64_t> planned(n, request.stderr_target ? std::min<std::uint64_t>(budget, 8 * rays_per_batch) : budget);
+    std::atomic<std::uint64_t> rays_done{0};
+    std::size_t wavelengths_done = 0;
+    std::mutex progress_mutex;
+    const auto report = [&] {
+        if (!request.on_progress) return;
+        std::lock_guard lock(progress_mutex);
+        request.on_progress(Progress{rays_done.load(), wavelengths_done, n});
+    };
+    const auto cancelled = [&] { return request.cancel && request.cancel->load(); };
+
+    while (true) {
+        std::vector<Task> tasks;
+        for (std::size_t w = 0; w < n; ++w) {
+            if (out.finished[w]) continue;
+            std::uint64_t remaining = planned[w];
+            for (std::uint64_t b = 0; b < batches_for(planned[w]); ++b) {
+                const std::uint64_t rays = std::min(rays_per_batch, remaining);
+                tasks.push_back({w, next_batch[w] + b, rays});
+                remaining -= rays;
+            }
+        }
+        if (tasks.empty()) break;
+        std::vector<RayTally> results(tasks.size(), RayTally(channels));
+        tbb::parallel_for(std::size_t{0}, tasks.size(), [&](std::size_t i) {
+            if (cancelled()) return;
+            const auto& task = tasks[i];
+            auto random = RandomStream::for_batch(request.seed, request.wavelengths[task.wavelength], task.batch);
+            trace(task.wavelength, random, task.rays, results[i]);
+            rays_done += task.rays;
+            report();
+        });
+        if (cancelled()) {
+            out.cancelled = true;
+            break;
+        }
+        for (std::size_t i = 0; i < tasks.size(); ++i) out.tallies[tasks[i].wavelength].merge(results[i]);
+        for (std::size_t w = 0; w < n; ++w) {
+            if (out.finished[w]) continue;
+            next_batch[w] += batches_for(planned[w]);
+            const auto& tally = out.tallies[w];
+            const std::uint64_t used = tally.rays();
+            bool met = true;
+            double worst_ratio = 0.0;
+            if (request.stderr_target) {
+                for (const auto c : target_channels) {
+                    const double ratio = tally.estimate(c).stderr / *request.stderr_target;
+                    worst_ratio = std::max(worst_ratio, ratio);
+                }
+                met = worst_ratio <= 1.0;
+            }
+            if (met || used >= budget) {
+                out.finished[w] = true;
+                out.converged[w] = met;
+                ++wavelengths_done;
+                continue;
+            }
+            // stderr ~ 1/sqrt(N): rays needed for the target, with 10 % margin, at most 8x more per round.
+            const double needed = static_cast<double>(used) * worst_ratio * worst_ratio * 1.1;
+            const auto more = static_cast<std::uint64_t>(std::ceil(std::min(needed, 8.0 * static_cast<double>(used)))) - used;
+            planned[w] = std::clamp<std::uint64_t>(more, rays_per_batch, budget - used);
+        }
+        report();
+    }
+    return out;
+}
+
+}  // namespace skinspec

@@ -1,0 +1,80 @@
+#pragma once
+// What a caller asks a spectral solver for, and what it gets back. Shared by every solver: solvers compute
+// the requested quantities and nothing more, and say what they did.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "spectral/wavelength_grid.hpp"
+
+namespace skinspec {
+
+struct Quantities {
+    bool reflectance = true;     // R (total) and R_specular (first-surface reflection)
+    bool transmittance = false;  // T
+    bool absorptance = false;    // A per layer (and A_surface)
+    bool angular = false;        // BRDF / BTDF per polar bin (virtual goniometer)
+};
+
+struct Progress {
+    std::uint64_t rays_done = 0;
+    std::size_t wavelengths_done = 0;
+    std::size_t wavelengths_total = 0;
+};
+
+// Cooperative cancellation: solvers check it between batches of rays.
+using CancelFlag = std::atomic<bool>;
+
+struct SpectralRequest {
+    WavelengthGrid wavelengths = WavelengthGrid::list({550.0});
+    Quantities quantities;
+    double incidence_deg = 0.0;                  // polar angle of the collimated incident beam, [0, 90)
+    std::optional<double> stderr_target;         // stop a wavelength once R's (and T's) standard error is below
+    std::uint64_t max_rays_per_wavelength = 100'000;  // the budget (exact ray count without a target)
+    std::uint64_t seed = 1;
+    // Polar bin edges (deg) of the virtual goniometer: default 0, 2.5, 7.5, ..., 87.5, 90 (seed 000 Sec. 4).
+    std::vector<double> angular_bin_edges_deg;
+    std::function<void(const Progress&)> on_progress;  // called from worker threads, serialised by the solver
+    const CancelFlag* cancel = nullptr;
+};
+
+std::vector<double> default_angular_bin_edges_deg();
+
+struct Estimate {
+    double value = 0.0;
+    double stderr = 0.0;
+};
+
+struct WavelengthResult {
+    double wavelength_nm = 0.0;
+    Estimate reflectance;           // total, specular included
+    Estimate specular_reflectance;  // first-surface reflection only
+    Estimate transmittance;
+    std::vector<Estimate> absorptance_layers;
+    Estimate absorptance_surface;  // rays dropped by the skin-fold compatibility behaviour
+    std::vector<Estimate> brdf_per_sr;  // per polar bin, Eq. 10 of seed 000
+    std::vector<Estimate> btdf_per_sr;
+    std::uint64_t rays = 0;
+    std::uint64_t truncated_rays = 0;  // rays that hit the event limit (their weight counted as absorbed)
+    bool converged = true;             // stderr target met (always true without a target)
+};
+
+using SettingValue = std::variant<bool, double, std::string>;
+
+struct SpectralResult {
+    std::string model;
+    std::string material;
+    std::map<std::string, SettingValue> settings;  // every option that affects the numbers, seed included
+    std::vector<std::string> layer_names;
+    std::vector<double> angular_bin_edges_deg;
+    Quantities quantities;
+    std::vector<WavelengthResult> wavelengths;  // finished wavelengths, in grid order
+    bool partial = false;                       // cut short by cancellation
+};
+
+}  // namespace skinspec
