@@ -134,6 +134,9 @@ std::optional<ColorSummary> reflectance_color(const SpectralResult& result, Illu
         r.push_back(w.reflectance.value);
     }
     if (nm.front() > 400.0 || nm.back() < 700.0) return std::nullopt;
+    for (std::size_t i = 1; i < nm.size(); ++i) {
+        if (nm[i] - nm[i - 1] > max_color_step_nm) return std::nullopt;
+    }
     const TristimulusWeights weights(nm, illuminant, observer, OutOfRangePolicy::hold);
     return summarize_color(weights.integrate(r), weights, illuminant, observer, {});
 }

@@ -20,7 +20,9 @@ struct ReportedSpectrum {
 };
 
 // Colour of the total reflectance, held outside the computed wavelengths; nullopt when the computed
-// wavelengths do not span 400-700 nm.
+// wavelengths do not span 400-700 nm or are further apart than max_color_step_nm (linear interpolation
+// between them would misstate the colour).
+inline constexpr double max_color_step_nm = 20.0;
 std::optional<ColorSummary> reflectance_color(const SpectralResult& result, IlluminantKind illuminant, ObserverKind observer);
 
 nlohmann::ordered_json to_json(const std::vector<ReportedSpectrum>& spectra);

@@ -1,7 +1,7 @@
 #pragma once
 // Cosine-weighted (Lambertian) directions about the slab normal: p(omega) = cos(theta) / pi over the
 // hemisphere (Pharr, Jakob & Humphreys, pbrt-v4 Sec. A.5.3 / Malley's method, sampled directly in theta:
-// cos(theta) = sqrt(u1), phi = 2 pi u2).
+// cos(theta) = sqrt(u), phi uniform).
 #include <cmath>
 #include <numbers>
 
@@ -9,12 +9,11 @@
 
 namespace skinspec {
 
-// A direction in the hemisphere of `downward` (z > 0 when true).
-inline Direction sample_cosine_hemisphere(double u1, double u2, bool downward) {
-    const double cos_theta = std::sqrt(u1);
-    const double sin_theta = std::sqrt(1.0 - u1);
-    const double phi = 2.0 * std::numbers::pi * u2;
-    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), downward ? cos_theta : -cos_theta};
+// A direction in the hemisphere of `downward` (z > 0 when true), from u uniform in [0, 1) and a uniform azimuth.
+inline Direction sample_cosine_hemisphere(double u, Azimuth azimuth, bool downward) {
+    const double cos_theta = std::sqrt(u);
+    const double sin_theta = std::sqrt(1.0 - u);
+    return {sin_theta * azimuth.cos_phi, sin_theta * azimuth.sin_phi, downward ? cos_theta : -cos_theta};
 }
 
 // Density per steradian of a direction with |cos theta| to the normal, on its hemisphere.

@@ -9,8 +9,9 @@ namespace skinspec {
 
 inline double rayleigh_sample_cos(double u) {
     const double q = 4.0 * u - 2.0;  // mu^3 + 3 mu - 2 q = 0
-    const double root = std::sqrt(q * q + 1.0);
-    return std::cbrt(q + root) + std::cbrt(q - root);
+    // Cardano: mu = cbrt(q + sqrt(q^2 + 1)) + cbrt(q - sqrt(q^2 + 1)); the two cube roots multiply to -1.
+    const double a = std::cbrt(q + std::sqrt(q * q + 1.0));
+    return a - 1.0 / a;
 }
 
 inline double rayleigh_pdf_cos(double mu) { return 0.375 * (1.0 + mu * mu); }

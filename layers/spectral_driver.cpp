@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace skinspec {
 namespace {
@@ -53,21 +54,29 @@ DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels,
         }
         if (tasks.empty()) break;
         std::vector<RayTally> results(tasks.size(), RayTally(channels));
-        tbb::parallel_for(std::size_t{0}, tasks.size(), [&](std::size_t i) {
-            if (cancelled()) return;
-            const auto& task = tasks[i];
-            auto random = RandomStream::for_batch(request.seed, request.wavelengths[task.wavelength], task.batch);
-            trace(task.wavelength, random, task.rays, results[i]);
-            rays_done += task.rays;
-            report();
-        });
-        if (cancelled()) {
-            out.cancelled = true;
-            break;
+        std::vector<char> done(tasks.size(), 0);
+        // Workers claim tasks in order, so wavelengths complete front to back (what an interrupted run keeps).
+        std::atomic<std::size_t> next_task{0};
+        const auto workers = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+        tbb::parallel_for(std::size_t{0}, workers, [&](std::size_t) {
+            for (std::size_t i = next_task++; i < tasks.size() && !cancelled(); i = next_task++) {
+                const auto& task = tasks[i];
+                auto random = RandomStream::for_batch(request.seed, request.wavelengths[task.wavelength], task.batch);
+                trace(task.wavelength, random, task.rays, results[i]);
+                done[i] = 1;
+                rays_done += task.rays;
+                report();
+            }
+        }, tbb::static_partitioner());
+        out.cancelled = cancelled();
+        // A wavelength takes part in this round's decision only if all its batches of the round ran.
+        std::vector<bool> complete(n, true);
+        for (std::size_t i = 0; i < tasks.size(); ++i) complete[tasks[i].wavelength] = complete[tasks[i].wavelength] && done[i];
+        for (std::size_t i = 0; i < tasks.size(); ++i) {
+            if (complete[tasks[i].wavelength]) out.tallies[tasks[i].wavelength].merge(results[i]);
         }
-        for (std::size_t i = 0; i < tasks.size(); ++i) out.tallies[tasks[i].wavelength].merge(results[i]);
         for (std::size_t w = 0; w < n; ++w) {
-            if (out.finished[w]) continue;
+            if (out.finished[w] || !complete[w]) continue;
             next_batch[w] += batches_for(planned[w]);
             const auto& tally = out.tallies[w];
             const std::uint64_t used = tally.rays();
@@ -92,6 +101,7 @@ DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels,
             planned[w] = std::clamp<std::uint64_t>(more, rays_per_batch, budget - used);
         }
         report();
+        if (out.cancelled) break;
     }
     return out;
 }

@@ -41,7 +41,7 @@ BottomBoundary parse_bottom_boundary(std::string_view text, std::string_view wha
     throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a bottom boundary (allowed: diffuse_reflector, exit)");
 }
 
-LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm) const {
+LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsScope scope) const {
     const auto& layer = layers.at(index);
     LayerOptics o{layer.thickness_cm, layer.refractive_index, absorption_per_cm(layer, wavelength_nm, model),
                   layer.crossing, layer.hg_g, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt};
@@ -49,12 +49,12 @@ LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm) const {
         if (model.dermal_rayleigh) o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
         else o.crossing = CrossingScattering::cosine;
     }
-    if (layer.volumetric) {
+    if (scope.volumetric && layer.volumetric) {
         o.mu_s_per_cm = power_law(layer.volumetric->mu_s_per_cm_at_500nm, layer.volumetric->power, wavelength_nm);
         o.phase = layer.volumetric->phase;
         o.g = layer.volumetric->g;
     }
-    if (layer.reduced) {
+    if (scope.reduced && layer.reduced) {
         o.mu_s_reduced_per_cm = layer.reduced->table.empty()
                                     ? power_law(layer.reduced->per_cm_at_500nm, layer.reduced->power, wavelength_nm)
                                     : per_cm_from_per_mm(reduced_scattering_table(layer.reduced->table)(wavelength_nm));
@@ -62,10 +62,10 @@ LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm) const {
     return o;
 }
 
-std::vector<LayerOptics> LayerStack::optics(double wavelength_nm) const {
+std::vector<LayerOptics> LayerStack::optics(double wavelength_nm, OpticsScope scope) const {
     std::vector<LayerOptics> out;
     out.reserve(layers.size());
-    for (std::size_t i = 0; i < layers.size(); ++i) out.push_back(optics(i, wavelength_nm));
+    for (std::size_t i = 0; i < layers.size(); ++i) out.push_back(optics(i, wavelength_nm, scope));
     return out;
 }
 

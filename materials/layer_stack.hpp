@@ -31,6 +31,13 @@ struct LayerOptics {
     std::optional<double> mu_s_reduced_per_cm;  // reduced scattering, when described
 };
 
+// Which optional descriptions to evaluate: a solver asks only for what it uses, so e.g. the BioSpec walk
+// does not need the reduced-scattering table to cover its wavelengths.
+struct OpticsScope {
+    bool volumetric = true;
+    bool reduced = true;
+};
+
 struct LayerStack {
     std::string name;
     std::string description;
@@ -41,8 +48,8 @@ struct LayerStack {
     double fold_aspect_ratio = 0.75;  // skin-fold perturbation of surface reflection, sigma in (0, 1]
     ModelOptions model;
 
-    LayerOptics optics(std::size_t layer, double wavelength_nm) const;
-    std::vector<LayerOptics> optics(double wavelength_nm) const;
+    LayerOptics optics(std::size_t layer, double wavelength_nm, OpticsScope scope = {}) const;
+    std::vector<LayerOptics> optics(double wavelength_nm, OpticsScope scope = {}) const;
 
     bool operator==(const LayerStack&) const = default;
 };

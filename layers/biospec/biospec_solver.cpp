@@ -26,7 +26,7 @@ void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOp
         throw InputError("a standard error target needs R or T among the quantities");
     }
     const auto& edges = r.angular_bin_edges_deg;
-    if (r.quantities.angular) {
+    if (r.quantities.angular && !edges.empty()) {
         if (edges.size() < 2 || edges.front() != 0.0 || edges.back() != 90.0) {
             throw InputError("angular bin edges must start at 0 and end at 90 deg");
         }

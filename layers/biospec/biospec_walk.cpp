@@ -13,7 +13,6 @@
 namespace skinspec {
 namespace {
 
-constexpr double two_pi = 2.0 * std::numbers::pi;
 constexpr double deg = std::numbers::pi / 180.0;
 constexpr int max_redraws = 1000;          // same-hemisphere re-draws before keeping the unperturbed direction
 constexpr double roulette_weight = 1e-4;   // weighted estimator: Russian roulette below this weight
@@ -54,7 +53,7 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
       channels_(channels) {
     for (const double e : edges_deg) bin_edges_cos_.push_back(std::cos(e * deg));
     for (std::size_t k = 0; k < stack.layers.size(); ++k) {
-        const auto o = stack.optics(k, wavelength_nm);
+        const auto o = stack.optics(k, wavelength_nm, OpticsScope{false, false});
         const InverseCdfTable* profile = nullptr;
         if (o.crossing == CrossingScattering::measured_stratum_corneum) {
             if (!stratum_corneum_table_) {
@@ -97,7 +96,7 @@ Direction BiospecWavelength::scatter(const Layer& layer, const Direction& d, Ran
     const auto same_hemisphere = [&](auto&& draw_cos_sin) {
         for (int attempt = 0; attempt < max_redraws; ++attempt) {
             const auto [cos_t, sin_t] = draw_cos_sin();
-            const Direction out = deflect(d, cos_t, sin_t, two_pi * random.uniform());
+            const Direction out = deflect(d, cos_t, sin_t, sample_azimuth(random));
             if ((out.z > 0.0) == down && out.z != 0.0) return out;
         }
         return d;
@@ -119,13 +118,13 @@ Direction BiospecWavelength::scatter(const Layer& layer, const Direction& d, Ran
                 const double cos_t = std::max(std::abs(d.z), 1e-12);
                 if (random.uniform() < -std::expm1(-layer.rayleigh_per_cm * layer.thickness_cm / cos_t)) {
                     const double c = rayleigh_sample_cos(random.uniform());
-                    return deflect(d, c, std::sqrt(std::max(0.0, 1.0 - c * c)), two_pi * random.uniform());
+                    return deflect(d, c, std::sqrt(std::max(0.0, 1.0 - c * c)), sample_azimuth(random));
                 }
             }
             [[fallthrough]];
         case CrossingScattering::cosine: {
-            const double u1 = random.uniform();
-            return sample_cosine_hemisphere(u1, random.uniform(), down);
+            const double u = random.uniform();
+            return sample_cosine_hemisphere(u, sample_azimuth(random), down);
         }
     }
     return d;
@@ -144,7 +143,7 @@ void BiospecWavelength::trace_one(RandomStream& random, std::vector<double>& sco
     if (random.uniform() < fresnel_reflectance(incident_.z, n_above_, n_top)) {
         for (int attempt = 0; attempt < max_redraws; ++attempt) {
             const double c = skin_fold_sample_cos(fold_sigma_, random.uniform());
-            const Direction out = deflect(mirror(incident_), c, std::sqrt(std::max(0.0, 1.0 - c * c)), two_pi * random.uniform());
+            const Direction out = deflect(mirror(incident_), c, std::sqrt(std::max(0.0, 1.0 - c * c)), sample_azimuth(random));
             if (out.z < 0.0) {
                 add(channels_.reflectance, 1.0);
                 add(channels_.specular, 1.0);
@@ -195,7 +194,8 @@ void BiospecWavelength::trace_one(RandomStream& random, std::vector<double>& sco
         // Steps 5-6: the interface the ray now meets.
         const bool down = d.z > 0.0;
         if (down && k == last && reflector_) {
-            d = sample_cosine_hemisphere(random.uniform(), random.uniform(), false);
+            const double u = random.uniform();
+            d = sample_cosine_hemisphere(u, sample_azimuth(random), false);
             continue;
         }
         const double n_next = down ? (k == last ? n_below_ : layers_[k + 1].n) : (k == 0 ? n_above_ : layers_[k - 1].n);

@@ -1,0 +1,239 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <tbb/global_control.h>
+
+#include "layers/biospec/biospec_solver.hpp"
+#include "layers/measured_profile.hpp"
+#include "materials/material_file.hpp"
+#include "spectral/input_error.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+LayerStack preset(const char* name) { return std::get<LayerStack>(load_material(name)); }
+
+SpectralRequest all_quantities(std::vector<double> nm, std::uint64_t rays) {
+    SpectralRequest r;
+    r.wavelengths = WavelengthGrid::list(std::move(nm));
+    r.quantities = Quantities{true, true, true, false};
+    r.max_rays_per_wavelength = rays;
+    return r;
+}
+
+double energy(const WavelengthResult& w) {
+    double sum = w.reflectance.value + w.transmittance.value + w.absorptance_surface.value;
+    for (const auto& a : w.absorptance_layers) sum += a.value;
+    return sum;
+}
+
+void check_physical(const SpectralResult& result) {
+    for (const auto& w : result.wavelengths) {
+        INFO(w.wavelength_nm << " nm");
+        for (const double v : {w.reflectance.value, w.transmittance.value, w.specular_reflectance.value}) {
+            CHECK(std::isfinite(v));
+            CHECK(v >= 0.0);
+            CHECK(v <= 1.0);
+        }
+        for (const auto& a : w.absorptance_layers) {
+            CHECK(std::isfinite(a.value));
+            CHECK(a.value >= -1e-12);
+        }
+        CHECK(energy(w) == Approx(1.0).margin(1e-12));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("energy is conserved to rounding with the weighted estimator", "[biospec_solver]") {
+    for (const char* name : {"biospec-lightly", "biospec-very-heavily"}) {
+        for (const char* bottom : {"diffuse_reflector", "exit"}) {
+            INFO(name << ", " << bottom);
+            const auto stack = std::get<LayerStack>(load_material(name, {{"bottom.boundary", bottom}}));
+            check_physical(solve_biospec(stack, all_quantities({400, 480, 542, 576, 650, 700}, 20'000)));
+        }
+    }
+}
+
+TEST_CASE("the same seed gives identical numbers on 1 and 2 threads", "[biospec_solver]") {
+    const auto stack = preset("biospec-moderately");
+    auto request = all_quantities({450, 550, 650}, 0);
+    request.stderr_target = 0.004;
+    request.max_rays_per_wavelength = 1'000'000;
+    const auto run = [&](int threads) {
+        tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
+        return solve_biospec(stack, request);
+    };
+    const auto one = run(1);
+    const auto two = run(2);
+    REQUIRE(one.wavelengths.size() == two.wavelengths.size());
+    for (std::size_t i = 0; i < one.wavelengths.size(); ++i) {
+        CHECK(one.wavelengths[i].rays == two.wavelengths[i].rays);
+        CHECK(one.wavelengths[i].reflectance.value == two.wavelengths[i].reflectance.value);
+        CHECK(one.wavelengths[i].reflectance.stderr == two.wavelengths[i].reflectance.stderr);
+        CHECK(one.wavelengths[i].absorptance_layers[1].value == two.wavelengths[i].absorptance_layers[1].value);
+    }
+}
+
+TEST_CASE("the SC alone reproduces the measured cumulative profile it was built from", "[biospec_solver]") {
+    // Stratum corneum only, no absorbers, index-matched (n = 1 everywhere), reflector off, normal incidence:
+    // every ray crosses once and leaves with the measured deflection. 1e6 rays; within 1 % at every angle.
+    auto stack = preset("biospec-lightly");
+    stack.layers.resize(1);
+    stack.layers[0].carotene_g_per_l = 0.0;
+    stack.layers[0].refractive_index = 1.0;
+    stack.model.baseline_absorption = false;
+    stack.bottom = BottomBoundary::exit;
+    const auto& profile = MeasuredProfile::stratum_corneum();
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list({436.0, 546.0});
+    request.quantities = Quantities{true, true, false, true};
+    request.max_rays_per_wavelength = 1'000'000;
+    const auto result = solve_biospec(stack, request);
+    for (const auto& w : result.wavelengths) {
+        INFO(w.wavelength_nm << " nm");
+        CHECK(w.transmittance.value == Approx(1.0).margin(1e-12));
+        CHECK(w.reflectance.value == 0.0);
+        // Goniometer bins 0-2.5, 2.5-7.5, ...: back from BTDF to the fraction per bin, then cumulate.
+        const auto& edges = result.angular_bin_edges_deg;
+        const auto measured = profile.cumulative(w.wavelength_nm);
+        double cumulative = 0.0;
+        for (std::size_t b = 0; b + 1 < edges.size() && edges[b + 1] <= 62.5; ++b) {
+            const double deg = std::numbers::pi / 180.0;
+            const double solid_angle = 2.0 * std::numbers::pi * (std::cos(edges[b] * deg) - std::cos(edges[b + 1] * deg));
+            cumulative += w.btdf_per_sr[b].value * solid_angle * std::cos(0.5 * (edges[b] + edges[b + 1]) * deg);
+            INFO("up to " << edges[b + 1] << " deg");
+            CHECK(cumulative == Approx(measured[b + 1]).epsilon(0.01));
+        }
+    }
+}
+
+TEST_CASE("the random and weighted absorption estimators agree within statistical error", "[biospec_solver]") {
+    const auto stack = std::get<LayerStack>(load_material("biospec-moderately", {{"bottom.boundary", "exit"}}));
+    const auto request = all_quantities({420, 560, 680}, 200'000);
+    BiospecOptions random;
+    random.estimator = AbsorptionEstimator::random_test;
+    const auto a = solve_biospec(stack, request);
+    const auto b = solve_biospec(stack, request, random);
+    for (std::size_t i = 0; i < a.wavelengths.size(); ++i) {
+        const auto& x = a.wavelengths[i];
+        const auto& y = b.wavelengths[i];
+        INFO(x.wavelength_nm << " nm");
+        const auto agree = [](const Estimate& p, const Estimate& q) {
+            return std::abs(p.value - q.value) < 4.0 * std::hypot(p.stderr, q.stderr) + 1e-12;
+        };
+        CHECK(agree(x.reflectance, y.reflectance));
+        CHECK(agree(x.transmittance, y.transmittance));
+        for (std::size_t k = 0; k < x.absorptance_layers.size(); ++k) CHECK(agree(x.absorptance_layers[k], y.absorptance_layers[k]));
+        // The weighted estimator has the lower variance for absorption.
+        CHECK(x.absorptance_layers[1].stderr < y.absorptance_layers[1].stderr);
+        CHECK(energy(y) == Approx(1.0).margin(1e-12));
+    }
+}
+
+TEST_CASE("without absorbers and reflector all light leaves", "[biospec_solver]") {
+    auto stack = std::get<LayerStack>(load_material("biospec-lightly", {{"bottom.boundary", "exit"}}));
+    for (auto& l : stack.layers) {
+        l.melanosome_fraction = 0.0;
+        l.blood_fraction = 0.0;
+        l.carotene_g_per_l = 0.0;
+    }
+    stack.model.baseline_absorption = false;
+    const auto result = solve_biospec(stack, all_quantities({450, 600}, 20'000));
+    for (const auto& w : result.wavelengths) CHECK(w.reflectance.value + w.transmittance.value == Approx(1.0).margin(1e-12));
+}
+
+TEST_CASE("more melanin lowers R at every wavelength; more blood deepens the haemoglobin dips", "[biospec_solver]") {
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::range(400.0, 700.0, 20.0);
+    request.max_rays_per_wavelength = 100'000;
+    const auto light = solve_biospec(preset("biospec-lightly"), request);
+    const auto heavy = solve_biospec(preset("biospec-heavily"), request);
+    for (std::size_t i = 0; i < light.wavelengths.size(); ++i) {
+        const auto& a = light.wavelengths[i].reflectance;
+        const auto& b = heavy.wavelengths[i].reflectance;
+        INFO(light.wavelengths[i].wavelength_nm << " nm");
+        CHECK(b.value < a.value - 3.0 * std::hypot(a.stderr, b.stderr));
+    }
+    SpectralRequest dips;
+    dips.wavelengths = WavelengthGrid::list({420.0, 542.0, 576.0, 680.0});
+    dips.max_rays_per_wavelength = 200'000;
+    const auto normal = solve_biospec(preset("biospec-lightly"), dips);
+    const auto more_blood = solve_biospec(
+        std::get<LayerStack>(load_material("biospec-lightly", {parse_override("dermis.blood_fraction=0.04")})), dips);
+    const auto drop = [&](std::size_t i) { return 1.0 - more_blood.wavelengths[i].reflectance.value / normal.wavelengths[i].reflectance.value; };
+    for (std::size_t i = 0; i < 3; ++i) {
+        INFO(dips.wavelengths[i] << " nm");
+        CHECK(drop(i) > 0.05);
+        CHECK(drop(i) > 2.0 * drop(3));  // the dips deepen more than the red where blood absorbs little
+    }
+}
+
+TEST_CASE("the published shape of skin reflectance", "[biospec_solver]") {
+    // Low in the blue, rising steeply above 600 nm; 0.45-0.7 at 700 nm for lightly pigmented skin
+    // (shared spec "Things to verify"; the corrected model sits at the low end).
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list({450.0, 560.0, 576.0, 600.0, 700.0});
+    request.max_rays_per_wavelength = 100'000;
+    const auto r = solve_biospec(preset("biospec-lightly"), request).wavelengths;
+    CHECK(r[0].reflectance.value < r[4].reflectance.value / 2.0);
+    CHECK(r[2].reflectance.value < r[1].reflectance.value);
+    CHECK(r[4].reflectance.value > r[3].reflectance.value + 0.05);
+    CHECK(r[4].reflectance.value > 0.45);
+    CHECK(r[4].reflectance.value < 0.7);
+}
+
+TEST_CASE("extreme inputs finish with finite results in [0, 1] and conserved energy", "[biospec_solver]") {
+    struct Case { const char* what; std::vector<MaterialOverride> overrides; double incidence; std::vector<double> nm; };
+    const std::vector<Case> cases{
+        {"thin layers", {{"epidermis.thickness_cm", "1e-9"}, {"dermis.thickness_cm", "1e-9"}, {"stratum_corneum.thickness_cm", "1e-9"}}, 0.0, {550}},
+        {"thick layers", {{"epidermis.thickness_cm", "1e3"}, {"dermis.thickness_cm", "1e3"}}, 0.0, {550}},
+        {"fractions 0", {{"epidermis.melanosome_fraction", "0"}, {"dermis.blood_fraction", "0"}}, 0.0, {550}},
+        {"melanosomes 1", {{"epidermis.melanosome_fraction", "1"}}, 0.0, {550}},
+        {"blood 1", {{"dermis.blood_fraction", "1"}, {"dermis.oxygen_saturation", "1"}}, 0.0, {550}},
+        {"fold near 0", {{"surface.fold_aspect_ratio", "1e-6"}}, 60.0, {550}},
+        {"fold 1", {{"surface.fold_aspect_ratio", "1"}}, 60.0, {550}},
+        {"grazing incidence", {}, 89.9, {550}},
+        {"table edges", {}, 0.0, {250.0, 820.0}},
+        {"reflector off, grazing", {{"bottom.boundary", "exit"}}, 89.9, {400}},
+        {"resample folds", {}, 80.0, {550}},
+    };
+    for (const auto& c : cases) {
+        INFO(c.what);
+        const auto stack = std::get<LayerStack>(load_material("biospec-moderately", c.overrides));
+        auto request = all_quantities(c.nm, 20'000);
+        request.incidence_deg = c.incidence;
+        BiospecOptions options;
+        if (std::string(c.what) == "resample folds") options.fold_into_skin = FoldIntoSkin::resample;
+        const auto result = solve_biospec(stack, request, options);
+        check_physical(result);
+        if (std::string(c.what) == "resample folds") CHECK(result.wavelengths[0].absorptance_surface.value == 0.0);
+    }
+    // At 80 deg the 2004 behaviour drops fold reflections pointing into the skin.
+    auto request = all_quantities({550}, 20'000);
+    request.incidence_deg = 80.0;
+    CHECK(solve_biospec(preset("biospec-moderately"), request).wavelengths[0].absorptance_surface.value > 0.0);
+}
+
+TEST_CASE("the event limit stops rays with a documented outcome", "[biospec_solver]") {
+    BiospecOptions options;
+    options.max_events_per_ray = 3;
+    const auto result = solve_biospec(preset("biospec-lightly"), all_quantities({650}, 10'000), options);
+    CHECK(result.wavelengths[0].truncated_rays > 0);
+    check_physical(result);
+}
+
+TEST_CASE("bad requests are input errors naming the value and range", "[biospec_solver]") {
+    const auto stack = preset("biospec-lightly");
+    auto request = all_quantities({550}, 100);
+    request.incidence_deg = 90.0;
+    CHECK_THROWS_WITH(solve_biospec(stack, request), "incidence angle 90 deg is outside [0, 90)");
+    request.incidence_deg = 0.0;
+    request.stderr_target = 0.0;
+    CHECK_THROWS_WITH(solve_biospec(stack, request), "standard error target 0 is outside (0, inf)");
+    request.stderr_target.reset();
+    request.wavelengths = WavelengthGrid::list({900.0});
+    CHECK_THROWS_WITH(solve_biospec(stack, request), Catch::Contains("eumelanin: wavelength 900 nm is outside"));
+}
