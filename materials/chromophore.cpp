@@ -5,6 +5,7 @@
 
 #include "spectral/data_paths.hpp"
 #include "spectral/data_table.hpp"
+#include "spectral/load_once.hpp"
 
 namespace skinspec {
 namespace {
@@ -47,14 +48,7 @@ const std::vector<ChromophoreKind>& all_chromophores() {
     return kinds;
 }
 
-const Chromophore& chromophore(ChromophoreKind kind) {
-    static const std::vector<Chromophore> loaded = [] {
-        std::vector<Chromophore> all;
-        for (const auto k : all_chromophores()) all.push_back(load(k));
-        return all;
-    }();
-    return loaded[static_cast<std::size_t>(kind)];
-}
+const Chromophore& chromophore(ChromophoreKind kind) { return load_once(kind, all_chromophores(), load); }
 
 std::string_view name(ChromophoreKind kind) {
     switch (kind) {

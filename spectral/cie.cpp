@@ -7,6 +7,7 @@
 #include "spectral/data_paths.hpp"
 #include "spectral/data_table.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/load_once.hpp"
 
 namespace skinspec {
 namespace {
@@ -61,23 +62,9 @@ Kind parse_kind(std::string_view text, std::string_view what, const std::vector<
 
 }  // namespace
 
-const Observer& observer(ObserverKind kind) {
-    static const std::vector<Observer> loaded = [] {
-        std::vector<Observer> all;
-        for (const auto k : all_observers()) all.push_back(load_observer(k));
-        return all;
-    }();
-    return loaded[static_cast<std::size_t>(kind)];
-}
+const Observer& observer(ObserverKind kind) { return load_once(kind, all_observers(), load_observer); }
 
-const Illuminant& illuminant(IlluminantKind kind) {
-    static const std::vector<Illuminant> loaded = [] {
-        std::vector<Illuminant> all;
-        for (const auto k : all_illuminants()) all.push_back(load_illuminant(k));
-        return all;
-    }();
-    return loaded[static_cast<std::size_t>(kind)];
-}
+const Illuminant& illuminant(IlluminantKind kind) { return load_once(kind, all_illuminants(), load_illuminant); }
 
 std::string_view display_name(ObserverKind kind) {
     return kind == ObserverKind::cie1931_2deg ? "CIE 1931 2-degree" : "CIE 1964 10-degree";
