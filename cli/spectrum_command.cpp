@@ -20,6 +20,7 @@ struct SpectrumOptions {
     std::vector<std::string> presets;
     std::vector<std::string> materials;
     std::vector<std::string> overrides;
+    std::vector<std::string> layers;
     std::string wavelengths = "400:700:10";
     double incidence_deg = 0.0;
     std::uint64_t rays = 0;
@@ -102,11 +103,13 @@ void run_spectrum(const SpectrumOptions& o) {
     for (const auto& name : names) {
         if (InterruptGuard::interrupted()) break;
         const auto material = load_material(name, overrides);
-        const auto* stack = std::get_if<LayerStack>(&material);
-        if (!stack) {
+        const auto* full = std::get_if<LayerStack>(&material);
+        if (!full) {
             throw InputError("material '" + name + "' is homogeneous; the BioSpec walk needs a layered material "
                              "(homogeneous materials are for the diffusion modes)");
         }
+        const auto sub = o.layers.empty() ? std::optional<LayerStack>{} : full->sub_stack(o.layers);
+        const LayerStack* stack = sub ? &*sub : full;
         ProgressBar bar(stack->name);
         request.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
@@ -139,6 +142,7 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--preset", o->presets, "Preset name (repeatable; see 'skinspec materials list')");
     cmd->add_option("--material", o->materials, "Material TOML file (repeatable)");
     cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable), e.g. epidermis.melanosome_fraction=0.1");
+    cmd->add_option("--layers", o->layers, "Simulate only these layers (comma list), e.g. stratum_corneum,epidermis")->delimiter(',');
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();
     auto* rays = cmd->add_option("--rays", o->rays, "Fixed number of rays per wavelength")->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));

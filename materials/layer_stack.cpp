@@ -1,5 +1,6 @@
 #include "materials/layer_stack.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -60,6 +61,23 @@ LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsSc
                                     : per_cm_from_per_mm(reduced_scattering_table(layer.reduced->table)(wavelength_nm));
     }
     return o;
+}
+
+LayerStack LayerStack::sub_stack(const std::vector<std::string>& layer_names) const {
+    std::string known;
+    for (const auto& l : layers) known += (known.empty() ? "" : ", ") + l.name;
+    for (const auto& name : layer_names) {
+        if (std::none_of(layers.begin(), layers.end(), [&](const TissueLayer& l) { return l.name == name; })) {
+            throw InputError("--layers: '" + name + "' is not a layer of '" + this->name + "' (allowed: " + known + ")");
+        }
+    }
+    if (layer_names.empty()) throw InputError("--layers: no layer named (allowed: " + known + ")");
+    LayerStack out = *this;
+    out.layers.clear();
+    for (const auto& l : layers) {
+        if (std::find(layer_names.begin(), layer_names.end(), l.name) != layer_names.end()) out.layers.push_back(l);
+    }
+    return out;
 }
 
 std::vector<LayerOptics> LayerStack::optics(double wavelength_nm, OpticsScope scope) const {

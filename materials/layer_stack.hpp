@@ -51,6 +51,10 @@ struct LayerStack {
     LayerOptics optics(std::size_t layer, double wavelength_nm, OpticsScope scope = {}) const;
     std::vector<LayerOptics> optics(double wavelength_nm, OpticsScope scope = {}) const;
 
+    // The stack with only the named layers, in stack order (e.g. stratum_corneum + epidermis, as measured
+    // in vitro); InputError naming an unknown layer.
+    LayerStack sub_stack(const std::vector<std::string>& layer_names) const;
+
     bool operator==(const LayerStack&) const = default;
 };
 

@@ -71,3 +71,12 @@ TEST_CASE("bottom boundary names", "[layer_stack]") {
     CHECK(parse_bottom_boundary("exit", "b") == BottomBoundary::exit);
     CHECK_THROWS_WITH(parse_bottom_boundary("mirror", "bottom.boundary"), Catch::Contains("allowed: diffuse_reflector, exit"));
 }
+
+TEST_CASE("sub-stacks keep the named layers in stack order", "[layer_stack]") {
+    const auto stack = preset("biospec-lightly");
+    const auto sub = stack.sub_stack({"epidermis", "stratum_corneum"});
+    REQUIRE(sub.layers.size() == 2);
+    CHECK(sub.layers[0].name == "stratum_corneum");
+    CHECK(sub.layers[1].name == "epidermis");
+    CHECK_THROWS_WITH(stack.sub_stack({"nail"}), Catch::Contains("'nail' is not a layer of 'biospec-lightly' (allowed: stratum_corneum"));
+}

@@ -42,3 +42,4 @@ skinspec_cli_test("spectrum outside table" 2 "eumelanin: wavelength 900 nm is ou
 skinspec_cli_test("spectrum refuses overwrite" 2 "existing_output.csv: exists already \\(use --force" spectrum --rays 100 --wavelengths 550 --output existing_output.csv)
 skinspec_cli_test("spectrum bad reflector" 2 "--reflector: 'maybe' is not allowed \\(allowed: on, off\\)" spectrum --reflector maybe)
 skinspec_cli_test("spectrum bad estimator" 2 "--estimator: 'exact' is not an estimator" spectrum --estimator exact)
+skinspec_cli_test("spectrum sub-stack" 0 "A_stratum_corneum.*A_epidermis  " spectrum --preset biospec-lightly --layers stratum_corneum,epidermis --reflector off --quantities R,T,A --wavelengths 500 --rays 2000)
