@@ -8,6 +8,7 @@
 #include "cli/color_command.hpp"
 #include "cli/materials_command.hpp"
 #include "cli/spectrum_command.hpp"
+#include "cli/swatch_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_color_command(app);
     skinspec::cli::add_materials_command(app);
     skinspec::cli::add_spectrum_command(app);
+    skinspec::cli::add_swatch_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -17,20 +17,22 @@ struct Task {
     std::uint64_t rays;
 };
 
-std::uint64_t batches_for(std::uint64_t rays) { return (rays + rays_per_batch - 1) / rays_per_batch; }
-
 }  // namespace
 
 DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels,
                           const std::vector<std::size_t>& target_channels, const BatchTracer& trace) {
     const std::size_t n = request.wavelengths.size();
     const std::uint64_t budget = request.max_rays_per_wavelength;
+    const std::uint64_t rays_per_batch = std::max<std::uint64_t>(1, request.rays_per_batch);
+    const auto batches_for = [&](std::uint64_t rays) { return (rays + rays_per_batch - 1) / rays_per_batch; };
+    const bool adaptive = request.stderr_target.has_value() || static_cast<bool>(request.stderr_targets);
     DriverOutcome out{std::vector<RayTally>(n, RayTally(channels)), std::vector<bool>(n, false),
-                      std::vector<bool>(n, !request.stderr_target.has_value()), false};
+                      std::vector<bool>(n, !adaptive), false};
     std::vector<std::uint64_t> next_batch(n, 0);
     // Rays planned for the next round, per wavelength: all of the budget without a target, else a first
     // estimate of 8 batches.
-    std::vector<std::uint64_t> planned(n, request.stderr_target ? std::min<std::uint64_t>(budget, 8 * rays_per_batch) : budget);
+    std::vector<std::uint64_t> planned(
+        n, adaptive ? std::min<std::uint64_t>(budget, std::max<std::uint64_t>(1, request.initial_batches) * rays_per_batch) : budget);
     std::atomic<std::uint64_t> rays_done{0};
     std::size_t wavelengths_done = 0;
     std::mutex progress_mutex;
@@ -75,6 +77,16 @@ DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels,
         for (std::size_t i = 0; i < tasks.size(); ++i) {
             if (complete[tasks[i].wavelength]) out.tallies[tasks[i].wavelength].merge(results[i]);
         }
+        std::vector<double> targets(n, request.stderr_target.value_or(0.0));
+        if (request.stderr_targets && !target_channels.empty()) {
+            std::vector<Estimate> estimates(n);
+            std::vector<std::uint64_t> rays(n);
+            for (std::size_t w = 0; w < n; ++w) {
+                estimates[w] = out.tallies[w].estimate(target_channels.front());
+                rays[w] = out.tallies[w].rays();
+            }
+            targets = request.stderr_targets(estimates, rays);
+        }
         for (std::size_t w = 0; w < n; ++w) {
             if (out.finished[w] || !complete[w]) continue;
             next_batch[w] += batches_for(planned[w]);
@@ -82,9 +94,10 @@ DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels,
             const std::uint64_t used = tally.rays();
             bool met = true;
             double worst_ratio = 0.0;
-            if (request.stderr_target) {
+            if (adaptive) {
                 for (const auto c : target_channels) {
-                    const double ratio = tally.estimate(c).stderr / *request.stderr_target;
+                    const double se = tally.estimate(c).stderr;
+                    const double ratio = se == 0.0 ? 0.0 : se / targets[w];  // target inf: done; 0: needs se = 0
                     worst_ratio = std::max(worst_ratio, ratio);
                 }
                 met = worst_ratio <= 1.0;

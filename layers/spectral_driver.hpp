@@ -24,8 +24,6 @@ struct DriverOutcome {
     bool cancelled = false;
 };
 
-inline constexpr std::uint64_t rays_per_batch = 4096;
-
 DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels,
                           const std::vector<std::size_t>& target_channels, const BatchTracer& trace);
 

@@ -27,6 +27,11 @@ struct Progress {
     std::size_t wavelengths_total = 0;
 };
 
+struct Estimate {
+    double value = 0.0;
+    double stderr = 0.0;
+};
+
 // Cooperative cancellation: solvers check it between batches of rays.
 using CancelFlag = std::atomic<bool>;
 
@@ -35,7 +40,13 @@ struct SpectralRequest {
     Quantities quantities;
     double incidence_deg = 0.0;                  // polar angle of the collimated incident beam, [0, 90)
     std::optional<double> stderr_target;         // stop a wavelength once R's (and T's) standard error is below
+    // Per-wavelength targets recomputed after every round from the current estimates of R (or T) at all
+    // wavelengths; replaces stderr_target when set (e.g. a colour tolerance, layers/color_precision.hpp).
+    std::function<std::vector<double>(const std::vector<Estimate>& estimates, const std::vector<std::uint64_t>& rays)>
+        stderr_targets;
     std::uint64_t max_rays_per_wavelength = 100'000;  // the budget (exact ray count without a target)
+    std::uint64_t rays_per_batch = 4096;               // each batch has its own random stream
+    std::uint64_t initial_batches = 8;                 // first round with a target
     std::uint64_t seed = 1;
     // Polar bin edges (deg) of the virtual goniometer: default 0, 2.5, 7.5, ..., 87.5, 90 (seed 000 Sec. 4).
     std::vector<double> angular_bin_edges_deg;
@@ -45,10 +56,7 @@ struct SpectralRequest {
 
 std::vector<double> default_angular_bin_edges_deg();
 
-struct Estimate {
-    double value = 0.0;
-    double stderr = 0.0;
-};
+
 
 struct WavelengthResult {
     double wavelength_nm = 0.0;

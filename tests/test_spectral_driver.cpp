@@ -50,7 +50,7 @@ TEST_CASE("adaptive stopping meets the target or spends the budget", "[spectral_
         CHECK(out.tallies[w].estimate(0).stderr <= 0.002);
         const double p = 0.1 + 0.2 * static_cast<double>(w);
         // Not wildly more than needed: p(1-p)/0.002^2 rays, with batch rounding and the 10 % margin.
-        CHECK(out.tallies[w].rays() < 1.3 * p * (1 - p) / 4e-6 + 8 * rays_per_batch);
+        CHECK(out.tallies[w].rays() < 1.3 * p * (1 - p) / 4e-6 + 8 * r.rays_per_batch);
     }
     r.max_rays_per_wavelength = 20'000;
     const auto capped = run_batches(r, 1, {0}, bernoulli);

@@ -22,7 +22,8 @@ void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOp
     if (r.stderr_target && !(std::isfinite(*r.stderr_target) && *r.stderr_target > 0.0)) {
         throw InputError("standard error target " + format_number(*r.stderr_target) + " is outside (0, inf)");
     }
-    if (r.stderr_target && !r.quantities.reflectance && !r.quantities.transmittance) {
+    if (r.rays_per_batch < 1) throw InputError("rays per batch 0 is outside [1, inf)");
+    if ((r.stderr_target || r.stderr_targets) && !r.quantities.reflectance && !r.quantities.transmittance) {
         throw InputError("a standard error target needs R or T among the quantities");
     }
     const auto& edges = r.angular_bin_edges_deg;
@@ -56,7 +57,7 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
         {"incidence_deg", r.incidence_deg},
         {"seed", static_cast<double>(r.seed)},
         {"max_rays_per_wavelength", static_cast<double>(r.max_rays_per_wavelength)},
-        {"rays_per_batch", static_cast<double>(rays_per_batch)},
+        {"rays_per_batch", static_cast<double>(r.rays_per_batch)},
         {"profile_table_entries", static_cast<double>(o.profile_table_entries)},
         {"max_events_per_ray", static_cast<double>(o.max_events_per_ray)},
         {"skinspec_version", std::string(version)},

@@ -1,0 +1,195 @@
+#include "cli/swatch_command.hpp"
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "cli/color_output.hpp"
+#include "cli/progress.hpp"
+#include "layers/swatch/swatch_chart.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/chart_image.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct SwatchOptions {
+    std::string preset;
+    std::string material_file;
+    std::vector<std::string> overrides;
+    std::vector<std::string> vary;
+    std::string illuminant = "D65";
+    std::string observer = "2";
+    double delta_e = 0.3;
+    std::vector<std::string> outputs;
+    std::string space = "ACEScg";
+    bool half = false;
+    std::string display = "sRGB";
+    std::string view = "Standard";
+    int patch_px = 112;
+    std::uint64_t seed = 1;
+    std::uint64_t max_rays = 1'000'000;
+    unsigned threads = 0;
+    bool overwrite = false;
+    bool json = false;
+};
+
+const std::vector<std::string> default_sweeps{"epidermis.melanosome_fraction=0.01:0.42:8", "dermis.blood_fraction=0.002:0.05:5"};
+
+// "epidermis.melanosome_fraction" -> "melano": the first word of the field, at most 6 letters.
+std::string short_label(const std::string& field) {
+    auto name = field.substr(field.find('.') == std::string::npos ? 0 : field.find('.') + 1);
+    name = name.substr(0, name.find('_'));
+    return name.substr(0, 6);
+}
+
+void run_swatch(const SwatchOptions& o) {
+    SwatchRequest request;
+    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
+    if (!o.material_file.empty()) request.material = o.material_file;
+    if (!o.preset.empty()) request.material = o.preset;
+    for (const auto& t : o.overrides) request.overrides.push_back(parse_override(t));
+    for (const auto& v : o.vary.empty() ? default_sweeps : o.vary) request.sweeps.push_back(parse_sweep(v));
+    request.illuminant = parse_illuminant(o.illuminant, "--illuminant");
+    request.observer = parse_observer(o.observer, "--observer");
+    request.delta_e = o.delta_e;
+    request.seed = o.seed;
+    request.max_rays_per_wavelength = o.max_rays;
+    if (o.patch_px < 32 || o.patch_px > 2048) throw InputError("--patch-size " + std::to_string(o.patch_px) + " is outside [32, 2048]");
+
+    // Every output is checked before any work: nothing is written for a bad request.
+    const auto& cm = ColorManagement::builtin();
+    const std::string space = cm.canonical_space(o.space, "--space");
+    space_chromaticities(space);
+    const auto displays = cm.displays();
+    if (std::find(displays.begin(), displays.end(), o.display) == displays.end()) {
+        throw InputError("--display: '" + o.display + "' is not a display of the config");
+    }
+    for (const auto& out : o.outputs) check_output_path(out, o.overwrite, {".exr", ".png", ".tif", ".tiff"});
+
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    const InterruptGuard interrupt;
+    request.cancel = &InterruptGuard::cancel_flag();
+    ProgressBar bar("swatch");
+    request.on_progress = [&bar](std::size_t done, std::size_t total) { bar(Progress{0, done, total}); };
+
+    const auto start = std::chrono::steady_clock::now();
+    const auto chart = compute_swatch(request);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    std::vector<RGB> working;
+    std::vector<std::string> labels;
+    std::vector<ColorSummary> colours;
+    const TristimulusWeights weights(chart.wavelengths.nm(), request.illuminant, request.observer, OutOfRangePolicy::hold);
+    for (const auto& p : chart.patches) {
+        working.push_back(cm.from_xyz(p.xyz, chart.white, space));
+        colours.push_back(summarize_color(p.xyz, weights, request.illuminant, request.observer, {}));
+        std::string label;
+        for (std::size_t s = 0; s < p.parameters.size(); ++s) {
+            label += (s ? "\n" : "") + fmt::format("{} {:.3g}", short_label(request.sweeps[s].field), p.parameters[s]);
+        }
+        labels.push_back(label);
+    }
+
+    ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
+                           {"skinspec:model", "biospec"},
+                           {"skinspec:material", request.material},
+                           {"skinspec:seed", std::to_string(request.seed)},
+                           {"skinspec:partial", chart.partial ? "true" : "false"}};
+    std::string parameters;
+    for (const auto& s : request.sweeps) parameters += fmt::format("{}{}={:g}:{:g}:{}", parameters.empty() ? "" : "; ", s.field, s.first, s.last, s.steps);
+    for (const auto& ov : request.overrides) parameters += "; set " + ov.key + "=" + ov.value;
+    metadata.push_back({"skinspec:parameters", parameters});
+    for (const auto& [k, v] : chart.settings) {
+        metadata.push_back({"skinspec:" + k, std::visit([](const auto& x) { return fmt::format("{}", x); }, v)});
+    }
+    metadata.push_back({"ImageDescription", "skinspec swatch: " + request.material + ", " + parameters});
+
+    const ChartLayout layout{chart.columns, chart.rows, o.patch_px, 8};
+    for (const auto& out : o.outputs) {
+        if (out.ends_with(".exr")) write_linear_chart(out, layout, working, space, o.half, metadata, cm);
+        else write_display_chart(out, layout, working, labels, space, o.display, o.view, metadata, cm);
+        std::cerr << "wrote " << out << '\n';
+    }
+
+    std::uint64_t rays = 0;
+    double worst = 0.0;
+    for (const auto& p : chart.patches) {
+        rays += p.rays;
+        worst = std::max(worst, p.delta_e_uncertainty);
+    }
+    if (o.json) {
+        Json patches = Json::array();
+        for (std::size_t i = 0; i < chart.patches.size(); ++i) {
+            const auto& p = chart.patches[i];
+            auto c = to_json(colours[i]);
+            c["parameters"] = p.parameters;
+            c["delta_e_uncertainty"] = p.delta_e_uncertainty;
+            c["rays"] = p.rays;
+            c["converged"] = p.converged;
+            c[space] = working[i];
+            patches.push_back(c);
+        }
+        Json fields = Json::array();
+        for (const auto& s : request.sweeps) fields.push_back(s.field);
+        std::cout << Json{{"skinspec_version", version}, {"material", request.material}, {"fields", fields},
+                          {"columns", chart.columns}, {"rows", chart.rows}, {"partial", chart.partial},
+                          {"delta_e_target", request.delta_e}, {"worst_delta_e_uncertainty", worst}, {"rays", rays},
+                          {"seconds", seconds}, {"patches", patches}}
+                         .dump(2)
+                  << '\n';
+    } else {
+        std::cout << fmt::format("{:<28}{:>9}  {:<26}{:>8}{:>12}\n", "parameters", "sRGB", "Lab", "dE unc", "rays");
+        for (std::size_t i = 0; i < chart.patches.size(); ++i) {
+            const auto& p = chart.patches[i];
+            std::string params;
+            for (const double v : p.parameters) params += fmt::format("{:<10.4g}", v);
+            std::cout << fmt::format("{:<28}{:>9}  {:<26}{:>8.3f}{:>12}\n", params, colours[i].srgb_hex,
+                                     fmt::format("{:.2f} {:.2f} {:.2f}", p.lab.L, p.lab.a, p.lab.b), p.delta_e_uncertainty, p.rays);
+        }
+        std::cout << fmt::format("{} patches, {} rays in {:.2f} s; colour uncertainty (CIEDE2000, RMS) at most {:.3f} "
+                                 "(target {}); wavelengths {}{}\n",
+                                 chart.patches.size(), rays, seconds, worst, request.delta_e,
+                                 std::get<std::string>(chart.settings.at("wavelengths")), chart.partial ? "; PARTIAL (interrupted)" : "");
+    }
+    if (chart.partial) std::exit(130);
+}
+
+}  // namespace
+
+void add_swatch_command(CLI::App& app) {
+    auto o = std::make_shared<SwatchOptions>();
+    auto* cmd = app.add_subcommand("swatch", "Chart image of simulated skin colours over one or two stack fields");
+    cmd->add_option("--preset", o->preset, "Base preset (default biospec-moderately)");
+    cmd->add_option("--material", o->material_file, "Base material TOML file");
+    cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
+    cmd->add_option("--vary", o->vary,
+                    "FIELD=FIRST:LAST:STEPS, columns then rows (default epidermis.melanosome_fraction=0.01:0.42:8 and "
+                    "dermis.blood_fraction=0.002:0.05:5)");
+    cmd->add_option("--illuminant", o->illuminant, "D65, D50, A or E")->capture_default_str();
+    cmd->add_option("--observer", o->observer, "2 or 10")->capture_default_str();
+    cmd->add_option("--delta-e", o->delta_e, "Colour tolerance: each patch stops once its CIEDE2000 uncertainty is below")->capture_default_str();
+    cmd->add_option("-o,--output", o->outputs, "Image file .exr (linear), .png or .tif/.tiff (display-referred); repeatable");
+    cmd->add_option("--space", o->space, "Working space of the EXR (an OCIO colour space)")->capture_default_str();
+    cmd->add_flag("--half", o->half, "Write the EXR in half float (default float)");
+    cmd->add_option("--display", o->display, "OCIO display for PNG/TIFF")->capture_default_str();
+    cmd->add_option("--view", o->view, "OCIO view for PNG/TIFF")->capture_default_str();
+    cmd->add_option("--patch-size", o->patch_px, "Patch size in pixels")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and patch")->capture_default_str()->check(CLI::PositiveNumber);
+    cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
+    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    cmd->add_flag("--json", o->json, "Print the patches as JSON");
+    cmd->callback([o] { run_swatch(*o); });
+}
+
+}  // namespace skinspec::cli

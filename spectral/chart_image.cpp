@@ -1,0 +1,133 @@
+#include "spectral/chart_image.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unistd.h>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <toml++/toml.h>
+
+#include "spectral/data_paths.hpp"
+#include "spectral/input_error.hpp"
+
+namespace skinspec {
+namespace {
+
+constexpr float background_linear = 0.18f;  // neutral mid grey between patches
+constexpr const char* label_font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+OIIO::ImageSpec chart_spec(const ChartLayout& layout, OIIO::TypeDesc format) {
+    const int width = static_cast<int>(layout.columns) * (layout.patch_px + layout.gap_px) + layout.gap_px;
+    const int height = static_cast<int>(layout.rows) * (layout.patch_px + layout.gap_px) + layout.gap_px;
+    return OIIO::ImageSpec(width, height, 3, format);
+}
+
+OIIO::ROI patch_roi(const ChartLayout& layout, std::size_t index) {
+    const int column = static_cast<int>(index % layout.columns);
+    const int row = static_cast<int>(index / layout.columns);
+    const int x = layout.gap_px + column * (layout.patch_px + layout.gap_px);
+    const int y = layout.gap_px + row * (layout.patch_px + layout.gap_px);
+    return OIIO::ROI(x, x + layout.patch_px, y, y + layout.patch_px, 0, 1, 0, 3);
+}
+
+OIIO::ImageBuf filled_chart(const ChartLayout& layout, const std::vector<RGB>& colours, const float background[3]) {
+    OIIO::ImageBuf buf(chart_spec(layout, OIIO::TypeDesc::FLOAT));
+    OIIO::ImageBufAlgo::fill(buf, {background[0], background[1], background[2]});
+    for (std::size_t i = 0; i < colours.size(); ++i) {
+        const float c[3] = {static_cast<float>(colours[i][0]), static_cast<float>(colours[i][1]), static_cast<float>(colours[i][2])};
+        OIIO::ImageBufAlgo::fill(buf, {c[0], c[1], c[2]}, patch_roi(layout, i));
+    }
+    return buf;
+}
+
+void set_metadata(OIIO::ImageBuf& buf, const ImageMetadata& metadata) {
+    for (const auto& [key, value] : metadata) buf.specmod().attribute(key, value);
+}
+
+void write(OIIO::ImageBuf& buf, const std::filesystem::path& file, OIIO::TypeDesc format) {
+    buf.set_write_format(format);
+    if (!buf.write(file.string())) throw InputError(file.string() + ": cannot be written (" + buf.geterror() + ")");
+}
+
+}  // namespace
+
+std::array<float, 8> space_chromaticities(std::string_view space) {
+    static const toml::table table = toml::parse_file(data_file("ocio/chromaticities.toml").string());
+    const auto* values = table.get_as<toml::array>(space);
+    if (!values || values->size() != 8) {
+        std::string allowed;
+        for (const auto& [key, node] : table) allowed += (allowed.empty() ? "" : ", ") + std::string(key.str());
+        throw InputError("colour space '" + std::string(space) + "' has no RGB primaries for an image (allowed: " + allowed + ")");
+    }
+    std::array<float, 8> out{};
+    for (std::size_t i = 0; i < 8; ++i) out[i] = static_cast<float>(values->get(i)->value<double>().value_or(0.0));
+    return out;
+}
+
+void check_output_path(const std::filesystem::path& file, bool overwrite, const std::vector<std::string>& extensions) {
+    const auto ext = file.extension().string();
+    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+        std::string allowed;
+        for (const auto& e : extensions) allowed += (allowed.empty() ? "" : ", ") + e;
+        throw InputError(file.string() + ": extension '" + ext + "' is not supported (allowed: " + allowed + ")");
+    }
+    const auto folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+    if (!std::filesystem::is_directory(folder)) throw InputError(file.string() + ": folder " + folder.string() + " does not exist");
+    if (access(folder.c_str(), W_OK) != 0) throw InputError(file.string() + ": folder " + folder.string() + " is not writable");
+    if (std::filesystem::exists(file) && !overwrite) throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
+}
+
+void write_linear_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
+                        std::string_view working_space, bool half_float, const ImageMetadata& metadata, const ColorManagement& cm) {
+    const std::string space = cm.canonical_space(working_space, "--space");
+    const auto chromaticities = space_chromaticities(space);
+    const float grey[3] = {background_linear, background_linear, background_linear};
+    auto buf = filled_chart(layout, patches, grey);
+    buf.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
+    buf.specmod().attribute("oiio:ColorSpace", space);
+    buf.specmod().attribute("colorspace", space);
+    set_metadata(buf, metadata);
+    write(buf, file, half_float ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+}
+
+void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
+                         const std::vector<std::string>& labels, std::string_view working_space, std::string_view display,
+                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm) {
+    const std::string space = cm.canonical_space(working_space, "--space");
+    std::vector<RGB> encoded;
+    for (const auto& p : patches) {
+        auto e = cm.display_view(p, space, display, view);
+        for (auto& c : e) c = std::clamp(c, 0.0, 1.0);  // display-referred: the display cannot show more
+        encoded.push_back(e);
+    }
+    const auto grey = cm.display_view({background_linear, background_linear, background_linear}, space, display, view);
+    const float background[3] = {static_cast<float>(grey[0]), static_cast<float>(grey[1]), static_cast<float>(grey[2])};
+    auto buf = filled_chart(layout, encoded, background);
+    const int font_px = std::max(9, layout.patch_px / 9);
+    for (std::size_t i = 0; i < labels.size() && i < encoded.size(); ++i) {
+        const auto roi = patch_roi(layout, i);
+        const double luma = 0.2126 * encoded[i][0] + 0.7152 * encoded[i][1] + 0.0722 * encoded[i][2];
+        const float ink = luma > 0.5 ? 0.0f : 1.0f;
+        const float colour[3] = {ink, ink, ink};
+        std::size_t line_start = 0;
+        int line = 0;
+        while (line_start <= labels[i].size()) {
+            const auto end = labels[i].find('\n', line_start);
+            const auto text = labels[i].substr(line_start, end - line_start);
+            if (!OIIO::ImageBufAlgo::render_text(buf, roi.xbegin + 4, roi.ybegin + 4 + font_px * (line + 1), text, font_px,
+                                                 label_font, colour)) {
+                throw InputError("cannot draw patch labels: " + buf.geterror() + " (install fonts-dejavu-core)");
+            }
+            if (end == std::string::npos) break;
+            line_start = end + 1;
+            ++line;
+        }
+    }
+    buf.specmod().attribute("oiio:ColorSpace", std::string(display));
+    set_metadata(buf, metadata);
+    const bool png = file.extension() == ".png";
+    write(buf, file, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
+}
+
+}  // namespace skinspec

@@ -1,0 +1,44 @@
+#pragma once
+// Colour-chart images through OpenImageIO: a grid of flat patches. Two renderings of the same patches:
+//  - scene-linear OpenEXR in a named working space (half or float), with the OpenEXR `chromaticities`
+//    attribute and the colour-space name set, no labels;
+//  - display-referred PNG (8-bit) or TIFF (16-bit) through the OpenColorIO display/view transform, with a
+//    text label drawn on each patch.
+// Both carry the given metadata (model, parameters, seed, version) as string attributes.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "spectral/color_management.hpp"
+
+namespace skinspec {
+
+struct ChartLayout {
+    std::size_t columns = 1;
+    std::size_t rows = 1;
+    int patch_px = 112;
+    int gap_px = 8;
+};
+
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
+// Published xy of red, green, blue and white for `space` (data/ocio/chromaticities.toml); InputError for a
+// space without RGB primaries.
+std::array<float, 8> space_chromaticities(std::string_view space);
+
+// Throws InputError when `file` cannot be written (folder missing or not writable, or an existing file
+// without `overwrite`), or its extension is not one of `extensions`. Writes nothing.
+void check_output_path(const std::filesystem::path& file, bool overwrite, const std::vector<std::string>& extensions);
+
+// `patches` are linear RGB in `working_space`, row-major, columns x rows.
+void write_linear_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
+                        std::string_view working_space, bool half_float, const ImageMetadata& metadata,
+                        const ColorManagement& cm);
+void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
+                         const std::vector<std::string>& labels, std::string_view working_space, std::string_view display,
+                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm);
+
+}  // namespace skinspec
