@@ -188,7 +188,7 @@ void add_materials_command(CLI::App& app) {
     auto* save = cmd->add_subcommand("save", "Write a material (with --set overrides applied) as a TOML file");
     add_material_options(save);
     save->add_option("output", options->output, "Output .toml file")->required();
-    save->add_flag("--force", options->force, "Replace the output file if it exists");
+    save->add_flag("--overwrite,--force", options->force, "Replace the output file if it exists");
     save->callback([options] { run_save(*options); });
 }
 

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "skinspec/version.hpp"
+#include "spectral/spectrum_plot.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -227,8 +228,33 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
     return out;
 }
 
+void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra) {
+    std::vector<PlotCurve> curves;
+    bool any_t = false;
+    for (const auto& s : spectra) {
+        const RGB colour = s.color ? s.color->srgb : RGB{0.4, 0.4, 0.4};
+        const auto curve = [&](const char* quantity, auto get, bool dashed) {
+            PlotCurve c{s.result.material + " " + quantity, {}, {}, {}, colour, dashed};
+            for (const auto& w : s.result.wavelengths) {
+                c.wavelength_nm.push_back(w.wavelength_nm);
+                c.value.push_back(get(w).value);
+                c.stderr.push_back(get(w).stderr);
+            }
+            curves.push_back(std::move(c));
+        };
+        if (s.result.quantities.reflectance) curve("R", [](const WavelengthResult& w) { return w.reflectance; }, false);
+        if (s.result.quantities.transmittance) {
+            curve("T", [](const WavelengthResult& w) { return w.transmittance; }, true);
+            any_t = true;
+        }
+    }
+    write_spectrum_plot(file, "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +
+                                  " spectra (bands: +-2 standard errors)",
+                        any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
+}
+
 void write_text_file(const std::string& file, const std::string& text, bool overwrite) {
-    if (std::filesystem::exists(file) && !overwrite) throw InputError(file + ": exists already (use --force to overwrite it)");
+    if (std::filesystem::exists(file) && !overwrite) throw InputError(file + ": exists already (use --overwrite to replace it)");
     std::ofstream out(file);
     if (!out) throw InputError(file + ": cannot be written");
     out << text;

@@ -29,6 +29,10 @@ nlohmann::ordered_json to_json(const std::vector<ReportedSpectrum>& spectra);
 std::string to_csv(const std::vector<ReportedSpectrum>& spectra);
 std::string to_table(const std::vector<ReportedSpectrum>& spectra);
 
+// R (solid) and T (dashed, when computed) of every material with +-2 standard-error bands, drawn in the
+// material's simulated sRGB colour, as PNG or SVG.
+void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra);
+
 // Writes `text` to `file`; refuses to replace an existing file unless `overwrite`.
 void write_text_file(const std::string& file, const std::string& text, bool overwrite);
 

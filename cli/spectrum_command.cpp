@@ -34,6 +34,7 @@ struct SpectrumOptions {
     std::string estimator = "weighted";
     std::string fold_into_skin = "drop";
     std::string output;
+    std::string plot;
     bool force = false;
     bool json = false;
     std::string illuminant = "D65";
@@ -90,8 +91,13 @@ void run_spectrum(const SpectrumOptions& o) {
     options.fold_into_skin = parse_fold_into_skin(o.fold_into_skin, "--fold-into-skin");
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
-    if (!o.output.empty() && !o.force && std::filesystem::exists(o.output)) {
-        throw InputError(o.output + ": exists already (use --force to overwrite it)");
+    for (const auto& file : {o.output, o.plot}) {
+        if (!file.empty() && !o.force && std::filesystem::exists(file)) {
+            throw InputError(file + ": exists already (use --overwrite to replace it)");
+        }
+    }
+    if (!o.plot.empty() && !o.plot.ends_with(".png") && !o.plot.ends_with(".svg")) {
+        throw InputError("--plot " + o.plot + ": extension not supported (allowed: .png, .svg)");
     }
 
     std::optional<tbb::global_control> threads;
@@ -125,6 +131,10 @@ void run_spectrum(const SpectrumOptions& o) {
         const bool json_file = o.output.ends_with(".json");
         write_text_file(o.output, json_file ? to_json(spectra).dump(2) + "\n" : to_csv(spectra), true);
         std::cerr << "wrote " << o.output << '\n';
+    }
+    if (!o.plot.empty() && !spectra.empty()) {
+        write_plot(o.plot, spectra);
+        std::cerr << "wrote " << o.plot << '\n';
     }
     if (InterruptGuard::interrupted()) {
         std::cerr << "skinspec: interrupted: the wavelengths finished so far were written, marked partial\n";
@@ -160,7 +170,8 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--fold-into-skin", o->fold_into_skin, "Fold-perturbed reflections pointing into the skin: drop (2004 code) or resample")
         ->capture_default_str();
     cmd->add_option("--output", o->output, "Write the result to FILE.csv or FILE.json");
-    cmd->add_flag("--force", o->force, "Replace the --output file if it exists");
+    cmd->add_option("--plot", o->plot, "Plot R (and T) with +-2 standard-error bands to FILE.png or FILE.svg");
+    cmd->add_flag("--overwrite,--force", o->force, "Replace the --output / --plot files if they exist");
     cmd->add_flag("--json", o->json, "Print the JSON result on standard output");
     cmd->add_option("--illuminant", o->illuminant, "Illuminant for the colour summary: D65, D50, A, E")->capture_default_str();
     cmd->add_option("--observer", o->observer, "Observer for the colour summary: 2 or 10")->capture_default_str();

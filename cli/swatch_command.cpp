@@ -57,7 +57,15 @@ void run_swatch(const SwatchOptions& o) {
     if (!o.material_file.empty()) request.material = o.material_file;
     if (!o.preset.empty()) request.material = o.preset;
     for (const auto& t : o.overrides) request.overrides.push_back(parse_override(t));
-    for (const auto& v : o.vary.empty() ? default_sweeps : o.vary) request.sweeps.push_back(parse_sweep(v));
+    // The default grid needs an epidermis and dermal layers; other materials default to one patch.
+    const auto base = load_material(request.material, request.overrides);
+    const auto* stack = std::get_if<LayerStack>(&base);
+    const auto has = [&](auto&& predicate) {
+        return stack && std::any_of(stack->layers.begin(), stack->layers.end(), predicate);
+    };
+    const bool skin_like = has([](const TissueLayer& l) { return l.name == "epidermis"; }) &&
+                           has([](const TissueLayer& l) { return l.name.ends_with("_dermis"); });
+    for (const auto& v : o.vary.empty() && skin_like ? default_sweeps : o.vary) request.sweeps.push_back(parse_sweep(v));
     request.illuminant = parse_illuminant(o.illuminant, "--illuminant");
     request.observer = parse_observer(o.observer, "--observer");
     request.delta_e = o.delta_e;
@@ -174,7 +182,7 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
     cmd->add_option("--vary", o->vary,
                     "FIELD=FIRST:LAST:STEPS, columns then rows (default epidermis.melanosome_fraction=0.01:0.42:8 and "
-                    "dermis.blood_fraction=0.002:0.05:5)");
+                    "dermis.blood_fraction=0.002:0.05:5 for skin stacks; one patch otherwise)");
     cmd->add_option("--illuminant", o->illuminant, "D65, D50, A or E")->capture_default_str();
     cmd->add_option("--observer", o->observer, "2 or 10")->capture_default_str();
     cmd->add_option("--delta-e", o->delta_e, "Colour tolerance: each patch stops once its CIEDE2000 uncertainty is below")->capture_default_str();

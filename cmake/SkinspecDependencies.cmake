@@ -13,6 +13,9 @@ find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(tomlplusplus REQUIRED)
 find_package(OpenImageIO REQUIRED CONFIG)
+find_package(PkgConfig REQUIRED)
+# PLplot's own CMake config references every optional binding; its pkg-config file is the reliable entry.
+pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot-c++)
 
 function(skinspec_drop_missing_include_dirs target)
   foreach(property INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)

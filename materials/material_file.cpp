@@ -510,7 +510,7 @@ std::string to_toml(const Material& material) {
 
 void write_material(const Material& material, const std::filesystem::path& file, bool overwrite) {
     if (std::filesystem::exists(file) && !overwrite) {
-        throw InputError(file.string() + ": exists already (use --force to overwrite it)");
+        throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
     }
     std::ofstream out(file);
     if (!out) throw InputError(file.string() + ": cannot be written");

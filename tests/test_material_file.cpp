@@ -80,7 +80,7 @@ TEST_CASE("every preset survives load -> save -> load unchanged", "[material_fil
 TEST_CASE("saving never replaces a file unless asked", "[material_file]") {
     const auto path = write_temp("existing.toml", "user data\n");
     const auto material = load_material("biospec-lightly");
-    CHECK_THROWS_WITH(write_material(material, path, false), Catch::Contains("exists already (use --force"));
+    CHECK_THROWS_WITH(write_material(material, path, false), Catch::Contains("exists already (use --overwrite"));
     std::ifstream in(path);
     std::string first;
     std::getline(in, first);

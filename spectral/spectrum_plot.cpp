@@ -1,0 +1,91 @@
+#include "spectral/spectrum_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <plplot/plstream.h>
+
+#include "spectral/input_error.hpp"
+
+namespace skinspec {
+namespace {
+
+int channel(double c) { return static_cast<int>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0)); }
+
+}  // namespace
+
+void write_spectrum_plot(const std::filesystem::path& file, const std::string& title, const std::string& y_label,
+                         const std::vector<PlotCurve>& curves) {
+    const auto ext = file.extension().string();
+    if (ext != ".png" && ext != ".svg") throw InputError(file.string() + ": plot extension '" + ext + "' is not supported (allowed: .png, .svg)");
+    if (curves.empty()) throw InputError(file.string() + ": nothing to plot");
+    double x_min = 1e300, x_max = -1e300, y_max = 0.0;
+    for (const auto& c : curves) {
+        for (std::size_t i = 0; i < c.value.size(); ++i) {
+            x_min = std::min(x_min, c.wavelength_nm[i]);
+            x_max = std::max(x_max, c.wavelength_nm[i]);
+            y_max = std::max(y_max, c.value[i] + 2.0 * c.stderr[i]);
+        }
+    }
+    if (x_max <= x_min) x_max = x_min + 1.0;
+    y_max = std::min(1.0, std::max(0.05, std::ceil(y_max * 10.0 * 1.05) / 10.0));
+
+    auto pls = std::make_unique<plstream>();
+    pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
+    pls->sfnam(file.string().c_str());
+    pls->spage(0.0, 0.0, 1000, 650, 0, 0);
+    pls->scol0a(0, 255, 255, 255, 1.0);  // background
+    pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
+    pls->init();
+    pls->col0(1);
+    pls->env(x_min, x_max, 0.0, y_max, 0, 1);
+    pls->lab("Wavelength (nm)", y_label.c_str(), title.c_str());
+
+    std::vector<PLINT> opts, colours, styles;
+    std::vector<PLFLT> widths;
+    std::vector<const char*> labels;
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+        const auto& c = curves[k];
+        const int band_colour = 2 + 2 * static_cast<int>(k);
+        const int line_colour = band_colour + 1;
+        // Very light skin colours would vanish on white: darken the line, keep the hue.
+        const double luma = 0.2126 * c.colour[0] + 0.7152 * c.colour[1] + 0.0722 * c.colour[2];
+        const double scale = luma > 0.7 ? 0.7 / luma : 1.0;
+        const int r = channel(c.colour[0] * scale), g = channel(c.colour[1] * scale), b = channel(c.colour[2] * scale);
+        pls->scol0a(band_colour, r, g, b, 0.25);
+        pls->scol0a(line_colour, r, g, b, 1.0);
+        std::vector<PLFLT> bx, by;
+        for (std::size_t i = 0; i < c.value.size(); ++i) {
+            bx.push_back(c.wavelength_nm[i]);
+            by.push_back(std::clamp(c.value[i] + 2.0 * c.stderr[i], 0.0, y_max));
+        }
+        for (std::size_t i = c.value.size(); i-- > 0;) {
+            bx.push_back(c.wavelength_nm[i]);
+            by.push_back(std::clamp(c.value[i] - 2.0 * c.stderr[i], 0.0, y_max));
+        }
+        pls->col0(band_colour);
+        pls->fill(static_cast<PLINT>(bx.size()), bx.data(), by.data());
+        pls->col0(line_colour);
+        pls->lsty(c.dashed ? 2 : 1);
+        pls->width(2.0);
+        pls->line(static_cast<PLINT>(c.value.size()), c.wavelength_nm.data(), c.value.data());
+        opts.push_back(PL_LEGEND_LINE);
+        colours.push_back(line_colour);
+        styles.push_back(c.dashed ? 2 : 1);
+        widths.push_back(2.0);
+        labels.push_back(c.label.c_str());
+    }
+    pls->lsty(1);
+    pls->col0(1);
+    PLFLT legend_width = 0.0, legend_height = 0.0;
+    const std::vector<PLINT> text_colours(curves.size(), 1);
+    pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
+                PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, 0.02, 0.02, 0.08, 0, 1, 1, 0, 0,
+                static_cast<PLINT>(curves.size()), opts.data(), 1.0, 0.9, 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
+                nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), nullptr, nullptr, nullptr, nullptr);
+    pls.reset();  // the destructor finishes and closes the file
+    if (!std::filesystem::exists(file)) throw InputError(file.string() + ": the plot could not be written");
+}
+
+}  // namespace skinspec

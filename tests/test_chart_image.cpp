@@ -1,0 +1,77 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "spectral/chart_image.hpp"
+#include "spectral/input_error.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+std::filesystem::path temp(const char* name) { return std::filesystem::temp_directory_path() / name; }
+
+std::array<float, 3> pixel(const OIIO::ImageBuf& buf, int x, int y) {
+    std::array<float, 3> p{};
+    buf.getpixel(x, y, p.data(), 3);
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("the linear EXR carries patches, chromaticities and metadata", "[chart_image]") {
+    const auto& cm = ColorManagement::builtin();
+    const ChartLayout layout{2, 1, 40, 8};
+    const std::vector<RGB> patches{{1.0, 1.0, 1.0}, {0.2, 0.1, 0.05}};
+    const auto file = temp("skinspec_chart.exr");
+    write_linear_chart(file, layout, patches, "ACEScg", false, {{"skinspec:seed", "7"}}, cm);
+    OIIO::ImageBuf buf(file.string());
+    REQUIRE(buf.read());
+    const auto white = pixel(buf, 8 + 20, 8 + 20);
+    CHECK(white[0] == 1.0f);
+    CHECK(white[2] == 1.0f);
+    const auto second = pixel(buf, 8 + 48 + 20, 8 + 20);
+    CHECK(second[1] == Approx(0.1));
+    const auto* chroma = buf.spec().find_attribute("chromaticities");
+    REQUIRE(chroma);
+    const auto* values = static_cast<const float*>(chroma->data());
+    CHECK(values[0] == Approx(0.713));   // AP1 red x
+    CHECK(values[6] == Approx(0.32168));  // ACES white x
+    CHECK(buf.spec().get_string_attribute("skinspec:seed") == "7");
+    CHECK(buf.spec().get_string_attribute("colorspace") == "ACEScg");
+}
+
+TEST_CASE("the display PNG of white is 255 and matches the direct sRGB conversion", "[chart_image]") {
+    const auto& cm = ColorManagement::builtin();
+    const ChartLayout layout{2, 1, 60, 8};
+    // A skin-like colour: the PNG path (ACEScg -> display sRGB/Standard) equals XYZ -> sRGB directly.
+    const XYZ skin{0.27, 0.25, 0.16};
+    const XYZ d65 = ColorManagement::reference_white();
+    const std::vector<RGB> patches{cm.from_xyz(d65, d65, "ACEScg"), cm.from_xyz(skin, d65, "ACEScg")};
+    const auto file = temp("skinspec_chart.png");
+    write_display_chart(file, layout, patches, {"white", "skin"}, "ACEScg", "sRGB", "Standard", {}, cm);
+    OIIO::ImageBuf buf(file.string());
+    REQUIRE(buf.read(0, 0, true, OIIO::TypeDesc::UINT8));
+    const auto white = pixel(buf, 8 + 55, 8 + 55);  // bottom-right corner: clear of the label
+    CHECK(white[0] == 1.0f);
+    CHECK(white[1] == 1.0f);
+    CHECK(white[2] == 1.0f);
+    const auto direct = cm.from_xyz(skin, d65, "sRGB");
+    const auto shown = pixel(buf, 8 + 68 + 55, 8 + 55);
+    for (int c = 0; c < 3; ++c) CHECK(shown[c] == Approx(std::round(direct[c] * 255.0) / 255.0).margin(1.0 / 255.0));
+}
+
+TEST_CASE("output paths are checked before anything is written", "[chart_image]") {
+    const auto existing = temp("skinspec_existing.png");
+    std::ofstream(existing) << "keep";
+    CHECK_THROWS_WITH(check_output_path(existing, false, {".png"}), Catch::Contains("exists already (use --overwrite"));
+    CHECK_NOTHROW(check_output_path(existing, true, {".png"}));
+    CHECK_THROWS_WITH(check_output_path("/nonexistent/folder/x.png", false, {".png"}), Catch::Contains("does not exist"));
+    CHECK_THROWS_WITH(check_output_path(temp("x.jpg"), false, {".png", ".exr"}), Catch::Contains("'.jpg' is not supported"));
+    CHECK_THROWS_WITH(space_chromaticities("CIE-XYZ-D65"), Catch::Contains("has no RGB primaries"));
+    if (geteuid() != 0) CHECK_THROWS_WITH(check_output_path("/proc/x.png", false, {".png"}), Catch::Contains("not writable"));
+}
