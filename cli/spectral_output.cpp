@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "skinspec/version.hpp"
-#include "spectral/spectrum_plot.hpp"
+#include "spectral/line_plot.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -236,7 +236,7 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
         const auto curve = [&](const char* quantity, auto get, bool dashed) {
             PlotCurve c{s.result.material + " " + quantity, {}, {}, {}, colour, dashed};
             for (const auto& w : s.result.wavelengths) {
-                c.wavelength_nm.push_back(w.wavelength_nm);
+                c.x.push_back(w.wavelength_nm);
                 c.value.push_back(get(w).value);
                 c.stderr.push_back(get(w).stderr);
             }
@@ -248,9 +248,9 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
             any_t = true;
         }
     }
-    write_spectrum_plot(file, "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +
-                                  " spectra (bands: +-2 standard errors)",
-                        any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
+    write_line_plot(file, "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +
+                              " spectra (bands: +-2 standard errors)",
+                    "Wavelength (nm)", any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
 }
 
 void write_text_file(const std::string& file, const std::string& text, bool overwrite) {

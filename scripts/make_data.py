@@ -467,6 +467,34 @@ def make_profiles(reference, out):
                      "they are held (clamped): 546 nm is used for all longer wavelengths"])
 
 
+def make_van_gemert(out):
+    """HG asymmetry factors fitted by van Gemert et al. 1989 to the Bruls & van der Leun profiles."""
+    # van Gemert M.J.C., Jacques S.L., Sterenborg H.J.C.M., Star W.M. (1989), IEEE Trans. Biomed. Eng.
+    # 36(12):1146-1154, as quoted in Table 2 of Baranoski, Krishnaswamy & Kimmel 2005 (seed 000).
+    rows = [[436.0, 0.900, 0.748], [546.0, 0.917, 0.781]]
+    write_table(out / "scattering" / "hg_asymmetry_van_gemert_1989.csv",
+                "Henyey-Greenstein asymmetry factors of stratum corneum and epidermis (van Gemert et al. 1989)",
+                "van Gemert et al. (1989) IEEE Trans. Biomed. Eng. 36(12):1146-1154, via Table 2 of Baranoski, "
+                "Krishnaswamy & Kimmel 2005", "wavelength_nm [nm]; stratum_corneum_g, epidermis_g [dimensionless]",
+                ["wavelength_nm", "stratum_corneum_g", "epidermis_g"], rows, "hold",
+                ["linear in wavelength between 436 and 546 nm, clamped (held) outside"])
+
+
+def make_phantom_background(out):
+    """Default background for the phantom-sheet images: a checkerboard with lettering (made with oiiotool)."""
+    import shutil
+    import subprocess
+    path = out / "images" / "phantom_background.png"
+    if not shutil.which("oiiotool"):
+        print(f"skipped {path.relative_to(ROOT)} (oiiotool not installed)")
+        return
+    path.parent.mkdir(parents=True, exist_ok=True)
+    subprocess.run(["oiiotool", "--pattern", "checker:width=32:height=32:color1=0.08,0.08,0.1:color2=0.92,0.9,0.85",
+                    "512x512", "3", "--text:x=36:y=300:size=120:color=0.75,0.12,0.1:font=DejaVuSans-Bold", "SKIN",
+                    "-d", "uint8", "-o", str(path)], check=True)
+    print(f"wrote {path.relative_to(ROOT)}")
+
+
 # --- example spectrum -----------------------------------------------------------------------------------
 
 def make_example(out):
@@ -497,6 +525,8 @@ def main():
     make_chromophores(args.sources, args.out)
     make_tissue(args.sources, args.out)
     make_profiles(args.reference / "bruls_vanderleun_1984_cumulative.csv", args.out)
+    make_van_gemert(args.out)
+    make_phantom_background(args.out)
     make_biospec_presets(args.out)
     make_jensen_materials(args.reference / "jensen2001_measured_materials.csv", args.out)
 

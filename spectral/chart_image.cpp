@@ -50,6 +50,23 @@ void write(OIIO::ImageBuf& buf, const std::filesystem::path& file, OIIO::TypeDes
     if (!buf.write(file.string())) throw InputError(file.string() + ": cannot be written (" + buf.geterror() + ")");
 }
 
+// Draws `label` (lines separated by '\n') at the top-left of `roi`, in black or white for contrast.
+void draw_label(OIIO::ImageBuf& buf, const OIIO::ROI& roi, const std::string& label, int font_px, double background_luma) {
+    const float ink = background_luma > 0.5 ? 0.0f : 1.0f;
+    const float colour[3] = {ink, ink, ink};
+    std::size_t line_start = 0;
+    for (int line = 0;; ++line) {
+        const auto end = label.find('\n', line_start);
+        const auto text = label.substr(line_start, end - line_start);
+        if (!OIIO::ImageBufAlgo::render_text(buf, roi.xbegin + 4, roi.ybegin + 4 + font_px * (line + 1), text, font_px,
+                                             label_font, colour)) {
+            throw InputError("cannot draw labels: " + buf.geterror() + " (install fonts-dejavu-core)");
+        }
+        if (end == std::string::npos) break;
+        line_start = end + 1;
+    }
+}
+
 }  // namespace
 
 std::array<float, 8> space_chromaticities(std::string_view space) {
@@ -106,28 +123,62 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
     auto buf = filled_chart(layout, encoded, background);
     const int font_px = std::max(9, layout.patch_px / 9);
     for (std::size_t i = 0; i < labels.size() && i < encoded.size(); ++i) {
-        const auto roi = patch_roi(layout, i);
         const double luma = 0.2126 * encoded[i][0] + 0.7152 * encoded[i][1] + 0.0722 * encoded[i][2];
-        const float ink = luma > 0.5 ? 0.0f : 1.0f;
-        const float colour[3] = {ink, ink, ink};
-        std::size_t line_start = 0;
-        int line = 0;
-        while (line_start <= labels[i].size()) {
-            const auto end = labels[i].find('\n', line_start);
-            const auto text = labels[i].substr(line_start, end - line_start);
-            if (!OIIO::ImageBufAlgo::render_text(buf, roi.xbegin + 4, roi.ybegin + 4 + font_px * (line + 1), text, font_px,
-                                                 label_font, colour)) {
-                throw InputError("cannot draw patch labels: " + buf.geterror() + " (install fonts-dejavu-core)");
-            }
-            if (end == std::string::npos) break;
-            line_start = end + 1;
-            ++line;
-        }
+        draw_label(buf, patch_roi(layout, i), labels[i], font_px, luma);
     }
     buf.specmod().attribute("oiio:ColorSpace", std::string(display));
     set_metadata(buf, metadata);
     const bool png = file.extension() == ".png";
     write(buf, file, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
+}
+
+LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm) {
+    if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
+    OIIO::ImageBuf in(file.string());
+    if (!in.read(0, 0, true, OIIO::TypeDesc::FLOAT)) throw InputError(file.string() + ": cannot be read as an image (" + in.geterror() + ")");
+    const auto& spec = in.spec();
+    if (spec.width < 2 || spec.height < 2 || spec.nchannels < 1) throw InputError(file.string() + ": image smaller than 2 x 2 pixels");
+    LinearImage out{spec.width, spec.height, std::vector<float>(static_cast<std::size_t>(spec.width) * spec.height * 3)};
+    std::vector<float> pixel(static_cast<std::size_t>(spec.nchannels));
+    for (int y = 0; y < spec.height; ++y) {
+        for (int x = 0; x < spec.width; ++x) {
+            in.getpixel(x, y, pixel.data(), spec.nchannels);
+            for (int c = 0; c < 3; ++c) out.rgb[(static_cast<std::size_t>(y) * spec.width + x) * 3 + c] = pixel[std::min(c, spec.nchannels - 1)];
+        }
+    }
+    const bool encoded = spec.format.basetype != OIIO::TypeDesc::FLOAT && spec.format.basetype != OIIO::TypeDesc::HALF;
+    if (encoded) cm.convert_pixels(out.rgb, "sRGB", working_space);
+    return out;
+}
+
+void write_image_grid(const std::filesystem::path& file, const std::vector<LinearImage>& panels, std::size_t columns,
+                      const std::vector<std::string>& labels, std::string_view working_space, std::string_view display,
+                      std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm) {
+    if (panels.empty()) throw InputError(file.string() + ": no panels");
+    const int w = panels.front().width, h = panels.front().height, gap = 8;
+    const auto rows = (panels.size() + columns - 1) / columns;
+    OIIO::ImageBuf buf(OIIO::ImageSpec(static_cast<int>(columns) * (w + gap) + gap, static_cast<int>(rows) * (h + gap) + gap, 3,
+                                       OIIO::TypeDesc::FLOAT));
+    OIIO::ImageBufAlgo::fill(buf, {0.5f, 0.5f, 0.5f});
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+        auto pixels = panels[i].rgb;
+        cm.display_view_pixels(pixels, working_space, display, view);
+        const int x0 = gap + static_cast<int>(i % columns) * (w + gap);
+        const int y0 = gap + static_cast<int>(i / columns) * (h + gap);
+        double luma = 0.0;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                float* p = &pixels[(static_cast<std::size_t>(y) * w + x) * 3];
+                for (int c = 0; c < 3; ++c) p[c] = std::clamp(p[c], 0.0f, 1.0f);
+                buf.setpixel(x0 + x, y0 + y, p, 3);
+                if (y < 40 && x < 120) luma += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / (40.0 * 120.0);
+            }
+        }
+        if (i < labels.size()) draw_label(buf, OIIO::ROI(x0, x0 + w, y0, y0 + h), labels[i], 13, luma);
+    }
+    buf.specmod().attribute("oiio:ColorSpace", std::string(display));
+    set_metadata(buf, metadata);
+    write(buf, file, file.extension() == ".png" ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
 }
 
 }  // namespace skinspec

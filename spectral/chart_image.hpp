@@ -33,6 +33,23 @@ std::array<float, 8> space_chromaticities(std::string_view space);
 // without `overwrite`), or its extension is not one of `extensions`. Writes nothing.
 void check_output_path(const std::filesystem::path& file, bool overwrite, const std::vector<std::string>& extensions);
 
+// Packed RGB floats, row-major.
+struct LinearImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb;
+};
+
+// Any image OpenImageIO reads, as scene-linear `working_space` RGB: 8/16-bit files are taken as sRGB-encoded,
+// float files (EXR) as already in `working_space`; grey images are replicated to RGB.
+LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm);
+
+// A labelled grid of equally sized panels (linear `working_space`), display-referred through the OCIO
+// display/view, row-major, as PNG or TIFF.
+void write_image_grid(const std::filesystem::path& file, const std::vector<LinearImage>& panels, std::size_t columns,
+                      const std::vector<std::string>& labels, std::string_view working_space, std::string_view display,
+                      std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm);
+
 // `patches` are linear RGB in `working_space`, row-major, columns x rows.
 void write_linear_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
                         std::string_view working_space, bool half_float, const ImageMetadata& metadata,

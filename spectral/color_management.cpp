@@ -94,6 +94,41 @@ RGB ColorManagement::convert(const RGB& rgb, std::string_view from_space, std::s
     return impl_->apply(impl_->processor("cs:" + from + "\n" + to, transform), rgb);
 }
 
+namespace {
+
+void apply_packed(const OCIO::ConstCPUProcessorRcPtr& cpu, std::vector<float>& rgb) {
+    if (rgb.empty()) return;
+    OCIO::PackedImageDesc image(rgb.data(), static_cast<long>(rgb.size() / 3), 1, 3);
+    cpu->apply(image);
+}
+
+}  // namespace
+
+void ColorManagement::convert_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view to_space) const {
+    const std::string from = canonical_space(from_space, "source colour space");
+    const std::string to = canonical_space(to_space, "destination colour space");
+    auto transform = OCIO::ColorSpaceTransform::Create();
+    transform->setSrc(from.c_str());
+    transform->setDst(to.c_str());
+    apply_packed(impl_->processor("cs:" + from + "\n" + to, transform), rgb);
+}
+
+void ColorManagement::display_view_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view display,
+                                          std::string_view view) const {
+    const std::string from = canonical_space(from_space, "source colour space");
+    const std::string d(display);
+    const std::string v(view);
+    auto transform = OCIO::DisplayViewTransform::Create();
+    transform->setSrc(from.c_str());
+    transform->setDisplay(d.c_str());
+    transform->setView(v.c_str());
+    try {
+        apply_packed(impl_->processor("dv:" + from + "\n" + d + "\n" + v, transform), rgb);
+    } catch (const OCIO::Exception& e) {
+        throw InputError("display '" + d + "', view '" + v + "': " + e.what());
+    }
+}
+
 RGB ColorManagement::display_view(const RGB& rgb, std::string_view from_space, std::string_view display,
                                   std::string_view view) const {
     const std::string from = canonical_space(from_space, "source colour space");

@@ -45,6 +45,10 @@ public:
     RGB from_xyz(const XYZ& xyz, const XYZ& white, std::string_view space) const;
     // Any space -> any space (OCIO processor).
     RGB convert(const RGB& rgb, std::string_view from_space, std::string_view to_space) const;
+    // In place over packed RGB floats (an image), one OCIO processor for all pixels.
+    void convert_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view to_space) const;
+    void display_view_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view display,
+                             std::string_view view) const;
     // Scene-linear `from_space` -> display-referred values through the display/view transform.
     RGB display_view(const RGB& rgb, std::string_view from_space, std::string_view display, std::string_view view) const;
 

@@ -1,6 +1,6 @@
 #pragma once
-// Spectra plots through PLplot (pngcairo / svgcairo devices): one line per curve with a shaded band of
-// +-2 standard errors, axis labels with units and a legend.
+// Line plots through PLplot (pngcairo / svgcairo devices): one line per curve with a shaded band of
+// +-2 standard errors, axis labels with units and a legend. Used for spectra and goniometer curves.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,7 +11,7 @@ namespace skinspec {
 
 struct PlotCurve {
     std::string label;
-    std::vector<double> wavelength_nm;
+    std::vector<double> x;
     std::vector<double> value;
     std::vector<double> stderr;  // band: value +- 2 stderr
     RGB colour;                  // display-encoded sRGB, 0-1
@@ -19,7 +19,7 @@ struct PlotCurve {
 };
 
 // .png or .svg by extension; InputError otherwise or when the file cannot be written.
-void write_spectrum_plot(const std::filesystem::path& file, const std::string& title, const std::string& y_label,
-                         const std::vector<PlotCurve>& curves);
+void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
+                     const std::string& y_label, const std::vector<PlotCurve>& curves);
 
 }  // namespace skinspec

@@ -1,4 +1,4 @@
-#include "spectral/spectrum_plot.hpp"
+#include "spectral/line_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,21 +15,21 @@ int channel(double c) { return static_cast<int>(std::lround(std::clamp(c, 0.0, 1
 
 }  // namespace
 
-void write_spectrum_plot(const std::filesystem::path& file, const std::string& title, const std::string& y_label,
-                         const std::vector<PlotCurve>& curves) {
+void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
+                     const std::string& y_label, const std::vector<PlotCurve>& curves) {
     const auto ext = file.extension().string();
     if (ext != ".png" && ext != ".svg") throw InputError(file.string() + ": plot extension '" + ext + "' is not supported (allowed: .png, .svg)");
     if (curves.empty()) throw InputError(file.string() + ": nothing to plot");
     double x_min = 1e300, x_max = -1e300, y_max = 0.0;
     for (const auto& c : curves) {
         for (std::size_t i = 0; i < c.value.size(); ++i) {
-            x_min = std::min(x_min, c.wavelength_nm[i]);
-            x_max = std::max(x_max, c.wavelength_nm[i]);
+            x_min = std::min(x_min, c.x[i]);
+            x_max = std::max(x_max, c.x[i]);
             y_max = std::max(y_max, c.value[i] + 2.0 * c.stderr[i]);
         }
     }
     if (x_max <= x_min) x_max = x_min + 1.0;
-    y_max = std::min(1.0, std::max(0.05, std::ceil(y_max * 10.0 * 1.05) / 10.0));
+    y_max = y_max <= 1.0 ? std::max(0.05, std::ceil(y_max * 10.0 * 1.05) / 10.0) : y_max * 1.05;
 
     auto pls = std::make_unique<plstream>();
     pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
@@ -40,7 +40,7 @@ void write_spectrum_plot(const std::filesystem::path& file, const std::string& t
     pls->init();
     pls->col0(1);
     pls->env(x_min, x_max, 0.0, y_max, 0, 1);
-    pls->lab("Wavelength (nm)", y_label.c_str(), title.c_str());
+    pls->lab(x_label.c_str(), y_label.c_str(), title.c_str());
 
     std::vector<PLINT> opts, colours, styles;
     std::vector<PLFLT> widths;
@@ -57,11 +57,11 @@ void write_spectrum_plot(const std::filesystem::path& file, const std::string& t
         pls->scol0a(line_colour, r, g, b, 1.0);
         std::vector<PLFLT> bx, by;
         for (std::size_t i = 0; i < c.value.size(); ++i) {
-            bx.push_back(c.wavelength_nm[i]);
+            bx.push_back(c.x[i]);
             by.push_back(std::clamp(c.value[i] + 2.0 * c.stderr[i], 0.0, y_max));
         }
         for (std::size_t i = c.value.size(); i-- > 0;) {
-            bx.push_back(c.wavelength_nm[i]);
+            bx.push_back(c.x[i]);
             by.push_back(std::clamp(c.value[i] - 2.0 * c.stderr[i], 0.0, y_max));
         }
         pls->col0(band_colour);
@@ -69,7 +69,7 @@ void write_spectrum_plot(const std::filesystem::path& file, const std::string& t
         pls->col0(line_colour);
         pls->lsty(c.dashed ? 2 : 1);
         pls->width(2.0);
-        pls->line(static_cast<PLINT>(c.value.size()), c.wavelength_nm.data(), c.value.data());
+        pls->line(static_cast<PLINT>(c.value.size()), c.x.data(), c.value.data());
         opts.push_back(PL_LEGEND_LINE);
         colours.push_back(line_colour);
         styles.push_back(c.dashed ? 2 : 1);

@@ -3,18 +3,18 @@
 #include <filesystem>
 
 #include "spectral/input_error.hpp"
-#include "spectral/spectrum_plot.hpp"
+#include "spectral/line_plot.hpp"
 
 using namespace skinspec;
 
-TEST_CASE("spectrum plots are written as PNG and SVG", "[spectrum_plot]") {
+TEST_CASE("spectrum plots are written as PNG and SVG", "[line_plot]") {
     const PlotCurve curve{"test R", {400, 500, 600, 700}, {0.1, 0.2, 0.4, 0.5}, {0.01, 0.01, 0.01, 0.01}, {0.8, 0.6, 0.5}, false};
     for (const auto* name : {"skinspec_plot.png", "skinspec_plot.svg"}) {
         const auto file = std::filesystem::temp_directory_path() / name;
         std::filesystem::remove(file);
-        write_spectrum_plot(file, "title", "Reflectance (fraction)", {curve});
+        write_line_plot(file, "title", "Wavelength (nm)", "Reflectance (fraction)", {curve});
         CHECK(std::filesystem::file_size(file) > 1000);
     }
-    CHECK_THROWS_WITH(write_spectrum_plot("x.pdf", "t", "y", {curve}), Catch::Contains("allowed: .png, .svg"));
-    CHECK_THROWS_AS(write_spectrum_plot("x.png", "t", "y", {}), InputError);
+    CHECK_THROWS_WITH(write_line_plot("x.pdf", "t", "x", "y", {curve}), Catch::Contains("allowed: .png, .svg"));
+    CHECK_THROWS_AS(write_line_plot("x.png", "t", "x", "y", {}), InputError);
 }

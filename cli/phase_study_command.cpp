@@ -1,0 +1,174 @@
+#include "cli/phase_study_command.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/spectral_output.hpp"
+#include "layers/phase_study/phantom_sheet.hpp"
+#include "layers/phase_study/phase_study.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/chart_image.hpp"
+#include "spectral/data_paths.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/line_plot.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct PhaseStudyOptions {
+    std::string output_dir;
+    std::string background;
+    std::string separations = "0.2,0.9,1.8";
+    std::uint64_t seed = 1;
+    bool json = false;
+    bool overwrite = false;
+};
+
+std::string case_name(const PhaseCase& c) { return fmt::format("{}_{:g}nm", c.tissue, c.wavelength_nm); }
+
+std::string approach_label(PhaseApproach a) {
+    switch (a) {
+        case PhaseApproach::table_lookup: return "table look-up";
+        case PhaseApproach::hg_rms: return "HG, g RMS";
+        case PhaseApproach::hg_van_gemert: return "HG, g van Gemert";
+    }
+    return "?";
+}
+
+Json study_json(const PhaseStudy& s) {
+    Json cases = Json::array();
+    for (const auto& c : s.cases) {
+        Json approaches = Json::object();
+        for (std::size_t a = 0; a < c.samplers.size(); ++a) {
+            approaches[std::string(to_string(all_phase_approaches[a]))] =
+                Json{{"fractions", c.sampled[a].fractions}, {"kept", c.sampled[a].kept}, {"drawn", c.sampled[a].drawn},
+                     {"max_relative_error_percent", c.errors[a].max_percent},
+                     {"average_relative_error_percent", c.errors[a].average_percent}, {"btdf_per_sr", c.btdf_per_sr[a]}};
+        }
+        cases.push_back(Json{{"tissue", c.tissue}, {"wavelength_nm", c.wavelength_nm},
+                             {"measured_fractions", c.measured_fractions}, {"g_rms", c.rms_fit.g}, {"rms_at_g_rms", c.rms_fit.rms},
+                             {"nelder_mead_evaluations", c.rms_fit.evaluations}, {"g_van_gemert", c.g_van_gemert},
+                             {"rms_at_g_van_gemert", c.rms_van_gemert}, {"btdf_measured_per_sr", c.btdf_measured_per_sr},
+                             {"approaches", approaches}});
+    }
+    return Json{{"skinspec_version", version}, {"bin_edges_deg", s.bin_edges_deg}, {"cases", cases},
+                {"seconds_per_sample_hg_warping", s.seconds_per_sample_hg},
+                {"seconds_per_sample_table_lookup", s.seconds_per_sample_lookup},
+                {"cost_ratio_hg_over_lookup", s.seconds_per_sample_hg / s.seconds_per_sample_lookup}};
+}
+
+void print_tables(const PhaseStudy& s) {
+    std::cout << "Table 2: HG asymmetry factors (Eq. 9 RMS over the 13 bins, Nelder-Mead over [-1, 1])\n";
+    std::cout << fmt::format("{:<26}", "");
+    for (const auto& c : s.cases) std::cout << fmt::format("{:>22}", case_name(c));
+    std::cout << fmt::format("\n{:<26}", "g, RMS fit");
+    for (const auto& c : s.cases) std::cout << fmt::format("{:>22.4f}", c.rms_fit.g);
+    std::cout << fmt::format("\n{:<26}", "RMS at that g");
+    for (const auto& c : s.cases) std::cout << fmt::format("{:>22.5f}", c.rms_fit.rms);
+    std::cout << fmt::format("\n{:<26}", "g, van Gemert et al. 1989");
+    for (const auto& c : s.cases) std::cout << fmt::format("{:>22.3f}", c.g_van_gemert);
+    std::cout << fmt::format("\n{:<26}", "RMS at van Gemert's g");
+    for (const auto& c : s.cases) std::cout << fmt::format("{:>22.5f}", c.rms_van_gemert);
+    std::cout << "\n\nTable 3: relative error (%) of sampled bin fractions, max / average over the 13 bins\n";
+    for (std::size_t a = 0; a < 3; ++a) {
+        std::cout << fmt::format("{:<26}", approach_label(all_phase_approaches[a]));
+        for (const auto& c : s.cases) {
+            std::cout << fmt::format("{:>22}", fmt::format("{:.2f} / {:.2f}", c.errors[a].max_percent, c.errors[a].average_percent));
+        }
+        std::cout << '\n';
+    }
+    std::cout << fmt::format("\nCost: HG warping {:.2f} ns/sample, table look-up {:.2f} ns/sample: HG costs {:.2f}x the look-up\n",
+                             1e9 * s.seconds_per_sample_hg, 1e9 * s.seconds_per_sample_lookup,
+                             s.seconds_per_sample_hg / s.seconds_per_sample_lookup);
+}
+
+void write_files(const PhaseStudy& s, const PhaseStudyOptions& o) {
+    const std::filesystem::path dir(o.output_dir);
+    std::filesystem::create_directories(dir);
+    const auto& cm = ColorManagement::builtin();
+    const auto background_file = o.background.empty() ? data_file("images/phantom_background.png") : std::filesystem::path(o.background);
+    const auto background = read_linear_image(background_file, "Linear Rec.709", cm);
+    const auto separations = WavelengthGrid::parse(o.separations, "--separations");  // positive, increasing numbers
+    std::vector<std::filesystem::path> files{dir / "goniometer_btdf.csv"};
+    for (const auto& c : s.cases) {
+        files.push_back(dir / ("goniometer_" + case_name(c) + ".png"));
+        files.push_back(dir / ("phantom_" + case_name(c) + ".png"));
+    }
+    for (const auto& f : files) check_output_path(f, o.overwrite, {".csv", ".png"});
+
+    std::string csv = "# skinspec phase-study: virtual goniometer BTDF (seed 000 Eq. 10) per polar bin, 1/sr\n"
+                      "tissue,wavelength_nm,bin_low_deg,bin_high_deg,measured,table_lookup,hg_rms,hg_van_gemert\n";
+    for (const auto& c : s.cases) {
+        for (std::size_t b = 0; b + 1 < s.bin_edges_deg.size(); ++b) {
+            csv += fmt::format("{},{:g},{:g},{:g},{:.6g},{:.6g},{:.6g},{:.6g}\n", c.tissue, c.wavelength_nm, s.bin_edges_deg[b],
+                               s.bin_edges_deg[b + 1], c.btdf_measured_per_sr[b], c.btdf_per_sr[0][b], c.btdf_per_sr[1][b],
+                               c.btdf_per_sr[2][b]);
+        }
+    }
+    write_text_file(files[0].string(), csv, true);
+
+    const std::vector<RGB> colours{{0.1, 0.1, 0.1}, {0.75, 0.2, 0.1}, {0.15, 0.35, 0.75}, {0.2, 0.6, 0.25}};
+    for (std::size_t i = 0; i < s.cases.size(); ++i) {
+        const auto& c = s.cases[i];
+        std::vector<double> centres;
+        for (std::size_t b = 0; b + 1 < s.bin_edges_deg.size(); ++b) centres.push_back(0.5 * (s.bin_edges_deg[b] + s.bin_edges_deg[b + 1]));
+        const std::vector<double> no_band(centres.size(), 0.0);
+        std::vector<PlotCurve> curves{{"measured (Bruls & van der Leun)", centres, c.btdf_measured_per_sr, no_band, colours[0], true}};
+        for (std::size_t a = 0; a < 3; ++a) curves.push_back({approach_label(all_phase_approaches[a]), centres, c.btdf_per_sr[a], no_band, colours[a + 1], false});
+        write_line_plot(files[1 + 2 * i], fmt::format("Virtual goniometer: {} at {:g} nm", c.tissue, c.wavelength_nm),
+                        "Polar angle (deg)", "BTDF (1/sr)", curves);
+
+        std::vector<LinearImage> panels;
+        std::vector<std::string> labels;
+        for (const double separation : separations.nm()) {
+            for (std::size_t a = 0; a < 3; ++a) {
+                PhantomView view;
+                view.separation = separation;
+                view.seed = o.seed;
+                panels.push_back(render_phantom(background, c.samplers[a], view));
+                labels.push_back(fmt::format("{}\nseparation {:g}", approach_label(all_phase_approaches[a]), separation));
+            }
+        }
+        write_image_grid(files[2 + 2 * i], panels, 3, labels, "Linear Rec.709", "sRGB", "Standard",
+                         {{"Software", std::string("skinspec ") + version},
+                          {"ImageDescription", fmt::format("phantom sheet, {} at {:g} nm profile; background width 8 units", c.tissue,
+                                                           c.wavelength_nm)}},
+                         cm);
+    }
+    for (const auto& f : files) std::cerr << "wrote " << f.string() << '\n';
+}
+
+void run_phase_study_command(const PhaseStudyOptions& o) {
+    if (!o.output_dir.empty() && std::filesystem::exists(o.output_dir) && !std::filesystem::is_directory(o.output_dir)) {
+        throw InputError("--output-dir " + o.output_dir + ": exists and is not a folder");
+    }
+    PhaseStudySettings settings;
+    settings.seed = o.seed;
+    const auto study = run_phase_study(settings);
+    if (o.json) std::cout << study_json(study).dump(2) << '\n';
+    else print_tables(study);
+    if (!o.output_dir.empty()) write_files(study, o);
+}
+
+}  // namespace
+
+void add_phase_study_command(CLI::App& app) {
+    auto o = std::make_shared<PhaseStudyOptions>();
+    auto* cmd = app.add_subcommand("phase-study", "Reproduce Baranoski et al. 2005: HG fits, sampling errors, goniometer, cost, phantom sheets");
+    cmd->add_option("--output-dir", o->output_dir, "Write goniometer CSV and plots and phantom-sheet images here");
+    cmd->add_option("--background", o->background, "Phantom background image (any OpenImageIO format; default data/images/phantom_background.png)");
+    cmd->add_option("--separations", o->separations, "Sheet-to-background separations, comma list (background is 8 units wide)")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_flag("--json", o->json, "Print every table's numbers as one JSON object");
+    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing files in --output-dir");
+    cmd->callback([o] { run_phase_study_command(*o); });
+}
+
+}  // namespace skinspec::cli

@@ -1,0 +1,9 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace skinspec::cli {
+
+// `skinspec phase-study`: the experiments of seed 000 (HG fits, sampling errors, goniometer, cost, phantoms).
+void add_phase_study_command(CLI::App& app);
+
+}  // namespace skinspec::cli
