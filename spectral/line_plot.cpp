@@ -35,6 +35,7 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
     pls->sfnam(file.string().c_str());
     pls->spage(0.0, 0.0, 1000, 650, 0, 0);
+    pls->scmap0n(std::max<PLINT>(16, 2 + 2 * static_cast<PLINT>(curves.size())));  // a band and a line colour per curve
     pls->scol0a(0, 255, 255, 255, 1.0);  // background
     pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
     pls->init();
@@ -81,8 +82,9 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     PLFLT legend_width = 0.0, legend_height = 0.0;
     const std::vector<PLINT> text_colours(curves.size(), 1);
     pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
-                PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, 0.02, 0.02, 0.08, 0, 1, 1, 0, 0,
-                static_cast<PLINT>(curves.size()), opts.data(), 1.0, 0.9, 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
+                PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, 0.02, 0.02, 0.08, 0, 1, 1,
+                curves.size() > 6 ? static_cast<PLINT>((curves.size() + 1) / 2) : 0, curves.size() > 6 ? 2 : 0,
+                static_cast<PLINT>(curves.size()), opts.data(), 1.0, curves.size() > 6 ? 0.65 : 0.9, 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
                 nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), nullptr, nullptr, nullptr, nullptr);
     pls.reset();  // the destructor finishes and closes the file
     if (!std::filesystem::exists(file)) throw InputError(file.string() + ": the plot could not be written");

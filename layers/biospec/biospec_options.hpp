@@ -1,6 +1,9 @@
 #pragma once
 // Options of the BioSpec walk that are not properties of the skin (those live in the LayerStack).
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
 #include <string_view>
 
 namespace skinspec {
@@ -15,6 +18,14 @@ enum class FoldIntoSkin {
     resample,  // draw the perturbation again until it points out of the skin
 };
 
+// Henyey-Greenstein in place of the measured profiles of the thin layers (SC and epidermis), with g as a
+// function of wavelength (nm); for comparing data-driven and HG scattering inside the skin model.
+struct ThinLayerHg {
+    std::function<double(double)> stratum_corneum_g;
+    std::function<double(double)> epidermis_g;
+    std::string source;  // recorded in the result's settings
+};
+
 struct BiospecOptions {
     AbsorptionEstimator estimator = AbsorptionEstimator::weighted;
     FoldIntoSkin fold_into_skin = FoldIntoSkin::drop;
@@ -22,6 +33,7 @@ struct BiospecOptions {
     // absorbed in its current layer and the ray is reported in truncated_rays.
     std::uint32_t max_events_per_ray = 1'000'000;
     std::size_t profile_table_entries = 1000;  // randomized table look-up size (seed 000 Sec. 4)
+    std::optional<ThinLayerHg> thin_layer_hg;  // unset: the measured profiles (default)
 };
 
 std::string_view to_string(AbsorptionEstimator estimator);

@@ -61,6 +61,7 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
         {"profile_table_entries", static_cast<double>(o.profile_table_entries)},
         {"max_events_per_ray", static_cast<double>(o.max_events_per_ray)},
         {"skinspec_version", std::string(version)},
+        {"thin_layer_phase", o.thin_layer_hg ? "henyey_greenstein (" + o.thin_layer_hg->source + ")" : std::string("measured")},
     };
     if (r.stderr_target) s["stderr_target"] = *r.stderr_target;
     return s;

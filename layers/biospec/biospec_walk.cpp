@@ -53,7 +53,14 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
       channels_(channels) {
     for (const double e : edges_deg) bin_edges_cos_.push_back(std::cos(e * deg));
     for (std::size_t k = 0; k < stack.layers.size(); ++k) {
-        const auto o = stack.optics(k, wavelength_nm, OpticsScope{false, false});
+        auto o = stack.optics(k, wavelength_nm, OpticsScope{false, false});
+        if (options.thin_layer_hg && o.crossing == CrossingScattering::measured_stratum_corneum) {
+            o.crossing = CrossingScattering::henyey_greenstein;
+            o.hg_g = options.thin_layer_hg->stratum_corneum_g(wavelength_nm);
+        } else if (options.thin_layer_hg && o.crossing == CrossingScattering::measured_epidermis) {
+            o.crossing = CrossingScattering::henyey_greenstein;
+            o.hg_g = options.thin_layer_hg->epidermis_g(wavelength_nm);
+        }
         const InverseCdfTable* profile = nullptr;
         if (o.crossing == CrossingScattering::measured_stratum_corneum) {
             if (!stratum_corneum_table_) {

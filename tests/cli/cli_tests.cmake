@@ -52,3 +52,7 @@ skinspec_cli_test("swatch unwritable path" 2 "folder /nonexistent/dir does not e
 skinspec_cli_test("swatch existing output" 2 "existing_output.png: exists already \\(use --overwrite" swatch -o existing_output.png)
 skinspec_cli_test("swatch bad space" 2 "has no RGB primaries" swatch --space CIE-XYZ-D65 -o x.exr)
 skinspec_cli_test("spectrum plot bad extension" 2 "--plot x.pdf: extension not supported" spectrum --plot x.pdf --rays 100)
+skinspec_cli_test("phase-study json" 0 "\"cost_ratio_hg_over_lookup\"" phase-study --json)
+skinspec_cli_test("compare-phase small" 0 "colour difference CIEDE2000" compare-phase --preset biospec-lightly --wavelengths 400:700:50 --stderr 0.01)
+skinspec_cli_test("compare-phase bad source" 2 "--hg-source '1.5' is not allowed" compare-phase --hg-source 1.5)
+skinspec_cli_test("phase-study output dir is a file" 2 "exists and is not a folder" phase-study --output-dir grey18.csv)

@@ -1,0 +1,160 @@
+#include "cli/compare_phase_command.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "layers/phase_study/phase_comparison.hpp"
+#include "layers/phase_study/phase_study.hpp"
+#include "materials/material_file.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/line_plot.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct ComparePhaseOptions {
+    std::vector<std::string> presets;
+    std::vector<std::string> overrides;
+    std::string hg_source = "rms";
+    std::string wavelengths = "400:700:10";
+    double stderr_target = 0.002;
+    std::uint64_t max_rays = 10'000'000;
+    std::uint64_t seed = 1;
+    unsigned threads = 0;
+    std::string plot;
+    bool overwrite = false;
+    bool json = false;
+};
+
+ThinLayerHg hg_from(const std::string& source) {
+    if (source == "rms" || source == "van-gemert") {
+        const auto g = source == "rms" ? thin_layer_asymmetry_rms() : thin_layer_asymmetry_van_gemert();
+        return {[g](double nm) { return g.stratum_corneum(nm); }, [g](double nm) { return g.epidermis(nm); },
+                source == "rms" ? "g fitted by RMS (Eq. 9), linear 436-546 nm, clamped" : "g of van Gemert et al. 1989, linear 436-546 nm, clamped"};
+    }
+    const auto value = parse_double(source);
+    if (!value || *value < -1.0 || *value > 1.0) {
+        throw InputError("--hg-source '" + source + "' is not allowed (allowed: rms, van-gemert, or a number in [-1, 1])");
+    }
+    const double g = *value;
+    return {[g](double) { return g; }, [g](double) { return g; }, "g = " + format_number(g)};
+}
+
+Json comparison_json(const PhaseComparison& c) {
+    Json rows = Json::array();
+    for (const auto& r : c.rows) {
+        rows.push_back(Json{{"wavelength_nm", r.wavelength_nm}, {"measured", r.measured.value}, {"measured_stderr", r.measured.stderr},
+                            {"hg", r.hg.value}, {"hg_stderr", r.hg.stderr}, {"difference", r.difference.value},
+                            {"difference_stderr", r.difference.stderr}, {"significant", r.significant}});
+    }
+    Json j{{"material", c.material}, {"quantity", c.quantity}, {"significant_wavelengths", c.significant_count}, {"rows", rows}};
+    if (c.delta_e00) {
+        j["delta_e00"] = *c.delta_e00;
+        j["delta_e00_uncertainty"] = *c.delta_e00_uncertainty;
+    }
+    return j;
+}
+
+std::string comparison_table(const PhaseComparison& c) {
+    std::string out = fmt::format("{} ({}): measured thin layers vs HG, difference = HG - measured; * = beyond {:g} standard errors\n",
+                                  c.material, c.quantity == "R" ? "reflectance R" : "SC + epidermis, reflector off: transmittance T",
+                                  significance_sigmas);
+    out += fmt::format("{:>13}  {:>18}  {:>18}  {:>20}\n", "wavelength_nm", "measured", "HG", "difference");
+    for (const auto& r : c.rows) {
+        out += fmt::format("{:>13g}  {:>18}  {:>18}  {:>20} {}\n", r.wavelength_nm, fmt::format("{:.4f} +- {:.4f}", r.measured.value, r.measured.stderr),
+                           fmt::format("{:.4f} +- {:.4f}", r.hg.value, r.hg.stderr),
+                           fmt::format("{:+.4f} +- {:.4f}", r.difference.value, r.difference.stderr), r.significant ? "*" : "");
+    }
+    out += fmt::format("significant at {} of {} wavelengths", c.significant_count, c.rows.size());
+    if (c.delta_e00) out += fmt::format("; colour difference CIEDE2000 {:.2f} +- {:.2f} (D65)", *c.delta_e00, *c.delta_e00_uncertainty);
+    return out + "\n\n";
+}
+
+void run_compare_phase(const ComparePhaseOptions& o) {
+    const auto names = o.presets.empty() ? std::vector<std::string>{"biospec-lightly", "biospec-moderately", "biospec-heavily"} : o.presets;
+    const auto hg = hg_from(o.hg_source);
+    std::vector<MaterialOverride> overrides;
+    for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
+    request.stderr_target = o.stderr_target;
+    request.max_rays_per_wavelength = o.max_rays;
+    request.seed = o.seed;
+    if (!o.plot.empty()) {
+        if (!o.plot.ends_with(".png") && !o.plot.ends_with(".svg")) throw InputError("--plot " + o.plot + ": extension not supported (allowed: .png, .svg)");
+        if (std::filesystem::exists(o.plot) && !o.overwrite) throw InputError(o.plot + ": exists already (use --overwrite to replace it)");
+    }
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+
+    std::vector<PhaseComparison> comparisons;
+    for (const auto& name : names) {
+        const auto material = load_material(name, overrides);
+        const auto* stack = std::get_if<LayerStack>(&material);
+        if (!stack) throw InputError("material '" + name + "' is homogeneous; compare-phase needs a layered material");
+        comparisons.push_back(compare_thin_layer_phase(*stack, request, hg, ComparedQuantity::reflectance));
+        auto sub = stack->sub_stack({"stratum_corneum", "epidermis"});
+        sub.bottom = BottomBoundary::exit;
+        comparisons.push_back(compare_thin_layer_phase(sub, request, hg, ComparedQuantity::transmittance));
+    }
+    if (o.json) {
+        Json all = Json::array();
+        for (const auto& c : comparisons) all.push_back(comparison_json(c));
+        std::cout << Json{{"skinspec_version", version}, {"hg_source", hg.source}, {"seed", o.seed}, {"comparisons", all}}.dump(2) << '\n';
+    } else {
+        std::cout << "HG source: " << hg.source << "\n\n";
+        for (const auto& c : comparisons) std::cout << comparison_table(c);
+    }
+    if (!o.plot.empty()) {
+        std::vector<PlotCurve> curves;
+        const std::vector<RGB> colours{{0.75, 0.2, 0.1}, {0.15, 0.35, 0.75}, {0.2, 0.6, 0.25}, {0.5, 0.3, 0.6}, {0.6, 0.5, 0.1}};
+        for (std::size_t i = 0; i < comparisons.size(); ++i) {
+            const auto& c = comparisons[i];
+            PlotCurve measured{c.material + " " + c.quantity + " measured", {}, {}, {}, colours[(i / 2) % colours.size()], false};
+            PlotCurve modelled{c.material + " " + c.quantity + " HG", {}, {}, {}, colours[(i / 2) % colours.size()], true};
+            for (const auto& r : c.rows) {
+                measured.x.push_back(r.wavelength_nm);
+                measured.value.push_back(r.measured.value);
+                measured.stderr.push_back(r.measured.stderr);
+                modelled.x.push_back(r.wavelength_nm);
+                modelled.value.push_back(r.hg.value);
+                modelled.stderr.push_back(r.hg.stderr);
+            }
+            curves.push_back(std::move(measured));
+            curves.push_back(std::move(modelled));
+        }
+        write_line_plot(o.plot, "Measured (solid) vs HG (dashed) thin layers; R of the skin, T of SC + epidermis", "Wavelength (nm)",
+                        "Reflectance R, transmittance T (fraction)", curves);
+        std::cerr << "wrote " << o.plot << '\n';
+    }
+}
+
+}  // namespace
+
+void add_compare_phase_command(CLI::App& app) {
+    auto o = std::make_shared<ComparePhaseOptions>();
+    auto* cmd = app.add_subcommand("compare-phase", "Measured vs Henyey-Greenstein scattering in the thin layers of the BioSpec skin model");
+    cmd->add_option("--preset", o->presets, "Preset (repeatable; default lightly, moderately and heavily pigmented)");
+    cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
+    cmd->add_option("--hg-source", o->hg_source, "g for HG: rms (fitted, Eq. 9), van-gemert, or a number in [-1, 1]")->capture_default_str();
+    cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
+    cmd->add_option("--stderr", o->stderr_target, "Standard error target per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
+    cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
+    cmd->add_option("--plot", o->plot, "Plot the spectra to FILE.png or FILE.svg");
+    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace the --plot file if it exists");
+    cmd->add_flag("--json", o->json, "Print the comparison as JSON");
+    cmd->callback([o] { run_compare_phase(*o); });
+}
+
+}  // namespace skinspec::cli
