@@ -85,13 +85,32 @@ RGB ColorManagement::from_xyz(const XYZ& xyz, const XYZ& white, std::string_view
     return convert({adapted.X, adapted.Y, adapted.Z}, OCIO::ROLE_REFERENCE, space);
 }
 
-RGB ColorManagement::convert(const RGB& rgb, std::string_view from_space, std::string_view to_space) const {
-    const std::string from = canonical_space(from_space, "source colour space");
-    const std::string to = canonical_space(to_space, "destination colour space");
+// One cached CPU processor per (source, destination) colour space pair.
+OCIO::ConstCPUProcessorRcPtr colorspace_processor(const ColorManagement& cm, const ColorManagement::Impl& impl,
+                                                  std::string_view from_space, std::string_view to_space) {
+    const std::string from = cm.canonical_space(from_space, "source colour space");
+    const std::string to = cm.canonical_space(to_space, "destination colour space");
     auto transform = OCIO::ColorSpaceTransform::Create();
     transform->setSrc(from.c_str());
     transform->setDst(to.c_str());
-    return impl_->apply(impl_->processor("cs:" + from + "\n" + to, transform), rgb);
+    return impl.processor("cs:" + from + "\n" + to, transform);
+}
+
+// One cached CPU processor per (source space, display, view).
+OCIO::ConstCPUProcessorRcPtr display_processor(const ColorManagement& cm, const ColorManagement::Impl& impl,
+                                               std::string_view from_space, std::string_view display, std::string_view view) {
+    const std::string from = cm.canonical_space(from_space, "source colour space");
+    const std::string d(display);
+    const std::string v(view);
+    auto transform = OCIO::DisplayViewTransform::Create();
+    transform->setSrc(from.c_str());
+    transform->setDisplay(d.c_str());
+    transform->setView(v.c_str());
+    try {
+        return impl.processor("dv:" + from + "\n" + d + "\n" + v, transform);
+    } catch (const OCIO::Exception& e) {
+        throw InputError("display '" + d + "', view '" + v + "': " + e.what());
+    }
 }
 
 namespace {
@@ -104,45 +123,22 @@ void apply_packed(const OCIO::ConstCPUProcessorRcPtr& cpu, std::vector<float>& r
 
 }  // namespace
 
-void ColorManagement::convert_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view to_space) const {
-    const std::string from = canonical_space(from_space, "source colour space");
-    const std::string to = canonical_space(to_space, "destination colour space");
-    auto transform = OCIO::ColorSpaceTransform::Create();
-    transform->setSrc(from.c_str());
-    transform->setDst(to.c_str());
-    apply_packed(impl_->processor("cs:" + from + "\n" + to, transform), rgb);
+RGB ColorManagement::convert(const RGB& rgb, std::string_view from_space, std::string_view to_space) const {
+    return impl_->apply(colorspace_processor(*this, *impl_, from_space, to_space), rgb);
 }
 
-void ColorManagement::display_view_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view display,
-                                          std::string_view view) const {
-    const std::string from = canonical_space(from_space, "source colour space");
-    const std::string d(display);
-    const std::string v(view);
-    auto transform = OCIO::DisplayViewTransform::Create();
-    transform->setSrc(from.c_str());
-    transform->setDisplay(d.c_str());
-    transform->setView(v.c_str());
-    try {
-        apply_packed(impl_->processor("dv:" + from + "\n" + d + "\n" + v, transform), rgb);
-    } catch (const OCIO::Exception& e) {
-        throw InputError("display '" + d + "', view '" + v + "': " + e.what());
-    }
+void ColorManagement::convert_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view to_space) const {
+    apply_packed(colorspace_processor(*this, *impl_, from_space, to_space), rgb);
 }
 
 RGB ColorManagement::display_view(const RGB& rgb, std::string_view from_space, std::string_view display,
                                   std::string_view view) const {
-    const std::string from = canonical_space(from_space, "source colour space");
-    const std::string d(display);
-    const std::string v(view);
-    auto transform = OCIO::DisplayViewTransform::Create();
-    transform->setSrc(from.c_str());
-    transform->setDisplay(d.c_str());
-    transform->setView(v.c_str());
-    try {
-        return impl_->apply(impl_->processor("dv:" + from + "\n" + d + "\n" + v, transform), rgb);
-    } catch (const OCIO::Exception& e) {
-        throw InputError("display '" + d + "', view '" + v + "': " + e.what());
-    }
+    return impl_->apply(display_processor(*this, *impl_, from_space, display, view), rgb);
+}
+
+void ColorManagement::display_view_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view display,
+                                          std::string_view view) const {
+    apply_packed(display_processor(*this, *impl_, from_space, display, view), rgb);
 }
 
 }  // namespace skinspec

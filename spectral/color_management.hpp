@@ -52,8 +52,9 @@ public:
     // Scene-linear `from_space` -> display-referred values through the display/view transform.
     RGB display_view(const RGB& rgb, std::string_view from_space, std::string_view display, std::string_view view) const;
 
+    struct Impl;  // OCIO state; defined in the .cpp
+
 private:
-    struct Impl;
     std::filesystem::path config_file_;
     std::unique_ptr<Impl> impl_;
 };
