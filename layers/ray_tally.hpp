@@ -9,16 +9,40 @@
 
 namespace skinspec {
 
+// One ray's contributions, per channel; only the channels it touched are visited when it is tallied, so
+// large grids (A(r, z), R(r, alpha)) cost per ray what the ray did, not the grid size.
+class RayScore {
+public:
+    explicit RayScore(std::size_t channels) : value_(channels, 0.0), marked_(channels, 0) {}
+    void add(std::size_t channel, double v) {
+        if (!marked_[channel]) {
+            marked_[channel] = 1;
+            touched_.push_back(channel);
+        }
+        value_[channel] += v;
+    }
+
+private:
+    friend class RayTally;
+    std::vector<double> value_;
+    std::vector<unsigned char> marked_;
+    std::vector<std::size_t> touched_;
+};
+
 class RayTally {
 public:
     explicit RayTally(std::size_t channels = 0) : sum_(channels, 0.0), sum_sq_(channels, 0.0) {}
 
-    // One finished ray's contributions to every channel.
-    void add_ray(const std::vector<double>& contributions) {
-        for (std::size_t c = 0; c < sum_.size(); ++c) {
-            sum_[c] += contributions[c];
-            sum_sq_[c] += contributions[c] * contributions[c];
+    // One finished ray: its contributions are added (and squared) and the score is cleared for the next ray.
+    void add_ray(RayScore& score) {
+        for (const auto c : score.touched_) {
+            const double v = score.value_[c];
+            sum_[c] += v;
+            sum_sq_[c] += v * v;
+            score.value_[c] = 0.0;
+            score.marked_[c] = 0;
         }
+        score.touched_.clear();
         ++rays_;
     }
 

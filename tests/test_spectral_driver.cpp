@@ -10,10 +10,10 @@ namespace {
 
 // A Bernoulli(p) "ray" with p depending on the wavelength: its mean and standard error are known exactly.
 void bernoulli(std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
-    std::vector<double> score(1);
+    RayScore score(1);
     const double p = 0.1 + 0.2 * static_cast<double>(w);
     for (std::uint64_t i = 0; i < rays; ++i) {
-        score[0] = random.uniform() < p ? 1.0 : 0.0;
+        if (random.uniform() < p) score.add(0, 1.0);
         tally.add_ray(score);
     }
 }

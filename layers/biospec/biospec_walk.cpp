@@ -78,23 +78,22 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
 }
 
 void BiospecWavelength::trace(RandomStream& random, std::uint64_t rays, RayTally& tally) const {
-    std::vector<double> score(channels_.count);
+    RayScore score(channels_.count);
     std::uint64_t truncated = 0;
     for (std::uint64_t i = 0; i < rays; ++i) {
-        std::fill(score.begin(), score.end(), 0.0);
         trace_one(random, score, truncated);
         tally.add_ray(score);
     }
     tally.add_truncated(truncated);
 }
 
-void BiospecWavelength::exit_into_bin(int first_bin, double cos_exit, double weight, std::vector<double>& score) const {
+void BiospecWavelength::exit_into_bin(int first_bin, double cos_exit, double weight, RayScore& score) const {
     if (first_bin < 0) return;
     // Edges are stored as decreasing cosines; find the bin whose [cos_hi, cos_lo] holds cos_exit.
     const auto it = std::upper_bound(bin_edges_cos_.begin(), bin_edges_cos_.end(), cos_exit, std::greater<>());
     const auto upper = static_cast<std::size_t>(it - bin_edges_cos_.begin());
     const std::size_t bin = upper == 0 ? 0 : std::min(upper - 1, bin_edges_cos_.size() - 2);
-    score[static_cast<std::size_t>(first_bin) + bin] += weight;
+    score.add(static_cast<std::size_t>(first_bin) + bin, weight);
 }
 
 // Step 2/3 of the specification: the direction change on one crossing of `layer`.
@@ -137,9 +136,9 @@ Direction BiospecWavelength::scatter(const Layer& layer, const Direction& d, Ran
     return d;
 }
 
-void BiospecWavelength::trace_one(RandomStream& random, std::vector<double>& score, std::uint64_t& truncated) const {
+void BiospecWavelength::trace_one(RandomStream& random, RayScore& score, std::uint64_t& truncated) const {
     const auto add = [&](int channel, double value) {
-        if (channel >= 0) score[static_cast<std::size_t>(channel)] += value;
+        if (channel >= 0) score.add(static_cast<std::size_t>(channel), value);
     };
     const auto absorb = [&](std::size_t layer, double value) {
         if (channels_.absorptance_first_layer >= 0) add(channels_.absorptance_first_layer + static_cast<int>(layer), value);

@@ -50,9 +50,9 @@ private:
         const InverseCdfTable* profile;
     };
 
-    void trace_one(RandomStream& random, std::vector<double>& score, std::uint64_t& truncated) const;
+    void trace_one(RandomStream& random, RayScore& score, std::uint64_t& truncated) const;
     Direction scatter(const Layer& layer, const Direction& d, RandomStream& random) const;
-    void exit_into_bin(int first_bin, double cos_exit, double weight, std::vector<double>& score) const;
+    void exit_into_bin(int first_bin, double cos_exit, double weight, RayScore& score) const;
 
     std::vector<Layer> layers_;
     std::optional<InverseCdfTable> stratum_corneum_table_;
