@@ -11,6 +11,7 @@
 #include "cli/swatch_command.hpp"
 #include "cli/phase_study_command.hpp"
 #include "cli/compare_phase_command.hpp"
+#include "cli/mcml_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_swatch_command(app);
     skinspec::cli::add_phase_study_command(app);
     skinspec::cli::add_compare_phase_command(app);
+    skinspec::cli::add_mcml_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

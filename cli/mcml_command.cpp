@@ -1,0 +1,145 @@
+#include "cli/mcml_command.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "cli/progress.hpp"
+#include "cli/spectral_output.hpp"
+#include "layers/rte/mcml_files.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/input_error.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct McmlOptions {
+    std::string file;
+    std::uint64_t photons = 0;
+    std::uint64_t seed = 1;
+    unsigned threads = 0;
+    std::string boundaries = "random";
+    std::string json_output;
+    bool overwrite = false;
+    bool json = false;
+};
+
+Json estimates(const std::vector<Estimate>& v, const char* key) {
+    std::vector<double> value, stderr;
+    for (const auto& e : v) {
+        value.push_back(e.value);
+        stderr.push_back(e.stderr);
+    }
+    return Json{{key, value}, {std::string(key) + "_stderr", stderr}};
+}
+
+Json run_json(const McmlRun& run, const RteResult& r, double seconds) {
+    Json j{{"model", "rte"},
+           {"input", Json{{"output_file", run.output_file}, {"photons", run.photons}, {"dz_cm", run.grid.dz_cm}, {"dr_cm", run.grid.dr_cm},
+                          {"nz", run.grid.nz}, {"nr", run.grid.nr}, {"na", run.grid.na}}},
+           {"partial", r.partial},
+           {"photons", r.photons},
+           {"truncated_photons", r.truncated_photons},
+           {"seconds", seconds},
+           {"R", r.specular_reflectance.value + r.diffuse_reflectance.value},
+           {"R_stderr", r.diffuse_reflectance.stderr},
+           {"R_specular", r.specular_reflectance.value},
+           {"R_specular_stderr", r.specular_reflectance.stderr},
+           {"R_diffuse", r.diffuse_reflectance.value},
+           {"R_diffuse_stderr", r.diffuse_reflectance.stderr},
+           {"T", r.transmittance.value},
+           {"T_stderr", r.transmittance.stderr},
+           {"A", r.absorbed.value},
+           {"A_stderr", r.absorbed.stderr}};
+    j.update(estimates(r.absorption_layers, "A_layers"));
+    j.update(estimates(r.absorption_z, "A_z_per_cm"));
+    j.update(estimates(r.reflectance_r, "R_r_per_cm2"));
+    j.update(estimates(r.transmittance_r, "T_r_per_cm2"));
+    j.update(estimates(r.reflectance_a, "R_a_per_sr"));
+    j.update(estimates(r.transmittance_a, "T_a_per_sr"));
+    j.update(estimates(r.absorption_rz, "A_rz_per_cm3"));
+    j.update(estimates(r.reflectance_ra, "R_ra_per_cm2_sr"));
+    j.update(estimates(r.transmittance_ra, "T_ra_per_cm2_sr"));
+    return j;
+}
+
+void run_mcml(const McmlOptions& o) {
+    const auto runs = read_mci(o.file);
+    if (o.boundaries != "random" && o.boundaries != "split") {
+        throw InputError("--boundaries: '" + o.boundaries + "' is not allowed (allowed: random, split)");
+    }
+    for (const auto& run : runs) {
+        if (run.output_format != 'A') throw InputError(o.file + ": output '" + run.output_file + "' asks for binary format B (only A is written)");
+        if (std::filesystem::exists(run.output_file) && !o.overwrite) {
+            throw InputError(run.output_file + ": exists already (use --overwrite to replace it)");
+        }
+    }
+    if (!o.json_output.empty() && std::filesystem::exists(o.json_output) && !o.overwrite) {
+        throw InputError(o.json_output + ": exists already (use --overwrite to replace it)");
+    }
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    const InterruptGuard interrupt;
+    Json all = Json::array();
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        auto run = runs[i];
+        if (o.photons > 0) run.photons = o.photons;
+        RteRequest request;
+        request.stack = run.stack;
+        request.photons = run.photons;
+        request.seed = o.seed;
+        request.boundaries = o.boundaries == "split" ? BoundaryMode::split : BoundaryMode::random;
+        request.grid = run.grid;
+        request.cancel = &InterruptGuard::cancel_flag();
+        ProgressBar bar(fmt::format("run {}", i + 1));
+        request.on_progress = [&bar](const Progress& p) { bar(p); };
+        const auto start = std::chrono::steady_clock::now();
+        const auto result = solve_rte(request);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        run.photons = result.photons;
+        write_text_file(run.output_file,
+                        mco_text(run, result, fmt::format("skinspec {} volumetric walk: {} photons in {:.2f} sec{}", version, result.photons,
+                                                          seconds, result.partial ? " (INTERRUPTED)" : "")),
+                        true);
+        all.push_back(run_json(run, result, seconds));
+        if (!o.json) {
+            std::cout << fmt::format("run {} -> {}: {} photons in {:.2f} s ({:.3g} photons/s)\n", i + 1, run.output_file, result.photons, seconds,
+                                     result.photons / seconds)
+                      << fmt::format("  specular R {:.6f}; diffuse R {:.6f} +- {:.6f}; absorbed {:.6f} +- {:.6f}; T {:.6f} +- {:.6f}{}\n",
+                                     result.specular_reflectance.value, result.diffuse_reflectance.value, result.diffuse_reflectance.stderr,
+                                     result.absorbed.value, result.absorbed.stderr, result.transmittance.value, result.transmittance.stderr,
+                                     result.truncated_photons ? fmt::format("; {} photons stopped at the step limit", result.truncated_photons) : "");
+        }
+        if (result.partial) break;
+    }
+    const Json doc{{"skinspec_version", version}, {"schema", "skinspec-rte-result/1"}, {"input", o.file}, {"seed", o.seed},
+                   {"boundaries", o.boundaries}, {"runs", all}};
+    if (o.json) std::cout << doc.dump(2) << '\n';
+    if (!o.json_output.empty()) write_text_file(o.json_output, doc.dump(2) + "\n", true);
+    if (InterruptGuard::interrupted()) std::exit(130);
+}
+
+}  // namespace
+
+void add_mcml_command(CLI::App& app) {
+    auto o = std::make_shared<McmlOptions>();
+    auto* cmd = app.add_subcommand("mcml", "Run an MCML .mci file with the volumetric walk; writes MCML .mco files (and JSON with standard errors)");
+    cmd->add_option("file", o->file, "MCML input file (.mci)")->required();
+    cmd->add_option("--photons", o->photons, "Override the photon count of every run")->check(CLI::PositiveNumber);
+    cmd->add_option("--seed", o->seed, "Random seed (identical results for any thread count)")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
+    cmd->add_option("--boundaries", o->boundaries, "Fresnel at the outer boundaries: random (all-or-none, MCML) or split")->capture_default_str();
+    cmd->add_option("--output", o->json_output, "Also write the results with standard errors as JSON to this file");
+    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing .mco / JSON files");
+    cmd->add_flag("--json", o->json, "Print the JSON on standard output");
+    cmd->callback([o] { run_mcml(*o); });
+}
+
+}  // namespace skinspec::cli
