@@ -27,6 +27,7 @@ struct McmlOptions {
     unsigned threads = 0;
     std::string boundaries = "random";
     std::string json_output;
+    std::string output_dir;
     bool overwrite = false;
     bool json = false;
 };
@@ -71,7 +72,11 @@ Json run_json(const McmlRun& run, const RteResult& r, double seconds) {
 }
 
 void run_mcml(const McmlOptions& o) {
-    const auto runs = read_mci(o.file);
+    auto runs = read_mci(o.file);
+    if (!o.output_dir.empty()) {
+        if (!std::filesystem::is_directory(o.output_dir)) throw InputError("--output-dir " + o.output_dir + ": not a folder");
+        for (auto& run : runs) run.output_file = (std::filesystem::path(o.output_dir) / run.output_file).string();
+    }
     if (o.boundaries != "random" && o.boundaries != "split") {
         throw InputError("--boundaries: '" + o.boundaries + "' is not allowed (allowed: random, split)");
     }
@@ -136,6 +141,7 @@ void add_mcml_command(CLI::App& app) {
     cmd->add_option("--seed", o->seed, "Random seed (identical results for any thread count)")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--boundaries", o->boundaries, "Fresnel at the outer boundaries: random (all-or-none, MCML) or split")->capture_default_str();
+    cmd->add_option("--output-dir", o->output_dir, "Write the .mco files here (default: the current folder, as MCML does)");
     cmd->add_option("--output", o->json_output, "Also write the results with standard errors as JSON to this file");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing .mco / JSON files");
     cmd->add_flag("--json", o->json, "Print the JSON on standard output");

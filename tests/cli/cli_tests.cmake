@@ -56,3 +56,6 @@ skinspec_cli_test("phase-study json" 0 "\"cost_ratio_hg_over_lookup\"" phase-stu
 skinspec_cli_test("compare-phase small" 0 "colour difference CIEDE2000" compare-phase --preset biospec-lightly --wavelengths 400:700:50 --stderr 0.01)
 skinspec_cli_test("compare-phase bad source" 2 "--hg-source '1.5' is not allowed" compare-phase --hg-source 1.5)
 skinspec_cli_test("phase-study output dir is a file" 2 "exists and is not a folder" phase-study --output-dir grey18.csv)
+skinspec_cli_test("mcml sample" 0 "diffuse R 0\\.2" mcml ${PROJECT_SOURCE_DIR}/data/mcml/sample.mci --photons 5000 --output-dir ${CMAKE_CURRENT_BINARY_DIR} --overwrite)
+skinspec_cli_test("mcml refuses overwrite" 2 "existing_output.csv: exists already \\(use --overwrite" mcml overwrite_check.mci --photons 100)
+skinspec_cli_test("mcml bad file" 2 "cannot open the .mci file" mcml no_such.mci)

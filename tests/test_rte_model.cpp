@@ -1,0 +1,30 @@
+#include <catch2/catch.hpp>
+
+#include "layers/rte/rte_model.hpp"
+#include "materials/material_file.hpp"
+#include "spectral/input_error.hpp"
+
+using namespace skinspec;
+
+TEST_CASE("skin presets run in the volumetric walk once their layers carry mu_s and g", "[rte_model]") {
+    const auto plain = std::get<LayerStack>(load_material("biospec-lightly"));
+    CHECK_THROWS_WITH(rte_stack_from(plain, 550.0), Catch::Contains("layer 'stratum_corneum' of 'biospec-lightly' has no volumetric scattering"));
+    std::vector<MaterialOverride> o;
+    for (const char* layer : {"stratum_corneum", "epidermis", "dermis"}) {
+        o.push_back({std::string(layer) + ".volumetric_mu_s_per_cm_at_500nm", "200"});
+        o.push_back({std::string(layer) + ".volumetric_g", "0.8"});
+    }
+    const auto stack = std::get<LayerStack>(load_material("biospec-lightly", o));
+    const auto rte = rte_stack_from(stack, 550.0);
+    REQUIRE(rte.layers.size() == 4);
+    CHECK(rte.bottom_reflector);
+    CHECK(rte.layers[1].mu_a_per_cm == Approx(stack.optics(1, 550.0).mu_a_per_cm));
+    CHECK(rte.layers[1].mu_s_per_cm == 200.0);
+    CHECK(rte.layers[1].phase.g == 0.8);
+    RteRequest request;
+    request.stack = rte;
+    request.photons = 20'000;
+    const auto r = solve_rte(request);
+    CHECK(r.transmittance.value == 0.0);  // the reflector returns what reaches the bottom
+    CHECK(r.specular_reflectance.value + r.diffuse_reflectance.value + r.absorbed.value == Approx(1.0).margin(1e-12));
+}

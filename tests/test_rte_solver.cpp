@@ -1,0 +1,148 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <tbb/global_control.h>
+
+#include "layers/rte/rte_model.hpp"
+#include "spectral/input_error.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+RteRequest slab(double mu_a, double mu_s, double g, double d, double n, std::uint64_t photons) {
+    RteRequest r;
+    r.stack.layers.push_back({n, mu_a, mu_s, d, PhaseFunction::henyey_greenstein(g)});
+    r.photons = photons;
+    return r;
+}
+
+double energy(const RteResult& r) {
+    return r.specular_reflectance.value + r.diffuse_reflectance.value + r.transmittance.value + r.absorbed.value;
+}
+
+}  // namespace
+
+TEST_CASE("all six adding-doubling slabs are reproduced within statistical error", "[rte_solver]") {
+    // ../shared/reference/adding_doubling_slabs.csv (Prahl's adding-doubling, ~1e-3 relative): a, b, g, n, rd, tt.
+    std::ifstream in(SKINSPEC_TEST_REFERENCE_DIR "/adding_doubling_slabs.csv");
+    REQUIRE(in);
+    std::string line;
+    int cases = 0;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#' || line[0] == 'a') continue;
+        std::replace(line.begin(), line.end(), ',', ' ');
+        std::istringstream row(line);
+        double a, b, g, n, rd, tt, absorbed;
+        row >> a >> b >> g >> n >> rd >> tt >> absorbed;
+        const double d = 0.1, mu_t = b / d;
+        const auto r = solve_rte(slab(mu_t * (1 - a), mu_t * a, g, d, n, 200'000));
+        INFO("a " << a << " b " << b << " g " << g << " n " << n);
+        // 4 standard errors plus the reference's own ~1e-3 relative accuracy.
+        CHECK(std::abs(r.diffuse_reflectance.value - rd) < 4.0 * r.diffuse_reflectance.stderr + 1e-3 * rd);
+        CHECK(std::abs(r.transmittance.value - tt) < 4.0 * r.transmittance.stderr + 1e-3 * tt + 1e-12);
+        CHECK(energy(r) == Approx(1.0).margin(1e-12));
+        ++cases;
+    }
+    CHECK(cases == 6);
+}
+
+TEST_CASE("analytic limits: specular reflection, Beer-Lambert, no absorption", "[rte_solver]") {
+    // Specular: ((n - 1) / (n + 1))^2 at normal incidence.
+    const auto glassy = solve_rte(slab(1.0, 10.0, 0.5, 0.1, 1.5, 1000));
+    CHECK(glassy.specular_reflectance.value == Approx(0.04).margin(1e-15));
+    // No scattering, matched: T = exp(-mu_a d) (Beer-Lambert), R = 0.
+    const auto clear = solve_rte(slab(3.0, 0.0, 0.0, 0.2, 1.0, 200'000));
+    CHECK(std::abs(clear.transmittance.value - std::exp(-0.6)) < 4.0 * clear.transmittance.stderr);
+    CHECK(clear.diffuse_reflectance.value == 0.0);
+    // No absorption: everything leaves.
+    const auto white = solve_rte(slab(0.0, 50.0, 0.0, 0.1, 1.0, 20'000));
+    CHECK(white.diffuse_reflectance.value + white.transmittance.value == Approx(1.0).margin(1e-12));
+    // Split and all-or-none boundaries agree.
+    auto split = slab(1.0, 100.0, 0.9, 0.1, 1.4, 100'000);
+    split.boundaries = BoundaryMode::split;
+    const auto a = solve_rte(split);
+    const auto b = solve_rte(slab(1.0, 100.0, 0.9, 0.1, 1.4, 100'000));
+    CHECK(std::abs(a.diffuse_reflectance.value - b.diffuse_reflectance.value) <
+          4.0 * std::hypot(a.diffuse_reflectance.stderr, b.diffuse_reflectance.stderr));
+}
+
+TEST_CASE("radial and angular tallies integrate to the totals", "[rte_solver]") {
+    auto r = slab(1.0, 100.0, 0.9, 0.1, 1.4, 50'000);
+    r.grid = RteGrid{0.005, 0.01, 20, 30, 10};
+    const auto res = solve_rte(r);
+    double rd = 0.0, tt = 0.0, az = 0.0, ra = 0.0;
+    for (std::size_t ir = 0; ir < 30; ++ir) {
+        const double area = 2.0 * std::numbers::pi * (ir + 0.5) * 0.01 * 0.01;
+        rd += res.reflectance_r[ir].value * area;
+        tt += res.transmittance_r[ir].value * area;
+    }
+    for (const auto& a : res.absorption_z) az += a.value * 0.005;
+    const double da = 0.5 * std::numbers::pi / 10;
+    for (std::size_t ia = 0; ia < 10; ++ia) ra += res.reflectance_a[ia].value * 2.0 * std::numbers::pi * std::sin((ia + 0.5) * da) * da;
+    CHECK(rd == Approx(res.diffuse_reflectance.value).epsilon(1e-12));
+    CHECK(tt == Approx(res.transmittance.value).epsilon(1e-12));
+    CHECK(az == Approx(res.absorbed.value).epsilon(1e-12));
+    CHECK(ra == Approx(res.diffuse_reflectance.value).epsilon(1e-12));
+}
+
+TEST_CASE("the volumetric walk is identical on 1 and 2 threads", "[rte_solver]") {
+    const auto run = [](int threads) {
+        tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
+        auto r = slab(1.0, 100.0, 0.9, 0.1, 1.4, 30'000);
+        r.grid = RteGrid{0.01, 0.01, 5, 5, 5};
+        return solve_rte(r);
+    };
+    const auto one = run(1), two = run(2);
+    CHECK(one.diffuse_reflectance.value == two.diffuse_reflectance.value);
+    CHECK(one.transmittance.stderr == two.transmittance.stderr);
+    CHECK(one.absorption_rz[7].value == two.absorption_rz[7].value);
+}
+
+TEST_CASE("stress: extreme optics finish finite, in [0, 1], energy conserved, bounded", "[rte_solver]") {
+    struct Case { double mu_a, mu_s, g, d, n; };
+    std::vector<Case> cases;
+    for (const double g : {-0.999, 0.0, 0.999, 1.0 - 1e-9})
+        for (const double albedo : {0.0, 1e-6, 0.5, 0.999999, 1.0}) cases.push_back({100.0 * (1 - albedo), 100.0 * albedo, g, 0.05, 1.4});
+    cases.push_back({1.0, 100.0, 0.9, 1e-9, 1.4});     // a billionth of a cm
+    cases.push_back({0.0, 100.0, 0.9, 10.0, 1.4});     // 1e3 mean free paths, albedo 1
+    cases.push_back({1.0, 100.0, 0.9, 0.1, 3.0});      // n = 3
+    cases.push_back({1.0, 0.0, 0.9, 0.1, 1.0});        // mu_s = 0 with g != 0
+    for (const auto& c : cases) {
+        INFO("mu_a " << c.mu_a << " mu_s " << c.mu_s << " g " << c.g << " d " << c.d << " n " << c.n);
+        auto r = slab(c.mu_a, c.mu_s, c.g, c.d, c.n, 500);
+        r.max_steps_per_photon = 2'000'000;
+        const auto start = std::chrono::steady_clock::now();
+        const auto res = solve_rte(r);
+        CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 20.0);
+        for (const double v : {res.diffuse_reflectance.value, res.transmittance.value, res.absorbed.value}) {
+            CHECK(std::isfinite(v));
+            CHECK(v >= -1e-12);
+            CHECK(v <= 1.0 + 1e-12);
+        }
+        CHECK(energy(res) == Approx(1.0).margin(1e-12));
+    }
+}
+
+TEST_CASE("a photon that cannot finish is stopped and reported", "[rte_solver]") {
+    auto r = slab(0.0, 100.0, 0.0, 10.0, 1.0, 50);
+    r.max_steps_per_photon = 100;
+    const auto res = solve_rte(r);
+    CHECK(res.truncated_photons > 0);
+    CHECK(energy(res) == Approx(1.0).margin(1e-12));
+}
+
+TEST_CASE("bad volumetric inputs are input errors", "[rte_solver]") {
+    CHECK_THROWS_WITH(solve_rte(slab(-1.0, 1.0, 0.0, 0.1, 1.4, 10)), Catch::Contains("layer 1 mu_a [1/cm] = -1 is outside [0, inf)"));
+    CHECK_THROWS_WITH(solve_rte(slab(1.0, 1.0, 1.5, 0.1, 1.4, 10)), Catch::Contains("layer 1 g = 1.5 is outside [-1, 1]"));
+    CHECK_THROWS_WITH(solve_rte(slab(1.0, 1.0, 0.0, 0.0, 1.4, 10)), Catch::Contains("thickness [cm] = 0 is outside (0, inf)"));
+    auto r = slab(1.0, 1.0, 0.0, 0.1, 1.4, 10);
+    r.incidence_deg = 90.0;
+    CHECK_THROWS_AS(solve_rte(r), InputError);
+}
