@@ -10,6 +10,7 @@
 #include "cli/progress.hpp"
 #include "cli/spectral_output.hpp"
 #include "layers/biospec/biospec_solver.hpp"
+#include "layers/rte/rte_model.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 
@@ -31,6 +32,7 @@ struct SpectrumOptions {
     std::string quantities = "R";
     std::string reflector;
     std::string variant;
+    std::string mode = "biospec";
     std::string estimator = "weighted";
     std::string fold_into_skin = "drop";
     std::string output;
@@ -86,6 +88,7 @@ void run_spectrum(const SpectrumOptions& o) {
         request.stderr_target = o.stderr_target > 0.0 ? o.stderr_target : 0.002;
         request.max_rays_per_wavelength = o.max_rays;
     }
+    if (o.mode != "biospec" && o.mode != "rte") throw InputError("--mode: '" + o.mode + "' is not a mode (allowed: biospec, rte)");
     BiospecOptions options;
     options.estimator = parse_absorption_estimator(o.estimator, "--estimator");
     options.fold_into_skin = parse_fold_into_skin(o.fold_into_skin, "--fold-into-skin");
@@ -119,7 +122,7 @@ void run_spectrum(const SpectrumOptions& o) {
         ProgressBar bar(stack->name);
         request.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
-        auto result = solve_biospec(*stack, request, options);
+        auto result = o.mode == "rte" ? solve_rte_spectrum(*stack, request) : solve_biospec(*stack, request, options);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto color = reflectance_color(result, illuminant, observer);
         spectra.push_back({std::move(result), std::move(color), seconds});
@@ -165,6 +168,8 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
     cmd->add_option("--reflector", o->reflector, "Hypodermis reflector on|off (off: light leaving the bottom is transmittance)");
     cmd->add_option("--variant", o->variant, "Model variant: biospec (default) or biospec-2004");
+    cmd->add_option("--mode", o->mode, "Solver: biospec (the BioSpec walk) or rte (volumetric walk; layers need volumetric_* scattering)")
+        ->capture_default_str();
     cmd->add_option("--estimator", o->estimator, "Absorption estimator: weighted (default) or random (the original per-crossing test)")
         ->capture_default_str();
     cmd->add_option("--fold-into-skin", o->fold_into_skin, "Fold-perturbed reflections pointing into the skin: drop (2004 code) or resample")

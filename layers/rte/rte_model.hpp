@@ -1,6 +1,7 @@
 #pragma once
 // Plane-parallel layers for the volumetric walk (radiative transfer, MCML-class; transport-models.md Sec. 1).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,8 +48,10 @@ enum class BoundaryMode {
 
 struct RteRequest {
     RteStack stack;
-    std::uint64_t photons = 100'000;
+    std::uint64_t photons = 100'000;          // the budget; exact count without a target
+    std::optional<double> stderr_target;      // stop once R_diffuse's (and T's) standard error is below
     std::uint64_t seed = 1;
+    double stream_key = 1.0;                  // random streams are keyed by it (the wavelength in spectra)
     double incidence_deg = 0.0;
     BoundaryMode boundaries = BoundaryMode::random;
     RteGrid grid;
@@ -74,5 +77,9 @@ struct RteResult {
 };
 
 RteResult solve_rte(const RteRequest& request);
+
+// A material's spectra with the volumetric walk, in the shared result type and schema (model "rte"):
+// R = specular + diffuse, R_specular, T, A per layer; requires volumetric scattering in every layer.
+SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest& request, BoundaryMode boundaries = BoundaryMode::random);
 
 }  // namespace skinspec

@@ -217,12 +217,13 @@ RteResult solve_rte(const RteRequest& request) {
     const Walk walk(request, channels);
 
     SpectralRequest driver;
-    driver.wavelengths = WavelengthGrid::list({1.0});  // one "wavelength": the stream key
+    driver.wavelengths = WavelengthGrid::list({request.stream_key});
     driver.max_rays_per_wavelength = request.photons;
+    driver.stderr_target = request.stderr_target;
     driver.seed = request.seed;
     driver.on_progress = request.on_progress;
     driver.cancel = request.cancel;
-    const auto outcome = run_batches(driver, channels.count, {},
+    const auto outcome = run_batches(driver, channels.count, {channels.reflectance, channels.transmittance},
                                      [&](std::size_t, RandomStream& random, std::uint64_t n, RayTally& tally) { walk.trace(random, n, tally); });
 
     RteResult r;
@@ -254,6 +255,50 @@ RteResult solve_rte(const RteRequest& request) {
     r.reflectance_ra = scaled(t, channels.r_ra, channels.nr * channels.na, ra_scale);
     r.transmittance_ra = scaled(t, channels.t_ra, channels.nr * channels.na, ra_scale);
     return r;
+}
+
+SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest& request, BoundaryMode boundaries) {
+    SpectralResult out;
+    out.model = "rte";
+    out.material = stack.name;
+    out.quantities = Quantities{true, true, true, false};
+    for (const auto& l : stack.layers) out.layer_names.push_back(l.name);
+    out.settings = {{"incidence_deg", request.incidence_deg},
+                    {"seed", static_cast<double>(request.seed)},
+                    {"max_rays_per_wavelength", static_cast<double>(request.max_rays_per_wavelength)},
+                    {"boundaries", std::string(boundaries == BoundaryMode::split ? "split" : "random")},
+                    {"bottom", std::string(to_string(stack.bottom))},
+                    {"roulette", std::string("weight < 1e-4, survival 0.1, energy-conserving")}};
+    if (request.stderr_target) out.settings["stderr_target"] = *request.stderr_target;
+    for (const double nm : request.wavelengths.nm()) {
+        RteRequest r;
+        r.stack = rte_stack_from(stack, nm);
+        r.photons = request.max_rays_per_wavelength;
+        r.stderr_target = request.stderr_target;
+        r.seed = request.seed;
+        r.stream_key = nm;
+        r.incidence_deg = request.incidence_deg;
+        r.boundaries = boundaries;
+        r.on_progress = request.on_progress;
+        r.cancel = request.cancel;
+        const auto res = solve_rte(r);
+        if (res.partial) {
+            out.partial = true;
+            break;
+        }
+        WavelengthResult w;
+        w.wavelength_nm = nm;
+        w.reflectance = {res.specular_reflectance.value + res.diffuse_reflectance.value, res.diffuse_reflectance.stderr};
+        w.specular_reflectance = res.specular_reflectance;
+        w.transmittance = res.transmittance;
+        w.absorptance_layers = res.absorption_layers;
+        w.rays = res.photons;
+        w.truncated_rays = res.truncated_photons;
+        w.converged = !request.stderr_target || (res.diffuse_reflectance.stderr <= *request.stderr_target &&
+                                                 res.transmittance.stderr <= *request.stderr_target);
+        out.wavelengths.push_back(std::move(w));
+    }
+    return out;
 }
 
 }  // namespace skinspec

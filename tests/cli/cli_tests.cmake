@@ -59,3 +59,5 @@ skinspec_cli_test("phase-study output dir is a file" 2 "exists and is not a fold
 skinspec_cli_test("mcml sample" 0 "diffuse R 0\\.2" mcml ${PROJECT_SOURCE_DIR}/data/mcml/sample.mci --photons 5000 --output-dir ${CMAKE_CURRENT_BINARY_DIR} --overwrite)
 skinspec_cli_test("mcml refuses overwrite" 2 "existing_output.csv: exists already \\(use --overwrite" mcml overwrite_check.mci --photons 100)
 skinspec_cli_test("mcml bad file" 2 "cannot open the .mci file" mcml no_such.mci)
+skinspec_cli_test("spectrum rte mode" 0 "rays" spectrum --mode rte --preset biospec-lightly --set stratum_corneum.volumetric_mu_s_per_cm_at_500nm=200 --set epidermis.volumetric_mu_s_per_cm_at_500nm=300 --set dermis.volumetric_mu_s_per_cm_at_500nm=200 --set dermis.volumetric_g=0.8 --wavelengths 550 --rays 2000)
+skinspec_cli_test("spectrum rte needs volumetric" 2 "has no volumetric scattering" spectrum --mode rte --wavelengths 550 --rays 100)
