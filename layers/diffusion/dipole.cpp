@@ -1,0 +1,55 @@
+#include "layers/diffusion/dipole.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "layers/fresnel.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+
+double diffuse_fresnel_reflectance(double eta) {
+    if (eta >= 1.0) return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
+    return -0.4399 + 0.7099 / eta - 0.3319 / (eta * eta) + 0.0636 / (eta * eta * eta);
+}
+
+Dipole::Dipole(const DipoleMedium& m) : medium_(m) {
+    const auto check = [](bool ok, const char* field, double v, const char* range) {
+        if (!ok) throw InputError(std::string("dipole: ") + field + " = " + format_number(v) + " is outside " + range);
+    };
+    check(std::isfinite(m.reduced_scattering) && m.reduced_scattering >= 0.0, "reduced scattering", m.reduced_scattering, "[0, inf)");
+    check(std::isfinite(m.absorption) && m.absorption >= 0.0, "absorption", m.absorption, "[0, inf)");
+    check(m.reduced_scattering + m.absorption > 0.0, "sigma_t'", m.reduced_scattering + m.absorption, "(0, inf)");
+    check(std::isfinite(m.eta) && m.eta > 0.2 && m.eta < 5.0, "eta", m.eta, "(0.2, 5)");
+    const double sigma_t = m.reduced_scattering + m.absorption;
+    alpha_prime_ = m.reduced_scattering / sigma_t;
+    sigma_tr_ = std::sqrt(3.0 * m.absorption * sigma_t);
+    const double f_dr = diffuse_fresnel_reflectance(m.eta);
+    a_ = (1.0 + f_dr) / (1.0 - f_dr);
+    z_r_ = 1.0 / sigma_t;
+    z_v_ = z_r_ * (1.0 + 4.0 * a_ / 3.0);
+}
+
+double Dipole::radial_reflectance(double r) const {
+    // Eq. 4: R_d(r) = alpha'/(4 pi) [z_r (sigma_tr d_r + 1) e^{-sigma_tr d_r} / d_r^3 + z_v (sigma_tr d_v + 1) e^{-sigma_tr d_v} / d_v^3].
+    const double d_r = std::sqrt(r * r + z_r_ * z_r_);
+    const double d_v = std::sqrt(r * r + z_v_ * z_v_);
+    const auto term = [&](double z, double d) { return z * (sigma_tr_ * d + 1.0) * std::exp(-sigma_tr_ * d) / (d * d * d); };
+    return alpha_prime_ / (4.0 * std::numbers::pi) * (term(z_r_, d_r) + term(z_v_, d_v));
+}
+
+double Dipole::total_reflectance() const {
+    const double s = std::sqrt(3.0 * (1.0 - alpha_prime_));
+    return 0.5 * alpha_prime_ * (1.0 + std::exp(-4.0 / 3.0 * a_ * s)) * std::exp(-s);
+}
+
+double Dipole::brdf(double cos_in, double cos_out) const {
+    // Fresnel transmittance F_t = 1 - F_r entering/leaving the medium of relative index eta.
+    const double t_in = 1.0 - fresnel_reflectance(cos_in, 1.0, medium_.eta);
+    const double t_out = 1.0 - fresnel_reflectance(cos_out, 1.0, medium_.eta);
+    return t_in * t_out * total_reflectance() / std::numbers::pi;
+}
+
+}  // namespace skinspec
