@@ -78,13 +78,7 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
 }
 
 void BiospecWavelength::trace(RandomStream& random, std::uint64_t rays, RayTally& tally) const {
-    RayScore score(channels_.count);
-    std::uint64_t truncated = 0;
-    for (std::uint64_t i = 0; i < rays; ++i) {
-        trace_one(random, score, truncated);
-        tally.add_ray(score);
-    }
-    tally.add_truncated(truncated);
+    trace_rays(channels_.count, rays, tally, [&](RayScore& score, std::uint64_t& truncated) { trace_one(random, score, truncated); });
 }
 
 void BiospecWavelength::exit_into_bin(int first_bin, double cos_exit, double weight, RayScore& score) const {

@@ -59,13 +59,7 @@ public:
     }
 
     void trace(RandomStream& random, std::uint64_t photons, RayTally& tally) const {
-        RayScore score(ch_.count);
-        std::uint64_t truncated = 0;
-        for (std::uint64_t i = 0; i < photons; ++i) {
-            trace_one(random, score, truncated);
-            tally.add_ray(score);
-        }
-        tally.add_truncated(truncated);
+        trace_rays(ch_.count, photons, tally, [&](RayScore& score, std::uint64_t& truncated) { trace_one(random, score, truncated); });
     }
 
 private:
