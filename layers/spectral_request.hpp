@@ -83,6 +83,9 @@ struct SpectralResult {
     Quantities quantities;
     std::vector<WavelengthResult> wavelengths;  // finished wavelengths, in grid order
     bool partial = false;                       // cut short by cancellation
+    bool has_uncertainty = true;                // false for deterministic solvers (diffusion): no stderr, no rays
+    std::vector<std::string> bands;             // band names (e.g. R, G, B) when rows are bands, not wavelengths
+    std::vector<std::string> warnings;          // inputs outside the solver's trusted range
 };
 
 }  // namespace skinspec

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <string>
 
+#include "layers/diffusion/point_source.hpp"
 #include "layers/fresnel.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
@@ -34,10 +35,7 @@ Dipole::Dipole(const DipoleMedium& m) : medium_(m) {
 
 double Dipole::radial_reflectance(double r) const {
     // Eq. 4: R_d(r) = alpha'/(4 pi) [z_r (sigma_tr d_r + 1) e^{-sigma_tr d_r} / d_r^3 + z_v (sigma_tr d_v + 1) e^{-sigma_tr d_v} / d_v^3].
-    const double d_r = std::sqrt(r * r + z_r_ * z_r_);
-    const double d_v = std::sqrt(r * r + z_v_ * z_v_);
-    const auto term = [&](double z, double d) { return z * (sigma_tr_ * d + 1.0) * std::exp(-sigma_tr_ * d) / (d * d * d); };
-    return alpha_prime_ / (4.0 * std::numbers::pi) * (term(z_r_, d_r) + term(z_v_, d_v));
+    return alpha_prime_ * (diffusion::point_source_exitance(z_r_, r, sigma_tr_) + diffusion::point_source_exitance(z_v_, r, sigma_tr_));
 }
 
 double Dipole::total_reflectance() const {
