@@ -12,6 +12,7 @@
 #include "cli/phase_study_command.hpp"
 #include "cli/compare_phase_command.hpp"
 #include "cli/mcml_command.hpp"
+#include "cli/profile_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_phase_study_command(app);
     skinspec::cli::add_compare_phase_command(app);
     skinspec::cli::add_mcml_command(app);
+    skinspec::cli::add_profile_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -68,7 +68,8 @@ Json result_json(const ReportedSpectrum& s) {
         converged.push_back(w.converged);
         truncated.push_back(static_cast<double>(w.truncated_rays));
     }
-    j["wavelength_nm"] = nm;
+    if (r.bands.empty()) j["wavelength_nm"] = nm;
+    else j["band"] = r.bands;
     const auto series = [&](const std::function<Estimate(const WavelengthResult&)>& get, const std::string& key) {
         std::vector<double> v, e;
         for (const auto& w : r.wavelengths) {
@@ -76,7 +77,7 @@ Json result_json(const ReportedSpectrum& s) {
             e.push_back(get(w).stderr);
         }
         j[key] = v;
-        j[key + "_stderr"] = e;
+        if (r.has_uncertainty) j[key + "_stderr"] = e;
     };
     const auto& q = r.quantities;
     if (q.reflectance) {
@@ -117,9 +118,12 @@ Json result_json(const ReportedSpectrum& s) {
             j[std::string(key) + "_stderr"] = e;
         }
     }
-    j["rays"] = rays;
-    j["converged"] = converged;
-    j["truncated_rays"] = truncated;
+    if (r.has_uncertainty) {
+        j["rays"] = rays;
+        j["converged"] = converged;
+        j["truncated_rays"] = truncated;
+    }
+    j["warnings"] = r.warnings;
     j["seconds"] = s.seconds;
     if (s.color) j["color"] = to_json(*s.color);
     return j;
@@ -159,15 +163,22 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
         }
         out += '\n';
     }
-    const auto columns = spectra.empty() ? std::vector<Column>{} : scalar_columns(spectra.front().result);
-    out += "material,wavelength_nm";
-    for (const auto& c : columns) out += "," + c.name + "," + c.name + "_stderr";
-    out += ",rays,converged\n";
+    if (spectra.empty()) return out;
+    const auto& first = spectra.front().result;
+    const auto columns = scalar_columns(first);
+    const bool uncertain = first.has_uncertainty;
+    out += first.bands.empty() ? "material,wavelength_nm" : "material,band";
+    for (const auto& c : columns) out += "," + c.name + (uncertain ? "," + c.name + "_stderr" : "");
+    out += uncertain ? ",rays,converged\n" : "\n";
     for (const auto& s : spectra) {
-        for (const auto& w : s.result.wavelengths) {
-            out += fmt::format("{},{:g}", s.result.material, w.wavelength_nm);
-            for (const auto& c : columns) out += fmt::format(",{:.9g},{:.3g}", c.get(w).value, c.get(w).stderr);
-            out += fmt::format(",{},{}\n", w.rays, w.converged ? 1 : 0);
+        for (std::size_t i = 0; i < s.result.wavelengths.size(); ++i) {
+            const auto& w = s.result.wavelengths[i];
+            out += s.result.bands.empty() ? fmt::format("{},{:g}", s.result.material, w.wavelength_nm)
+                                          : fmt::format("{},{}", s.result.material, s.result.bands[i]);
+            for (const auto& c : columns) {
+                out += uncertain ? fmt::format(",{:.9g},{:.3g}", c.get(w).value, c.get(w).stderr) : fmt::format(",{:.9g}", c.get(w).value);
+            }
+            out += uncertain ? fmt::format(",{},{}\n", w.rays, w.converged ? 1 : 0) : "\n";
         }
     }
     return out;
@@ -176,31 +187,38 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
 std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
     std::string out;
     if (spectra.empty()) return out;
+    const auto& first = spectra.front().result;
+    const bool uncertain = first.has_uncertainty;
+    const auto key_header = fmt::format("{:>13}", first.bands.empty() ? "wavelength_nm" : "band");
+    const auto key = [&](const SpectralResult& r, std::size_t i) {
+        return r.bands.empty() ? fmt::format("{:>13g}", r.wavelengths[i].wavelength_nm) : fmt::format("{:>13}", r.bands[i]);
+    };
+    const auto estimate = [&](const Estimate& e) {
+        return uncertain ? fmt::format("{:.4f} +- {:.4f}", e.value, e.stderr) : fmt::format("{:.4f}", e.value);
+    };
     if (spectra.size() > 1) {
         // Side by side: total reflectance of every material.
-        out += fmt::format("{:>13}", "wavelength_nm");
+        out += key_header;
         for (const auto& s : spectra) out += fmt::format("  {:>22}", s.result.material.substr(0, 22));
         out += '\n';
-        const auto rows = spectra.front().result.wavelengths.size();
+        const auto rows = first.wavelengths.size();
         for (std::size_t i = 0; i < rows; ++i) {
-            out += fmt::format("{:>13g}", spectra.front().result.wavelengths[i].wavelength_nm);
+            out += key(first, i);
             for (const auto& s : spectra) {
-                if (i < s.result.wavelengths.size()) {
-                    const auto& e = s.result.wavelengths[i].reflectance;
-                    out += fmt::format("  {:>22}", fmt::format("R {:.4f} +- {:.4f}", e.value, e.stderr));
-                }
+                if (i < s.result.wavelengths.size()) out += fmt::format("  {:>22}", "R " + estimate(s.result.wavelengths[i].reflectance));
             }
             out += '\n';
         }
     } else {
-        const auto columns = scalar_columns(spectra.front().result);
-        out += fmt::format("{:>13}", "wavelength_nm");
+        const auto columns = scalar_columns(first);
+        out += key_header;
         for (const auto& c : columns) out += fmt::format("  {:>20}", c.name.substr(0, 20));
-        out += fmt::format("  {:>10}\n", "rays");
-        for (const auto& w : spectra.front().result.wavelengths) {
-            out += fmt::format("{:>13g}", w.wavelength_nm);
-            for (const auto& c : columns) out += fmt::format("  {:>20}", fmt::format("{:.4f} +- {:.4f}", c.get(w).value, c.get(w).stderr));
-            out += fmt::format("  {:>10}\n", w.rays);
+        out += uncertain ? fmt::format("  {:>10}\n", "rays") : "\n";
+        for (std::size_t i = 0; i < first.wavelengths.size(); ++i) {
+            const auto& w = first.wavelengths[i];
+            out += key(first, i);
+            for (const auto& c : columns) out += fmt::format("  {:>20}", estimate(c.get(w)));
+            out += uncertain ? fmt::format("  {:>10}\n", w.rays) : "\n";
         }
     }
     out += '\n';
@@ -212,10 +230,16 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
             truncated += w.truncated_rays;
             all_converged = all_converged && w.converged;
         }
-        out += fmt::format("{}: {} wavelengths, {} rays in {:.2f} s{}{}{}\n", s.result.material, s.result.wavelengths.size(), rays,
-                           s.seconds, all_converged ? "" : "; standard error target NOT met at some wavelengths (budget spent)",
-                           truncated ? fmt::format("; {} rays stopped at the event limit", truncated) : "",
-                           s.result.partial ? "; PARTIAL (interrupted)" : "");
+        if (s.result.has_uncertainty) {
+            out += fmt::format("{}: {} wavelengths, {} rays in {:.2f} s{}{}{}\n", s.result.material, s.result.wavelengths.size(), rays,
+                               s.seconds, all_converged ? "" : "; standard error target NOT met at some wavelengths (budget spent)",
+                               truncated ? fmt::format("; {} rays stopped at the event limit", truncated) : "",
+                               s.result.partial ? "; PARTIAL (interrupted)" : "");
+        } else {
+            out += fmt::format("{}: {} {} ({} model, deterministic) in {:.3f} s{}\n", s.result.material, s.result.wavelengths.size(),
+                               s.result.bands.empty() ? "wavelengths" : "bands", s.result.model, s.seconds,
+                               s.result.partial ? "; PARTIAL (interrupted)" : "");
+        }
         if (s.color) {
             out += fmt::format("  colour of R under {} ({} observer, held outside {:g}-{:g} nm): XYZ {:.4f} {:.4f} {:.4f}, "
                                "Lab {:.2f} {:.2f} {:.2f}, sRGB {}{}\n",
@@ -229,6 +253,9 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
 }
 
 void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra) {
+    for (const auto& s : spectra) {
+        if (!s.result.bands.empty()) throw InputError("--plot: " + s.result.material + " has bands, not wavelengths, to plot against");
+    }
     std::vector<PlotCurve> curves;
     bool any_t = false;
     for (const auto& s : spectra) {
@@ -248,8 +275,9 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
             any_t = true;
         }
     }
+    const bool uncertain = !spectra.empty() && spectra.front().result.has_uncertainty;
     write_line_plot(file, "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +
-                              " spectra (bands: +-2 standard errors)",
+                              (uncertain ? " spectra (bands: +-2 standard errors)" : " spectra"),
                     "Wavelength (nm)", any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
 }
 

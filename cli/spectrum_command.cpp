@@ -10,6 +10,7 @@
 #include "cli/progress.hpp"
 #include "cli/spectral_output.hpp"
 #include "layers/biospec/biospec_solver.hpp"
+#include "layers/diffusion/diffusion_model.hpp"
 #include "layers/rte/rte_model.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
@@ -33,6 +34,7 @@ struct SpectrumOptions {
     std::string reflector;
     std::string variant;
     std::string mode = "biospec";
+    double roughness = 0.0;
     std::string estimator = "weighted";
     std::string fold_into_skin = "drop";
     std::string output;
@@ -88,7 +90,16 @@ void run_spectrum(const SpectrumOptions& o) {
         request.stderr_target = o.stderr_target > 0.0 ? o.stderr_target : 0.002;
         request.max_rays_per_wavelength = o.max_rays;
     }
-    if (o.mode != "biospec" && o.mode != "rte") throw InputError("--mode: '" + o.mode + "' is not a mode (allowed: biospec, rte)");
+    if (o.mode != "biospec" && o.mode != "rte" && o.mode != "dipole" && o.mode != "multipole") {
+        throw InputError("--mode: '" + o.mode + "' is not a mode (allowed: biospec, rte, dipole, multipole)");
+    }
+    const bool diffusion = o.mode == "dipole" || o.mode == "multipole";
+    DiffusionOptions diffusion_options;
+    if (diffusion) diffusion_options.mode = parse_diffusion_mode(o.mode, "--mode");
+    if (o.roughness > 0.0) {
+        if (!diffusion) throw InputError("--roughness: only the diffusion modes (dipole, multipole) model a rough surface");
+        diffusion_options.surface_roughness = o.roughness;
+    }
     BiospecOptions options;
     options.estimator = parse_absorption_estimator(o.estimator, "--estimator");
     options.fold_into_skin = parse_fold_into_skin(o.fold_into_skin, "--fold-into-skin");
@@ -113,6 +124,18 @@ void run_spectrum(const SpectrumOptions& o) {
         if (InterruptGuard::interrupted()) break;
         const auto material = load_material(name, overrides);
         const auto* full = std::get_if<LayerStack>(&material);
+        if (const auto* homogeneous = std::get_if<HomogeneousMaterial>(&material); homogeneous && diffusion) {
+            if (!spectra.empty() && spectra.front().result.bands.empty()) {
+                throw InputError("material '" + name + "' has bands, the materials before it wavelengths: run them separately");
+            }
+            const auto start = std::chrono::steady_clock::now();
+            auto result = solve_diffusion_bands(*homogeneous, request, diffusion_options);
+            spectra.push_back({std::move(result), std::nullopt, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+            continue;
+        }
+        if (full && !spectra.empty() && !spectra.front().result.bands.empty()) {
+            throw InputError("material '" + name + "' has wavelengths, the materials before it bands: run them separately");
+        }
         if (!full) {
             throw InputError("material '" + name + "' is homogeneous; the BioSpec walk needs a layered material "
                              "(homogeneous materials are for the diffusion modes)");
@@ -122,12 +145,21 @@ void run_spectrum(const SpectrumOptions& o) {
         ProgressBar bar(stack->name);
         request.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
-        auto result = o.mode == "rte" ? solve_rte_spectrum(*stack, request) : solve_biospec(*stack, request, options);
+        auto result = diffusion        ? solve_diffusion_spectrum(*stack, request, diffusion_options)
+                      : o.mode == "rte" ? solve_rte_spectrum(*stack, request)
+                                        : solve_biospec(*stack, request, options);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto color = reflectance_color(result, illuminant, observer);
         spectra.push_back({std::move(result), std::move(color), seconds});
     }
 
+    for (const auto& s : spectra) {
+        for (const auto& w : s.result.warnings) std::cerr << "skinspec: warning: " << s.result.material << ": " << w << '\n';
+        if (!o.plot.empty() && !s.result.bands.empty()) {
+            throw InputError("--plot: " + s.result.material + " has bands (" + std::to_string(s.result.bands.size()) +
+                             "), not wavelengths, to plot against");
+        }
+    }
     if (o.json) std::cout << to_json(spectra).dump(2) << '\n';
     else std::cout << to_table(spectra);
     if (!o.output.empty()) {
@@ -150,8 +182,8 @@ void run_spectrum(const SpectrumOptions& o) {
 void add_spectrum_command(CLI::App& app) {
     auto o = std::make_shared<SpectrumOptions>();
     auto* cmd = app.add_subcommand("spectrum",
-                                   "Skin spectra with the BioSpec Monte Carlo walk (default: lightly, moderately and heavily "
-                                   "pigmented presets, 400-700 nm)");
+                                   "Skin spectra with the BioSpec walk, the volumetric walk or diffusion (default: lightly, moderately "
+                                   "and heavily pigmented presets, 400-700 nm)");
     cmd->add_option("--preset", o->presets, "Preset name (repeatable; see 'skinspec materials list')");
     cmd->add_option("--material", o->materials, "Material TOML file (repeatable)");
     cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable), e.g. epidermis.melanosome_fraction=0.1");
@@ -168,8 +200,12 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
     cmd->add_option("--reflector", o->reflector, "Hypodermis reflector on|off (off: light leaving the bottom is transmittance)");
     cmd->add_option("--variant", o->variant, "Model variant: biospec (default) or biospec-2004");
-    cmd->add_option("--mode", o->mode, "Solver: biospec (the BioSpec walk) or rte (volumetric walk; layers need volumetric_* scattering)")
+    cmd->add_option("--mode", o->mode,
+                    "Solver: biospec (the BioSpec walk), rte (volumetric walk; layers need volumetric_* scattering), "
+                    "multipole (layered diffusion) or dipole (semi-infinite diffusion); diffusion needs reduced scattering")
         ->capture_default_str();
+    cmd->add_option("--roughness", o->roughness, "Diffusion modes: Beckmann RMS slope of a rough top surface, (0, 2] (default smooth)")
+        ->check(CLI::Range(1e-6, 2.0));
     cmd->add_option("--estimator", o->estimator, "Absorption estimator: weighted (default) or random (the original per-crossing test)")
         ->capture_default_str();
     cmd->add_option("--fold-into-skin", o->fold_into_skin, "Fold-perturbed reflections pointing into the skin: drop (2004 code) or resample")

@@ -16,7 +16,7 @@ int channel(double c) { return static_cast<int>(std::lround(std::clamp(c, 0.0, 1
 }  // namespace
 
 void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
-                     const std::string& y_label, const std::vector<PlotCurve>& curves) {
+                     const std::string& y_label, const std::vector<PlotCurve>& curves, bool log_y) {
     const auto ext = file.extension().string();
     if (ext != ".png" && ext != ".svg") throw InputError(file.string() + ": plot extension '" + ext + "' is not supported (allowed: .png, .svg)");
     if (curves.empty()) throw InputError(file.string() + ": nothing to plot");
@@ -29,7 +29,22 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         }
     }
     if (x_max <= x_min) x_max = x_min + 1.0;
-    y_max = y_max <= 1.0 ? std::max(0.05, std::ceil(y_max * 10.0 * 1.05) / 10.0) : y_max * 1.05;
+    double y_min = 0.0;
+    if (log_y) {
+        // Plot log10 of the values on a log axis; the floor is eight decades below the top.
+        y_max = std::ceil(std::log10(std::max(y_max, 1e-300)));
+        double smallest = y_max;
+        for (const auto& c : curves) {
+            for (const double v : c.value) {
+                if (v > 0.0) smallest = std::min(smallest, std::floor(std::log10(v)));
+            }
+        }
+        y_min = std::max(smallest, y_max - 8.0);
+        if (y_min >= y_max) y_min = y_max - 1.0;
+    } else {
+        y_max = y_max <= 1.0 ? std::max(0.05, std::ceil(y_max * 10.0 * 1.05) / 10.0) : y_max * 1.05;
+    }
+    const auto y_of = [&](double v) { return log_y ? std::clamp(v > 0.0 ? std::log10(v) : y_min, y_min, y_max) : std::clamp(v, 0.0, y_max); };
 
     auto pls = std::make_unique<plstream>();
     pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
@@ -40,7 +55,7 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
     pls->init();
     pls->col0(1);
-    pls->env(x_min, x_max, 0.0, y_max, 0, 1);
+    pls->env(x_min, x_max, y_min, y_max, 0, log_y ? 20 : 1);  // 20: logarithmic y axis with grid
     pls->lab(x_label.c_str(), y_label.c_str(), title.c_str());
 
     std::vector<PLINT> opts, colours, styles;
@@ -59,18 +74,20 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         std::vector<PLFLT> bx, by;
         for (std::size_t i = 0; i < c.value.size(); ++i) {
             bx.push_back(c.x[i]);
-            by.push_back(std::clamp(c.value[i] + 2.0 * c.stderr[i], 0.0, y_max));
+            by.push_back(y_of(c.value[i] + 2.0 * c.stderr[i]));
         }
         for (std::size_t i = c.value.size(); i-- > 0;) {
             bx.push_back(c.x[i]);
-            by.push_back(std::clamp(c.value[i] - 2.0 * c.stderr[i], 0.0, y_max));
+            by.push_back(y_of(c.value[i] - 2.0 * c.stderr[i]));
         }
         pls->col0(band_colour);
         pls->fill(static_cast<PLINT>(bx.size()), bx.data(), by.data());
         pls->col0(line_colour);
         pls->lsty(c.dashed ? 2 : 1);
         pls->width(2.0);
-        pls->line(static_cast<PLINT>(c.value.size()), c.x.data(), c.value.data());
+        std::vector<PLFLT> ly;
+        for (const double v : c.value) ly.push_back(y_of(v));
+        pls->line(static_cast<PLINT>(c.value.size()), c.x.data(), ly.data());
         opts.push_back(PL_LEGEND_LINE);
         colours.push_back(line_colour);
         styles.push_back(c.dashed ? 2 : 1);

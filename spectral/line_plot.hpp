@@ -18,8 +18,9 @@ struct PlotCurve {
     bool dashed = false;
 };
 
-// .png or .svg by extension; InputError otherwise or when the file cannot be written.
+// .png or .svg by extension; InputError otherwise or when the file cannot be written. With log_y the y axis
+// is logarithmic and spans at most eight decades below the largest value (smaller values sit on the floor).
 void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
-                     const std::string& y_label, const std::vector<PlotCurve>& curves);
+                     const std::string& y_label, const std::vector<PlotCurve>& curves, bool log_y = false);
 
 }  // namespace skinspec

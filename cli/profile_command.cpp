@@ -1,0 +1,157 @@
+#include "cli/profile_command.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/spectral_output.hpp"
+#include "layers/diffusion/diffusion_profiles.hpp"
+#include "materials/material_file.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/line_plot.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+struct ProfileOptions {
+    std::string preset;
+    std::string material_file;
+    std::vector<std::string> overrides;
+    std::string mode = "multipole";
+    std::string wavelengths = "450,550,650";
+    std::string radii = "0:10:0.01";
+    double roughness = 0.0;
+    std::string output;
+    std::string plot;
+    bool overwrite = false;
+};
+
+// FIRST:LAST:STEP in mm, FIRST >= 0, STEP > 0, at most a million radii.
+std::vector<double> parse_radii(const std::string& text) {
+    std::vector<double> parts;
+    std::size_t start = 0;
+    while (true) {
+        const auto colon = text.find(':', start);
+        const auto field = std::string_view(text).substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+        const auto value = parse_double(field);
+        if (!value || !std::isfinite(*value)) throw InputError("--radii: '" + std::string(field) + "' is not a finite number (expected FIRST:LAST:STEP in mm)");
+        parts.push_back(*value);
+        if (colon == std::string::npos) break;
+        start = colon + 1;
+    }
+    if (parts.size() != 3) throw InputError("--radii: '" + text + "' must have the form FIRST:LAST:STEP (mm)");
+    const double first = parts[0], last = parts[1], step = parts[2];
+    if (first < 0.0) throw InputError("--radii: FIRST = " + format_number(first) + " mm is outside [0, inf)");
+    if (step <= 0.0) throw InputError("--radii: STEP = " + format_number(step) + " mm is outside (0, inf)");
+    if (last < first) throw InputError("--radii: LAST = " + format_number(last) + " mm is below FIRST = " + format_number(first) + " mm");
+    const double count = std::floor((last - first) / step + 1e-9) + 1.0;
+    if (count > 1e6) throw InputError("--radii: " + format_number(count) + " radii is outside [1, 1000000]");
+    std::vector<double> radii;
+    for (int i = 0; i < static_cast<int>(count); ++i) radii.push_back(first + i * step);
+    return radii;
+}
+
+std::string column_tag(const ChannelProfile& c) {
+    return c.wavelength_nm > 0.0 ? fmt::format("{:g}nm", c.wavelength_nm) : "band" + c.label;
+}
+
+std::string to_csv(const SpectralProfiles& p) {
+    std::string out = fmt::format("# skinspec {} radial diffusion profiles: material {}, model {}\n", version, p.material, p.model);
+    out += "# units: r_mm [mm]; R_*, T_* [1/mm^2 per unit incident power, entry Fresnel transmittance included]\n";
+    for (const auto& c : p.channels) {
+        out += fmt::format("# {}: diffuse R total {:.6g}, T total {:.6g}, specular {:.6g}\n", c.label, c.total_reflectance,
+                           c.total_transmittance, c.specular_reflectance);
+    }
+    out += fmt::format("# dipole pairs (largest): {}, inverse-transform samples: {}, converged: {}\n", p.max_pairs, p.frequencies,
+                       p.converged ? "yes" : "NO");
+    for (const auto& w : p.warnings) out += "# warning: " + w + "\n";
+    out += "r_mm";
+    for (const auto& c : p.channels) out += ",R_" + column_tag(c) + "_per_mm2";
+    for (const auto& c : p.channels) out += ",T_" + column_tag(c) + "_per_mm2";
+    out += '\n';
+    for (std::size_t i = 0; i < p.radii_mm.size(); ++i) {
+        out += fmt::format("{:g}", p.radii_mm[i]);
+        for (const auto& c : p.channels) out += fmt::format(",{:.9g}", c.reflectance_per_mm2[i]);
+        for (const auto& c : p.channels) out += fmt::format(",{:.9g}", c.transmittance_per_mm2[i]);
+        out += '\n';
+    }
+    return out;
+}
+
+void write_profile_plot(const std::string& file, const SpectralProfiles& p) {
+    static const std::vector<RGB> palette = {{0.1, 0.3, 0.9}, {0.1, 0.6, 0.2}, {0.85, 0.15, 0.1}, {0.6, 0.2, 0.7},
+                                             {0.9, 0.6, 0.0}, {0.2, 0.7, 0.8}, {0.4, 0.4, 0.4}};
+    std::vector<PlotCurve> curves;
+    bool any_t = false;
+    for (std::size_t k = 0; k < p.channels.size(); ++k) {
+        const auto& c = p.channels[k];
+        const auto colour = palette[k % palette.size()];
+        curves.push_back({"R " + c.label, p.radii_mm, c.reflectance_per_mm2, std::vector<double>(p.radii_mm.size(), 0.0), colour, false});
+        bool has_t = false;
+        for (const double v : c.transmittance_per_mm2) has_t = has_t || v > 0.0;
+        if (has_t) {
+            curves.push_back({"T " + c.label, p.radii_mm, c.transmittance_per_mm2, std::vector<double>(p.radii_mm.size(), 0.0), colour, true});
+            any_t = true;
+        }
+    }
+    write_line_plot(file, fmt::format("{} ({}): radial diffusion profiles", p.material, p.model), "Radius r (mm)",
+                    any_t ? "R(r), T(r) (1/mm^2)" : "R(r) (1/mm^2)", curves, true);
+}
+
+void run_profile(const ProfileOptions& o) {
+    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("--preset and --material: give one material, not both");
+    const auto mode = parse_diffusion_mode(o.mode, "--mode");
+    const auto radii = parse_radii(o.radii);
+    const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
+    for (const auto& file : {o.output, o.plot}) {
+        if (!file.empty() && !o.overwrite && std::filesystem::exists(file)) {
+            throw InputError(file + ": exists already (use --overwrite to replace it)");
+        }
+    }
+    if (!o.plot.empty() && !o.plot.ends_with(".png") && !o.plot.ends_with(".svg")) {
+        throw InputError("--plot " + o.plot + ": extension not supported (allowed: .png, .svg)");
+    }
+    std::vector<MaterialOverride> overrides;
+    for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
+    const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
+    DiffusionOptions options{mode, {}};
+    if (o.roughness > 0.0) options.surface_roughness = o.roughness;
+    const auto profiles = diffusion_profiles(material, grid, radii, options, true);
+    for (const auto& w : profiles.warnings) std::cerr << "skinspec: warning: " << w << '\n';
+    const auto csv = to_csv(profiles);
+    if (o.output.empty()) {
+        std::cout << csv;
+    } else {
+        write_text_file(o.output, csv, o.overwrite);
+        std::cerr << "wrote " << o.output << '\n';
+    }
+    if (!o.plot.empty()) {
+        write_profile_plot(o.plot, profiles);
+        std::cerr << "wrote " << o.plot << '\n';
+    }
+}
+
+}  // namespace
+
+void add_profile_command(CLI::App& app) {
+    auto o = std::make_shared<ProfileOptions>();
+    auto* cmd = app.add_subcommand("profile", "Radial diffuse reflectance R(r) and transmittance T(r) in a diffusion mode (CSV, plot)");
+    cmd->add_option("--preset", o->preset, "Preset name (default biospec-moderately)");
+    cmd->add_option("--material", o->material_file, "Material TOML file");
+    cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
+    cmd->add_option("--mode", o->mode, "multipole (layered slabs) or dipole (semi-infinite)")->capture_default_str();
+    cmd->add_option("--wavelengths", o->wavelengths, "Wavelengths (nm) for layered materials; homogeneous ones use their bands")->capture_default_str();
+    cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm")->capture_default_str();
+    cmd->add_option("--roughness", o->roughness, "Beckmann RMS slope of a rough top surface, (0, 2] (default smooth)")->check(CLI::Range(1e-6, 2.0));
+    cmd->add_option("--output", o->output, "CSV file (default: standard output)");
+    cmd->add_option("--plot", o->plot, "Log-scale plot, FILE.png or FILE.svg");
+    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    cmd->callback([o] { run_profile(*o); });
+}
+
+}  // namespace skinspec::cli
