@@ -10,10 +10,12 @@
 
 #include "cli/color_output.hpp"
 #include "cli/progress.hpp"
+#include "layers/diffusion/lit_patch.hpp"
 #include "layers/swatch/swatch_chart.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/spectral_image.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec::cli {
@@ -40,6 +42,13 @@ struct SwatchOptions {
     unsigned threads = 0;
     bool overwrite = false;
     bool json = false;
+    std::vector<std::string> lit;  // spot | edge | pattern FILE
+    std::string diffusion_mode = "multipole";
+    std::string wavelengths = "400:700:10";
+    double field_mm = 20.0;
+    int pixels = 256;
+    double spot_radius_mm = 2.0;
+    double roughness = 0.0;
 };
 
 const std::vector<std::string> default_sweeps{"epidermis.melanosome_fraction=0.01:0.42:8", "dermis.blood_fraction=0.002:0.05:5"};
@@ -51,7 +60,89 @@ std::string short_label(const std::string& field) {
     return name.substr(0, 6);
 }
 
+// `swatch --lit spot|edge|pattern FILE`: one planar patch under structured light in a diffusion mode.
+void run_lit_swatch(const SwatchOptions& o) {
+    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
+    if (!o.vary.empty()) throw InputError("--vary: a lit swatch shows one material (use --set for its parameters)");
+    if (o.outputs.empty()) throw InputError("--lit: give at least one -o FILE (.exr, .png, .tif)");
+    const auto& kind = o.lit.front();
+    if (kind != "spot" && kind != "edge" && kind != "pattern") {
+        throw InputError("--lit: '" + kind + "' is not a lighting (allowed: spot, edge, pattern FILE)");
+    }
+    if (kind == "pattern" && o.lit.size() != 2) throw InputError("--lit pattern: give the image file, e.g. --lit pattern stripes.png");
+    if (kind != "pattern" && o.lit.size() != 1) throw InputError("--lit " + kind + ": takes no file (only pattern does)");
+    if (!(o.field_mm > 0.0 && o.field_mm <= 1000.0)) throw InputError("--field " + format_number(o.field_mm) + " mm is outside (0, 1000]");
+    const auto& cm = ColorManagement::builtin();
+    const std::string space = cm.canonical_space(o.space, "--space");
+    space_chromaticities(space);
+    for (const auto& out : o.outputs) check_output_path(out, o.overwrite, {".exr", ".png", ".tif", ".tiff"});
+
+    std::vector<MaterialOverride> overrides;
+    for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
+    const std::string name = o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file;
+    const auto material = load_material(name, overrides);
+    DiffusionOptions options{parse_diffusion_mode(o.diffusion_mode, "--mode"), {}};
+    if (o.roughness > 0.0) options.surface_roughness = o.roughness;
+    const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
+    const auto observer = parse_observer(o.observer, "--observer");
+    const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
+
+    PatchGeometry view{o.pixels, o.pixels, o.field_mm / o.pixels};
+    std::optional<Illumination> light;
+    if (kind == "spot") light = Illumination::spot(o.spot_radius_mm);
+    else if (kind == "edge") light = Illumination::edge();
+    else {
+        // The pattern sets the image's aspect: its luminance (linear Rec.709 Y) is the relative irradiance.
+        const auto image = read_linear_image(o.lit[1], "Linear Rec.709", cm);
+        std::vector<float> irradiance;
+        for (std::size_t p = 0; p < image.rgb.size(); p += 3) {
+            irradiance.push_back(0.2126f * image.rgb[p] + 0.7152f * image.rgb[p + 1] + 0.0722f * image.rgb[p + 2]);
+        }
+        view.height_px = std::max(8, static_cast<int>(std::lround(o.pixels * static_cast<double>(image.height) / image.width)));
+        light = Illumination::pattern(std::move(irradiance), image.width, image.height);
+    }
+
+    const InterruptGuard interrupt;
+    ProgressBar bar("lit swatch");
+    const auto start = std::chrono::steady_clock::now();
+    const auto patch = render_lit_patch(material, grid, *light, view, options,
+                                        [&bar](std::size_t done, std::size_t total) { bar(Progress{0, done, total}); },
+                                        &InterruptGuard::cancel_flag());
+    if (patch.partial) {
+        std::cerr << "skinspec: interrupted: nothing written (a lit swatch needs every wavelength)\n";
+        std::exit(130);
+    }
+    const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
+    if (bands && patch.exitance.size() != 3) throw InputError(name + ": a lit swatch of a band material needs exactly three bands (R, G, B)");
+    const auto image = bands ? rgb_planes_to_image(patch.exitance, view.width_px, view.height_px, "Linear Rec.709", space, cm)
+                             : spectral_planes_to_image(patch.exitance, view.width_px, view.height_px, grid.nm(), illuminant, observer, space, cm);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (const auto& w : patch.profiles.warnings) std::cerr << "skinspec: warning: " << w << '\n';
+
+    const auto lighting = light->description();
+    const ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
+                                 {"skinspec:model", patch.profiles.model},
+                                 {"skinspec:material", name},
+                                 {"skinspec:lighting", lighting},
+                                 {"skinspec:field_mm", fmt::format("{:g}", o.field_mm)},
+                                 {"skinspec:pixel_mm", fmt::format("{:g}", view.pixel_mm)},
+                                 {"skinspec:wavelengths", bands ? std::string("bands R, G, B") : o.wavelengths},
+                                 {"ImageDescription", fmt::format("skinspec lit swatch: {} under {} ({} mode; diffuse exitance, "
+                                                                  "no specular)", name, lighting, patch.profiles.model)}};
+    for (const auto& out : o.outputs) {
+        if (out.ends_with(".exr")) write_linear_image(out, image, space, o.half, metadata, cm);
+        else write_image_grid(out, {image}, 1, {fmt::format("{}\n{}, {:g} mm", name, lighting, o.field_mm)}, space, o.display, o.view, metadata, cm);
+        std::cerr << "wrote " << out << '\n';
+    }
+    std::cout << fmt::format("{} under {}: {}x{} px at {:g} mm, {} {} in {:.2f} s ({} mode); kernel reach {:g} mm, "
+                             "largest kernel energy correction {:.2g} %\n",
+                             name, lighting, view.width_px, view.height_px, view.pixel_mm, patch.exitance.size(),
+                             bands ? "bands" : "wavelengths", seconds, patch.profiles.model, patch.kernel_radius_px * view.pixel_mm,
+                             100.0 * patch.largest_kernel_correction);
+}
+
 void run_swatch(const SwatchOptions& o) {
+    if (!o.lit.empty()) return run_lit_swatch(o);
     SwatchRequest request;
     if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
     if (!o.material_file.empty()) request.material = o.material_file;
@@ -197,6 +288,16 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the patches as JSON");
+    cmd->add_option("--lit", o->lit,
+                    "Render one patch in a diffusion mode under structured light: spot, edge, or pattern FILE (an image "
+                    "whose luminance is the irradiance)")
+        ->expected(1, 2);
+    cmd->add_option("--mode", o->diffusion_mode, "With --lit: multipole or dipole")->capture_default_str();
+    cmd->add_option("--wavelengths", o->wavelengths, "With --lit: wavelengths (nm) for layered materials")->capture_default_str();
+    cmd->add_option("--field", o->field_mm, "With --lit: width of the patch in mm")->capture_default_str();
+    cmd->add_option("--pixels", o->pixels, "With --lit: image width in pixels, [8, 4096]")->capture_default_str();
+    cmd->add_option("--spot-radius", o->spot_radius_mm, "With --lit spot: radius of the lit disc in mm")->capture_default_str();
+    cmd->add_option("--roughness", o->roughness, "With --lit: Beckmann RMS slope of a rough top surface, (0, 2]")->check(CLI::Range(1e-6, 2.0));
     cmd->callback([o] { run_swatch(*o); });
 }
 

@@ -17,6 +17,7 @@ find_package(PkgConfig REQUIRED)
 # PLplot's own CMake config references every optional binding; its pkg-config file is the reliable entry.
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot-c++)
 pkg_check_modules(NLOPT REQUIRED IMPORTED_TARGET nlopt)
+pkg_check_modules(FFTW REQUIRED IMPORTED_TARGET fftw3)
 
 function(skinspec_drop_missing_include_dirs target)
   foreach(property INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)

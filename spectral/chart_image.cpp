@@ -95,17 +95,31 @@ void check_output_path(const std::filesystem::path& file, bool overwrite, const 
     if (std::filesystem::exists(file) && !overwrite) throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
 }
 
-void write_linear_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
-                        std::string_view working_space, bool half_float, const ImageMetadata& metadata, const ColorManagement& cm) {
+// Scene-linear output: chromaticities and colour-space name of `space`, the metadata, half or float.
+void write_scene_linear(OIIO::ImageBuf& buf, const std::filesystem::path& file, std::string_view working_space, bool half_float,
+                        const ImageMetadata& metadata, const ColorManagement& cm) {
     const std::string space = cm.canonical_space(working_space, "--space");
     const auto chromaticities = space_chromaticities(space);
-    const float grey[3] = {background_linear, background_linear, background_linear};
-    auto buf = filled_chart(layout, patches, grey);
     buf.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
     buf.specmod().attribute("oiio:ColorSpace", space);
     buf.specmod().attribute("colorspace", space);
     set_metadata(buf, metadata);
     write(buf, file, half_float ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+}
+
+void write_linear_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
+                        std::string_view working_space, bool half_float, const ImageMetadata& metadata, const ColorManagement& cm) {
+    const float grey[3] = {background_linear, background_linear, background_linear};
+    auto buf = filled_chart(layout, patches, grey);
+    write_scene_linear(buf, file, working_space, half_float, metadata, cm);
+}
+
+void write_linear_image(const std::filesystem::path& file, const LinearImage& image, std::string_view working_space, bool half_float,
+                        const ImageMetadata& metadata, const ColorManagement& cm) {
+    OIIO::ImageBuf buf(OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT), const_cast<float*>(image.rgb.data()));
+    OIIO::ImageBuf copy;
+    copy.copy(buf);
+    write_scene_linear(copy, file, working_space, half_float, metadata, cm);
 }
 
 void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
