@@ -55,3 +55,24 @@ TEST_CASE("diffuse Fresnel reflectance and dipole limits", "[dipole]") {
     CHECK_THROWS_WITH(Dipole({0.0, 0.0, 1.3}), Catch::Contains("sigma_t' = 0 is outside (0, inf)"));
     CHECK_THROWS_AS(Dipole({1.0, 0.1, 0.0}), InputError);
 }
+
+TEST_CASE("single scattering matches the analytic albedo of a semi-infinite isotropic medium", "[dipole]") {
+    // Chandrasekhar: at normal incidence on a matched (eta = 1), isotropically scattering half-space the
+    // singly scattered reflectance is int f1 mu_o d omega_o = (alpha / 2) (1 - ln 2).
+    for (const double albedo : {1.0, 0.8, 0.3}) {
+        const Dipole d({albedo, 1.0 - albedo, 1.0, 0.0});
+        double integral = 0.0;
+        const int n = 4000;
+        for (int i = 0; i < n; ++i) {
+            const double mu = (i + 0.5) / n;
+            integral += 2.0 * std::numbers::pi * d.single_scattering_brdf(1.0, mu, 0.0) * mu / n;
+        }
+        CHECK(integral == Approx(0.5 * albedo * (1.0 - std::log(2.0))).epsilon(1e-6));
+    }
+    // Forward-peaked scattering sends less straight back than isotropic scattering does.
+    CHECK(Dipole({1.0, 0.01, 1.3, 0.8}).single_scattering_brdf(1.0, 1.0, 0.0) < Dipole({1.0, 0.01, 1.3, 0.0}).single_scattering_brdf(1.0, 1.0, 0.0));
+    // The full BRDF approximation adds the diffuse term.
+    const Dipole d({1.0, 0.05, 1.3, 0.0});
+    CHECK(d.brdf(0.8, 0.6, 90.0) == Approx(d.single_scattering_brdf(0.8, 0.6, 90.0) + d.brdf(0.8, 0.6)));
+    CHECK_THROWS_WITH(Dipole({1.0, 0.1, 1.3, 1.0}), Catch::Contains("g = 1 is outside (-1, 1)"));
+}

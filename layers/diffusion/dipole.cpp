@@ -1,5 +1,6 @@
 #include "layers/diffusion/dipole.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -24,6 +25,7 @@ Dipole::Dipole(const DipoleMedium& m) : medium_(m) {
     check(std::isfinite(m.absorption) && m.absorption >= 0.0, "absorption", m.absorption, "[0, inf)");
     check(m.reduced_scattering + m.absorption > 0.0, "sigma_t'", m.reduced_scattering + m.absorption, "(0, inf)");
     check(std::isfinite(m.eta) && m.eta > 0.2 && m.eta < 5.0, "eta", m.eta, "(0.2, 5)");
+    check(m.g > -1.0 && m.g < 1.0, "g", m.g, "(-1, 1)");
     const double sigma_t = m.reduced_scattering + m.absorption;
     alpha_prime_ = m.reduced_scattering / sigma_t;
     sigma_tr_ = std::sqrt(3.0 * m.absorption * sigma_t);
@@ -41,6 +43,24 @@ double Dipole::radial_reflectance(double r) const {
 double Dipole::total_reflectance() const {
     const double s = std::sqrt(3.0 * (1.0 - alpha_prime_));
     return 0.5 * alpha_prime_ * (1.0 + std::exp(-4.0 / 3.0 * a_ * s)) * std::exp(-s);
+}
+
+double Dipole::single_scattering_brdf(double cos_in, double cos_out, double azimuth_deg) const {
+    const auto refracted_sine = [&](double mu) { return std::sqrt(std::max(0.0, 1.0 - mu * mu)) / medium_.eta; };
+    const double s_i = refracted_sine(cos_in), s_o = refracted_sine(cos_out);
+    if (s_i >= 1.0 || s_o >= 1.0) return 0.0;  // no refracted ray (eta < 1 beyond the critical angle)
+    const double mu_i = std::sqrt(1.0 - s_i * s_i), mu_o = std::sqrt(1.0 - s_o * s_o);
+    // Light travels down along (-s_i, 0, -mu_i); the outgoing ray leaves along (s_o cos phi, s_o sin phi, mu_o),
+    // phi measured from the direction towards the light.
+    const double phi = azimuth_deg * std::numbers::pi / 180.0;
+    const double cos_scatter = -s_i * s_o * std::cos(phi) - mu_i * mu_o;
+    const double g = medium_.g;
+    const double phase = (1.0 - g * g) / (4.0 * std::numbers::pi * std::pow(1.0 + g * g - 2.0 * g * cos_scatter, 1.5));
+    const double sigma_s = medium_.reduced_scattering / (1.0 - g);
+    const double albedo = sigma_s / (sigma_s + medium_.absorption);
+    const double t_in = 1.0 - fresnel_reflectance(cos_in, 1.0, medium_.eta);
+    const double t_out = 1.0 - fresnel_reflectance(cos_out, 1.0, medium_.eta);
+    return albedo * t_in * t_out * phase / (mu_i + mu_o);
 }
 
 double Dipole::brdf(double cos_in, double cos_out) const {

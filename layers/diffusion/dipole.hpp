@@ -14,6 +14,7 @@ struct DipoleMedium {
     double reduced_scattering = 0.0;  // sigma_s' per unit length
     double absorption = 0.0;          // sigma_a per unit length
     double eta = 1.3;                 // relative index of refraction
+    double g = 0.0;                   // Henyey-Greenstein asymmetry for the single-scattering term (sigma_s = sigma_s' / (1 - g))
 };
 
 class Dipole {
@@ -31,8 +32,18 @@ public:
     double radial_reflectance(double r) const;
     // Sec. 2.4: R_d = (alpha'/2) (1 + exp(-(4/3) A sqrt(3 (1 - alpha')))) exp(-sqrt(3 (1 - alpha'))).
     double total_reflectance() const;
-    // Sec. 2.4 BRDF approximation: f = F_t(eta, theta_i) F_t(eta, theta_o) R_d / pi (per sr).
+    // Sec. 2.2 single scattering for a flat, uniformly lit surface (Hanrahan & Krueger's BRDF, the integral of
+    // Eq. 6 over the surface): f1 = alpha F_t(theta_i) F_t(theta_o) p(cos) / (mu_i' + mu_o') per sr, with
+    // mu' the refracted cosines, alpha = sigma_s / sigma_t, p Henyey-Greenstein with g, and cos the cosine
+    // between the refracted incident and outgoing directions; azimuth_deg is the azimuth between the
+    // directions to the light and to the viewer (180 deg: the mirror direction).
+    double single_scattering_brdf(double cos_in, double cos_out, double azimuth_deg) const;
+    // Sec. 2.4 diffuse part of the BRDF approximation: F_t(eta, theta_i) F_t(eta, theta_o) R_d / pi (per sr).
     double brdf(double cos_in, double cos_out) const;
+    // Sec. 2.4 BRDF approximation: single scattering plus the diffuse part.
+    double brdf(double cos_in, double cos_out, double azimuth_deg) const {
+        return single_scattering_brdf(cos_in, cos_out, azimuth_deg) + brdf(cos_in, cos_out);
+    }
 
 private:
     DipoleMedium medium_;

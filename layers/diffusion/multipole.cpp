@@ -20,7 +20,10 @@ void check(bool ok, const char* field, double value, const char* range) {
 // 2 m P + a > 0 and 2 m P + b > 0); its s -> 0 limit is (b - a) / (2 P).
 double pair_tail(double s, double a, double b, double period, int m) {
     if (s == 0.0) return (b - a) / (2.0 * period);
-    return std::exp(-s * (2.0 * m * period + a)) * -std::expm1(-s * (b - a)) / -std::expm1(-2.0 * s * period);
+    // exp(-x) - exp(-y) = sgn(y - x) exp(-min(x, y)) (1 - exp(-|y - x|)), free of overflow and cancellation.
+    const double x = s * (2.0 * m * period + a), y = s * (2.0 * m * period + b);
+    const double difference = std::copysign(std::exp(-std::min(x, y)) * -std::expm1(-std::abs(y - x)), y - x);
+    return difference / -std::expm1(-2.0 * s * period);
 }
 
 }  // namespace

@@ -1,0 +1,77 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "layers/diffusion/dipole.hpp"
+#include "layers/diffusion/layered_diffusion.hpp"
+#include "spectral/input_error.hpp"
+
+using namespace skinspec;
+
+namespace {
+std::vector<double> radii_to(double r_max, double dr) {
+    std::vector<double> radii;
+    for (double r = 0.5 * dr; r < r_max; r += dr) radii.push_back(r);
+    return radii;
+}
+double integral(const std::vector<double>& radii, const std::vector<double>& values, double dr) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < radii.size(); ++i) sum += 2.0 * std::numbers::pi * radii[i] * values[i] * dr;
+    return sum;
+}
+}  // namespace
+
+TEST_CASE("a one-slab stack is the slab", "[layered]") {
+    const Multipole slab({2.0, 0.05, 3.0, 0.4, 0.2});
+    const LayeredDiffusion stack({slab}, DiffusionBottom::open);
+    CHECK(stack.total_reflectance() == Approx(slab.total_reflectance()).epsilon(1e-14));
+    CHECK(stack.total_transmittance() == Approx(slab.total_transmittance()).epsilon(1e-14));
+    const std::vector<double> radii{0.0, 0.5, 2.0};
+    CHECK(stack.reflectance_profile(radii).values == slab.reflectance_profile(radii).values);
+}
+
+TEST_CASE("composition conserves energy without absorption", "[layered]") {
+    // Kubelka-Munk in frequency space: at k = 0, R_a + T_a = 1 and R_b + T_b = 1 give R_ab + T_ab = 1.
+    const LayeredDiffusion open({Multipole({2.0, 0.0, 1.0, 0.5, 0.01}), Multipole({0.5, 0.0, 4.0, 0.02, 0.3}),
+                                 Multipole({5.0, 0.0, 0.8, 0.0, 0.5})},
+                                DiffusionBottom::open);
+    CHECK(open.total_reflectance() + open.total_transmittance() == Approx(1.0).epsilon(1e-12));
+    // Over the reflector everything comes back (R1 R2 -> 1 in the series, still finite).
+    const LayeredDiffusion mirror({Multipole({2.0, 0.0, 1.0, 0.5, 0.0}), Multipole({1.0, 0.0, 1e6, 0.0, 0.0})}, DiffusionBottom::reflector);
+    CHECK(mirror.total_reflectance() == Approx(1.0).epsilon(1e-9));
+    CHECK(mirror.total_transmittance() == 0.0);
+}
+
+TEST_CASE("composed profiles integrate to the composed totals", "[layered]") {
+    const double f = diffuse_fresnel_reflectance(1.4);
+    const LayeredDiffusion two({Multipole({2.0, 0.02, 1.0, f, 0.0}), Multipole({2.0, 0.02, 1.0, 0.0, f})}, DiffusionBottom::open);
+    const LayeredDiffusion skin({Multipole({4.0, 0.5, 0.25, f, 0.0}), Multipole({2.5, 0.05, 0.5, 0.0, 0.0}),
+                                 Multipole({2.5, 0.02, 1.8, 0.0, 0.0})},
+                                DiffusionBottom::reflector);
+    const double dr = 5e-3;
+    const auto radii = radii_to(40.0, dr);
+    for (const auto* stack : {&two, &skin}) {
+        const auto r = stack->reflectance_profile(radii);
+        const auto t = stack->transmittance_profile(radii);
+        CHECK(r.converged);
+        CHECK(integral(radii, r.values, dr) == Approx(stack->total_reflectance()).epsilon(2e-3));
+        if (stack == &two) CHECK(integral(radii, t.values, dr) == Approx(stack->total_transmittance()).epsilon(2e-3));
+    }
+    // Splitting a slab into two equal halves with matched faces changes the totals only a little (diffusion
+    // between the halves is what the composition approximates).
+    const Multipole whole({2.0, 0.02, 2.0, f, f});
+    CHECK(two.total_reflectance() == Approx(whole.total_reflectance()).margin(0.02));
+    CHECK(two.total_transmittance() == Approx(whole.total_transmittance()).margin(0.02));
+}
+
+TEST_CASE("layered diffusion rejects impossible stacks", "[layered]") {
+    const double inf = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH(LayeredDiffusion({}, DiffusionBottom::open), Catch::Contains("has no slabs"));
+    CHECK_THROWS_WITH(LayeredDiffusion({Multipole({1.0, 0.1, inf, 0.0, 0.0}), Multipole({1.0, 0.1, 1.0, 0.0, 0.0})}, DiffusionBottom::open),
+                      Catch::Contains("slab 1 is semi-infinite but has slabs below it"));
+    CHECK_THROWS_WITH(LayeredDiffusion({Multipole({1.0, 0.1, inf, 0.0, 0.0})}, DiffusionBottom::reflector),
+                      Catch::Contains("semi-infinite but has a reflector below it"));
+}
