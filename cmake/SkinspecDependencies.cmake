@@ -12,6 +12,7 @@ find_package(TBB REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(tomlplusplus REQUIRED)
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(OpenImageIO REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 # PLplot's own CMake config references every optional binding; its pkg-config file is the reliable entry.

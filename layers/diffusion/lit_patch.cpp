@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
-#include <memory>
 
-#include <fftw3.h>
 #include <fmt/format.h>
 
+#include "layers/image_convolution.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -15,14 +13,6 @@ namespace skinspec {
 namespace {
 
 constexpr int samples_per_pixel_side = 8;
-
-struct FftwFree {
-    void operator()(void* p) const { fftw_free(p); }
-};
-template <typename T>
-std::unique_ptr<T[], FftwFree> fftw_buffer(std::size_t n) {
-    return std::unique_ptr<T[], FftwFree>(static_cast<T*>(fftw_malloc(sizeof(T) * n)));
-}
 
 // Linear interpolation of a profile sampled at radii j * dr.
 double interpolate(const std::vector<double>& values, double dr, double r) {
@@ -119,24 +109,10 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
     for (int j = 0; j * dr <= (margin + 2) * h * std::sqrt(2.0); ++j) radii.push_back(j * dr);
     out.profiles = diffusion_profiles(material, wavelengths, radii, options, false);
 
-    // FFT size for the linear convolution of the widened illumination with the kernel (2 margin + 1).
-    const int nx = view.width_px + 4 * margin, ny = view.height_px + 4 * margin;
-    const int ncx = nx / 2 + 1;
-    const std::size_t n_real = static_cast<std::size_t>(nx) * ny, n_complex = static_cast<std::size_t>(ny) * ncx;
-    auto real = fftw_buffer<double>(n_real);
-    auto light_hat = fftw_buffer<fftw_complex>(n_complex);
-    auto kernel_hat = fftw_buffer<fftw_complex>(n_complex);
-    const fftw_plan forward_light = fftw_plan_dft_r2c_2d(ny, nx, real.get(), light_hat.get(), FFTW_ESTIMATE);
-    const fftw_plan forward_kernel = fftw_plan_dft_r2c_2d(ny, nx, real.get(), kernel_hat.get(), FFTW_ESTIMATE);
-    const fftw_plan backward = fftw_plan_dft_c2r_2d(ny, nx, kernel_hat.get(), real.get(), FFTW_ESTIMATE);
-
     const auto widened = light.rasterize(view, margin);
-    const int we = view.width_px + 2 * margin;
-    std::fill(real.get(), real.get() + n_real, 0.0);
-    for (int y = 0; y < view.height_px + 2 * margin; ++y) {
-        for (int x = 0; x < we; ++x) real[static_cast<std::size_t>(y) * nx + x] = widened[static_cast<std::size_t>(y) * we + x];
-    }
-    fftw_execute(forward_light);
+    const int we = view.width_px + 2 * margin, he = view.height_px + 2 * margin;
+    const ImageConvolver convolver(widened, we, he, margin, margin);
+    const int side = 2 * margin + 1;
 
     const std::size_t channels = out.profiles.channels.size();
     for (std::size_t c = 0; c < channels; ++c) {
@@ -145,9 +121,8 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
             break;
         }
         const auto& profile = out.profiles.channels[c];
-        // Kernel: R(r) integrated over each pixel (8 x 8 samples near the centre, the centre value further out),
-        // wrapped around the origin for the cyclic FFT.
-        std::fill(real.get(), real.get() + n_real, 0.0);
+        // Kernel: R(r) integrated over each pixel (8 x 8 samples near the centre, the centre value further out).
+        std::vector<double> kernel(static_cast<std::size_t>(side) * side);
         double sum = 0.0;
         for (int j = -margin; j <= margin; ++j) {
             for (int i = -margin; i <= margin; ++i) {
@@ -164,38 +139,28 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
                 } else {
                     value = interpolate(profile.reflectance_per_mm2, dr, std::hypot(i * h, j * h)) * h * h;
                 }
-                real[static_cast<std::size_t>((j + ny) % ny) * nx + static_cast<std::size_t>((i + nx) % nx)] = value;
+                kernel[static_cast<std::size_t>(j + margin) * side + static_cast<std::size_t>(i + margin)] = value;
                 sum += value;
             }
         }
         // Energy: the kernel must sum to the material's total diffuse reflectance (analytic).
         const double correction = profile.total_reflectance - sum;
-        real[0] += correction;
+        kernel[static_cast<std::size_t>(margin) * side + static_cast<std::size_t>(margin)] += correction;
         if (profile.total_reflectance > 0.0) {
             out.largest_kernel_correction = std::max(out.largest_kernel_correction, std::abs(correction) / profile.total_reflectance);
         }
-        fftw_execute(forward_kernel);
-        const double scale = 1.0 / static_cast<double>(n_real);
-        for (std::size_t k = 0; k < n_complex; ++k) {
-            const std::complex<double> a(light_hat[k][0], light_hat[k][1]), b(kernel_hat[k][0], kernel_hat[k][1]);
-            const auto p = a * b * scale;
-            kernel_hat[k][0] = p.real();
-            kernel_hat[k][1] = p.imag();
-        }
-        fftw_execute(backward);
+        const auto exitance = convolver.convolve(kernel);
         std::vector<float> image(static_cast<std::size_t>(view.width_px) * view.height_px);
         for (int y = 0; y < view.height_px; ++y) {
             for (int x = 0; x < view.width_px; ++x) {
+                // FFT round-off (~1e-16 of the lit level) can leave dark pixels a hair below zero.
                 image[static_cast<std::size_t>(y) * view.width_px + x] =
-                    static_cast<float>(std::max(0.0, real[static_cast<std::size_t>(y + margin) * nx + (x + margin)]));
+                    static_cast<float>(std::max(0.0, exitance[static_cast<std::size_t>(y + margin) * we + (x + margin)]));
             }
         }
         out.exitance.push_back(std::move(image));
         if (on_progress) on_progress(c + 1, channels);
     }
-    fftw_destroy_plan(forward_light);
-    fftw_destroy_plan(forward_kernel);
-    fftw_destroy_plan(backward);
     return out;
 }
 
