@@ -13,6 +13,7 @@
 #include "cli/compare_phase_command.hpp"
 #include "cli/mcml_command.hpp"
 #include "cli/profile_command.hpp"
+#include "cli/fit_profile_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_compare_phase_command(app);
     skinspec::cli::add_mcml_command(app);
     skinspec::cli::add_profile_command(app);
+    skinspec::cli::add_fit_profile_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -146,22 +146,36 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
     write(buf, file, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
 }
 
-LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm) {
+DataImage read_data_image(const std::filesystem::path& file) {
     if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
     OIIO::ImageBuf in(file.string());
     if (!in.read(0, 0, true, OIIO::TypeDesc::FLOAT)) throw InputError(file.string() + ": cannot be read as an image (" + in.geterror() + ")");
     const auto& spec = in.spec();
     if (spec.width < 2 || spec.height < 2 || spec.nchannels < 1) throw InputError(file.string() + ": image smaller than 2 x 2 pixels");
-    LinearImage out{spec.width, spec.height, std::vector<float>(static_cast<std::size_t>(spec.width) * spec.height * 3)};
-    std::vector<float> pixel(static_cast<std::size_t>(spec.nchannels));
-    for (int y = 0; y < spec.height; ++y) {
-        for (int x = 0; x < spec.width; ++x) {
-            in.getpixel(x, y, pixel.data(), spec.nchannels);
-            for (int c = 0; c < 3; ++c) out.rgb[(static_cast<std::size_t>(y) * spec.width + x) * 3 + c] = pixel[std::min(c, spec.nchannels - 1)];
-        }
+    DataImage out{spec.width, spec.height, spec.nchannels, std::vector<float>(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels),
+                  spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF, spec.channelnames};
+    if (!in.get_pixels(OIIO::ROI(0, spec.width, 0, spec.height, 0, 1, 0, spec.nchannels), OIIO::TypeDesc::FLOAT, out.values.data())) {
+        throw InputError(file.string() + ": cannot be read as an image (" + in.geterror() + ")");
     }
-    const bool encoded = spec.format.basetype != OIIO::TypeDesc::FLOAT && spec.format.basetype != OIIO::TypeDesc::HALF;
-    if (encoded) cm.convert_pixels(out.rgb, "sRGB", working_space);
+    return out;
+}
+
+void write_data_image(const std::filesystem::path& file, const DataImage& image, const ImageMetadata& metadata) {
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+    if (!image.channel_names.empty()) spec.channelnames = image.channel_names;
+    OIIO::ImageBuf buf(spec);
+    buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.values.data());
+    set_metadata(buf, metadata);
+    write(buf, file, OIIO::TypeDesc::FLOAT);
+}
+
+LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm) {
+    const auto in = read_data_image(file);
+    LinearImage out{in.width, in.height, std::vector<float>(static_cast<std::size_t>(in.width) * in.height * 3)};
+    for (std::size_t p = 0; p < static_cast<std::size_t>(in.width) * in.height; ++p) {
+        for (int c = 0; c < 3; ++c) out.rgb[p * 3 + c] = in.values[p * in.channels + std::min(c, in.channels - 1)];
+    }
+    if (!in.floating_point) cm.convert_pixels(out.rgb, "sRGB", working_space);
     return out;
 }
 

@@ -40,6 +40,19 @@ struct LinearImage {
     std::vector<float> rgb;
 };
 
+// The stored values of any image OpenImageIO reads, as floats (8/16-bit integers scaled to [0, 1]), no colour
+// conversion: for data such as irradiance maps and masks. InputError for a missing or unreadable file.
+struct DataImage {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> values;  // row-major, channels interleaved
+    bool floating_point = false;
+    std::vector<std::string> channel_names;
+};
+DataImage read_data_image(const std::filesystem::path& file);
+// Float data (no colour tagging) as OpenEXR, with the metadata.
+void write_data_image(const std::filesystem::path& file, const DataImage& image, const ImageMetadata& metadata);
 // Any image OpenImageIO reads, as scene-linear `working_space` RGB: 8/16-bit files are taken as sRGB-encoded,
 // float files (EXR) as already in `working_space`; grey images are replicated to RGB.
 LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm);

@@ -1,0 +1,320 @@
+#include "cli/fit_profile_command.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/spectral_output.hpp"
+#include "layers/profile_fit/profile_fit.hpp"
+#include "layers/profile_fit/synthetic_scene.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/chart_image.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/line_plot.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct FitOptions {
+    std::string irradiance, exitance, mask, patches, profile, column;
+    double pitch_mm = 0.0;
+    bool synthetic = false;
+    double step_mm = 0.1;
+    double eta = 1.3;
+    double tikhonov = 0.0;
+    bool non_negative = false;
+    std::string grid_scattering = "0.01:3:0.01";
+    std::string grid_absorption = "0:0.01:0.001";
+    bool no_refine = false;
+    double total_reflectance = -1.0;
+    double fit_from_mm = 0.0;
+    std::string output_dir;
+    bool overwrite = false;
+    bool json = false;
+};
+
+ParameterGrid parse_grid(const std::string& text, const std::string& option) {
+    std::vector<double> parts;
+    std::size_t start = 0;
+    while (true) {
+        const auto colon = text.find(':', start);
+        const auto field = std::string_view(text).substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+        const auto v = parse_double(field);
+        if (!v || !std::isfinite(*v)) throw InputError(option + ": '" + std::string(field) + "' is not a finite number (expected FIRST:LAST:STEP, per mm)");
+        parts.push_back(*v);
+        if (colon == std::string::npos) break;
+        start = colon + 1;
+    }
+    if (parts.size() != 3) throw InputError(option + ": '" + text + "' must have the form FIRST:LAST:STEP (per mm)");
+    return {parts[0], parts[1], parts[2]};
+}
+
+// CSV lines without '#' comments or blanks, split; the first line is the header.
+std::vector<std::vector<std::string>> read_csv(const std::string& file) {
+    std::ifstream in(file);
+    if (!std::filesystem::is_regular_file(file) || !in) throw InputError(file + ": cannot open the CSV file");
+    std::vector<std::vector<std::string>> rows;
+    std::string line;
+    while (std::getline(in, line)) {
+        const auto t = trim(line);
+        if (t.empty() || t.front() == '#') continue;
+        std::vector<std::string> fields;
+        for (const auto f : split_fields(t)) fields.emplace_back(f);
+        rows.push_back(std::move(fields));
+    }
+    if (rows.size() < 2) throw InputError(file + ": needs a header line and at least one data line");
+    return rows;
+}
+
+double number(const std::string& file, std::size_t row, const std::string& field, const std::string& text) {
+    const auto v = parse_double(text);
+    if (!v || !std::isfinite(*v)) throw InputError(fmt::format("{}: data line {}: field '{}' = '{}' is not a finite number", file, row, field, text));
+    return *v;
+}
+
+std::vector<SurfacePatch> read_patches(const std::string& file) {
+    const auto rows = read_csv(file);
+    const std::vector<std::string> header{"x_mm", "y_mm", "z_mm", "nx", "ny", "nz", "c", "l", "visible"};
+    if (rows[0] != header) throw InputError(file + ": the header must be x_mm,y_mm,z_mm,nx,ny,nz,c,l,visible");
+    std::vector<SurfacePatch> patches;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        const auto& r = rows[i];
+        if (r.size() != header.size()) throw InputError(fmt::format("{}: data line {} has {} fields, expected 9", file, i, r.size()));
+        std::array<double, 9> v{};
+        for (std::size_t k = 0; k < 9; ++k) v[k] = number(file, i, header[k], r[k]);
+        const double normal = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+        if (std::abs(normal - 1.0) > 1e-3) throw InputError(fmt::format("{}: data line {}: the normal has length {:.4g}, expected 1", file, i, normal));
+        if (v[6] < 0.0 || v[7] < 0.0) throw InputError(fmt::format("{}: data line {}: c and l must be in [0, inf)", file, i));
+        if (v[8] != 0.0 && v[8] != 1.0) throw InputError(fmt::format("{}: data line {}: field 'visible' = {} is not 0 or 1", file, i, r[8]));
+        patches.push_back({{v[0], v[1], v[2]}, v[6], v[7], v[8] == 1.0});
+    }
+    return patches;
+}
+
+std::pair<std::vector<double>, std::vector<double>> read_profile(const std::string& file, const std::string& column) {
+    const auto rows = read_csv(file);
+    std::size_t k = 1;
+    if (!column.empty()) {
+        const auto it = std::find(rows[0].begin(), rows[0].end(), column);
+        if (it == rows[0].end()) throw InputError(file + ": no column '" + column + "'");
+        k = static_cast<std::size_t>(it - rows[0].begin());
+    }
+    if (rows[0].size() < 2 || k == 0) throw InputError(file + ": expected r_mm and a profile column (1/mm^2)");
+    std::vector<double> r, v;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        if (rows[i].size() != rows[0].size()) throw InputError(fmt::format("{}: data line {} has {} fields, expected {}", file, i, rows[i].size(), rows[0].size()));
+        r.push_back(number(file, i, rows[0][0], rows[i][0]));
+        v.push_back(number(file, i, rows[0][k], rows[i][k]));
+    }
+    return {r, v};
+}
+
+// One planar scene per channel of the image pair (irradiance per mm^2 becomes power per pixel).
+std::vector<PlanarScene> read_planar(const FitOptions& o, std::vector<std::string>& channel_names) {
+    if (!(o.pitch_mm > 0.0)) throw InputError("--pitch = " + format_number(o.pitch_mm) + " mm is outside (0, inf)");
+    const auto e = read_data_image(o.irradiance);
+    const auto l = read_data_image(o.exitance);
+    if (e.width != l.width || e.height != l.height) {
+        throw InputError(fmt::format("{} is {}x{} but {} is {}x{}: the images must have the same size", o.irradiance, e.width, e.height,
+                                     o.exitance, l.width, l.height));
+    }
+    if (e.channels != l.channels) throw InputError(fmt::format("{} has {} channels but {} has {}", o.irradiance, e.channels, o.exitance, l.channels));
+    std::vector<char> valid(static_cast<std::size_t>(e.width) * e.height, 1);
+    if (!o.mask.empty()) {
+        const auto m = read_data_image(o.mask);
+        if (m.width != e.width || m.height != e.height) throw InputError(fmt::format("{} is {}x{}, the images {}x{}", o.mask, m.width, m.height, e.width, e.height));
+        for (std::size_t p = 0; p < valid.size(); ++p) valid[p] = m.values[p * m.channels] > 0.0f ? 1 : 0;
+    }
+    const int channels = std::min(e.channels, 3);  // colour channels; alpha is ignored
+    std::vector<PlanarScene> scenes;
+    for (int c = 0; c < channels; ++c) {
+        PlanarScene s{e.width, e.height, o.pitch_mm, {}, {}, valid};
+        for (std::size_t p = 0; p < valid.size(); ++p) {
+            s.incident.push_back(e.values[p * e.channels + c] * o.pitch_mm * o.pitch_mm);
+            s.observed.push_back(l.values[p * l.channels + c]);
+        }
+        scenes.push_back(std::move(s));
+        channel_names.push_back(c < static_cast<int>(e.channel_names.size()) ? e.channel_names[c] : fmt::format("channel{}", c));
+    }
+    return scenes;
+}
+
+void write_outputs(const FitOptions& o, const std::vector<std::string>& names, const std::vector<ProfileFitReport>& reports,
+                   const std::optional<PlanarScene>& geometry) {
+    namespace fs = std::filesystem;
+    const fs::path dir(o.output_dir);
+    if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(o.output_dir + ": exists and is not a folder");
+    fs::create_directories(dir);
+    const auto& first = reports.front().estimate;
+    std::string csv = fmt::format("# skinspec {} fit-profile: R'(d) estimated per bin (seed 001 Eq. 24) and the fitted dipole; 1/mm^2\nd_mm", version);
+    for (const auto& n : names) csv += fmt::format(",R_estimate_{0},R_dipole_{0},used_{0}", n);
+    csv += '\n';
+    for (std::size_t i = 0; i < first.distances_mm.size(); ++i) {
+        csv += fmt::format("{:g}", first.distances_mm[i]);
+        for (const auto& r : reports) csv += fmt::format(",{:.9g},{:.9g},{}", r.estimate.profile_per_mm2[i], r.fitted_profile[i], r.fitted_bins[i] ? 1 : 0);
+        csv += '\n';
+    }
+    write_text_file((dir / "profile_estimate.csv").string(), csv, o.overwrite);
+    std::vector<PlotCurve> curves;
+    static const std::vector<RGB> palette{{0.85, 0.15, 0.1}, {0.1, 0.6, 0.2}, {0.1, 0.3, 0.9}};
+    for (std::size_t c = 0; c < reports.size(); ++c) {
+        const auto& r = reports[c];
+        const auto colour = palette[c % palette.size()];
+        curves.push_back({"R' estimate " + names[c], r.estimate.distances_mm, r.estimate.profile_per_mm2,
+                          std::vector<double>(r.estimate.distances_mm.size(), 0.0), colour, true});
+        curves.push_back({fmt::format("dipole {} (s' {:.3f}, a {:.4f})", names[c], r.fit.reduced_scattering_per_mm, r.fit.absorption_per_mm),
+                          r.estimate.distances_mm, r.fitted_profile, std::vector<double>(r.estimate.distances_mm.size(), 0.0), colour, false});
+    }
+    const auto plot = dir / "profile_fit.png";
+    if (fs::exists(plot) && !o.overwrite) throw InputError(plot.string() + ": exists already (use --overwrite to replace it)");
+    write_line_plot(plot, "fit-profile: estimated R'(d) and fitted dipole", "Distance d (mm)", "R (1/mm^2)", curves, true);
+    if (geometry) {
+        const auto exr = dir / "resynthesised.exr";
+        check_output_path(exr, o.overwrite, {".exr"});
+        DataImage image{geometry->width, geometry->height, static_cast<int>(reports.size()), {}, true, names};
+        for (std::size_t p = 0; p < static_cast<std::size_t>(geometry->width) * geometry->height; ++p) {
+            for (const auto& r : reports) image.values.push_back(static_cast<float>(r.synthesised[p]));
+        }
+        write_data_image(exr, image, {{"Software", std::string("skinspec ") + version}, {"ImageDescription", "fit-profile re-synthesis (seed 001 Eq. 10), exitance per mm^2"}});
+    }
+}
+
+// The synthetic scene as the image pair a planar fit reads (irradiance per mm^2, exitance per mm^2).
+void write_synthetic_inputs(const FitOptions& o, const PlanarScene& s) {
+    namespace fs = std::filesystem;
+    fs::create_directories(o.output_dir);
+    const double area = s.pitch_mm * s.pitch_mm;
+    DataImage irradiance{s.width, s.height, 1, {}, true, {"Y"}}, exitance = irradiance;
+    for (std::size_t p = 0; p < s.incident.size(); ++p) {
+        irradiance.values.push_back(static_cast<float>(s.incident[p] / area));
+        exitance.values.push_back(static_cast<float>(s.observed[p]));
+    }
+    const ImageMetadata metadata{{"Software", std::string("skinspec ") + version}, {"skinspec:pixel_mm", fmt::format("{:g}", s.pitch_mm)}};
+    for (const auto& [name, image] : {std::pair{"synthetic_irradiance.exr", &irradiance}, std::pair{"synthetic_exitance.exr", &exitance}}) {
+        const auto file = fs::path(o.output_dir) / name;
+        check_output_path(file, o.overwrite, {".exr"});
+        write_data_image(file, *image, metadata);
+    }
+}
+
+void run_fit_profile(const FitOptions& o) {
+    const int forms = (!o.irradiance.empty() || !o.exitance.empty() ? 1 : 0) + (o.patches.empty() ? 0 : 1) + (o.profile.empty() ? 0 : 1) + (o.synthetic ? 1 : 0);
+    if (forms != 1) throw InputError("give exactly one input: --irradiance/--exitance/--pitch, --patches, --profile or --synthetic");
+    if ((!o.irradiance.empty()) != (!o.exitance.empty())) throw InputError("--irradiance and --exitance go together");
+    ProfileFitOptions options;
+    options.step_mm = o.step_mm;
+    options.solve = {o.tikhonov, o.non_negative};
+    options.dipole.eta = o.eta;
+    options.dipole.reduced_scattering_per_mm = parse_grid(o.grid_scattering, "--grid-scattering");
+    options.dipole.absorption_per_mm = parse_grid(o.grid_absorption, "--grid-absorption");
+    options.dipole.refine = !o.no_refine;
+    if (o.total_reflectance >= 0.0) options.dipole.total_diffuse_reflectance = o.total_reflectance;
+    options.fit_from_mm = o.fit_from_mm;
+    if (!o.output_dir.empty() && !o.overwrite) {
+        for (const auto* name : {"profile_estimate.csv", "profile_fit.png", "resynthesised.exr"}) {
+            if (std::filesystem::exists(std::filesystem::path(o.output_dir) / name)) {
+                throw InputError((std::filesystem::path(o.output_dir) / name).string() + ": exists already (use --overwrite to replace it)");
+            }
+        }
+    }
+
+    std::vector<std::string> names;
+    std::vector<ProfileFitReport> reports;
+    std::optional<PlanarScene> geometry;
+    std::string input;
+    if (o.synthetic || !o.irradiance.empty()) {
+        std::vector<PlanarScene> scenes;
+        if (o.synthetic) {
+            scenes.push_back(synthetic_planar_scene({}));
+            names.push_back("Y");
+            if (!o.output_dir.empty()) write_synthetic_inputs(o, scenes.front());
+            input = "synthetic: 64 x 64 patches at 0.05 mm, dipole sigma_s' 2.19, sigma_a 0.002 /mm, eta 1.3";
+        } else {
+            scenes = read_planar(o, names);
+            input = fmt::format("{} and {} ({}x{} px at {:g} mm)", o.irradiance, o.exitance, scenes.front().width, scenes.front().height, o.pitch_mm);
+        }
+        for (const auto& s : scenes) reports.push_back(fit_planar(s, options));
+        geometry = scenes.front();
+    } else if (!o.patches.empty()) {
+        const auto patches = read_patches(o.patches);
+        reports.push_back(fit_patches(patches, options));
+        names.push_back("l");
+        input = fmt::format("{} ({} patches)", o.patches, patches.size());
+    } else {
+        const auto [r, v] = read_profile(o.profile, o.column);
+        reports.push_back(fit_radial(r, v, options));
+        names.push_back(o.column.empty() ? "R" : o.column);
+        input = fmt::format("{} ({} radii)", o.profile, r.size());
+    }
+
+    if (!o.output_dir.empty()) write_outputs(o, names, reports, geometry);
+    if (o.json) {
+        Json channels = Json::array();
+        for (std::size_t c = 0; c < reports.size(); ++c) {
+            const auto& r = reports[c];
+            Json j{{"channel", names[c]},
+                   {"reduced_scattering_per_mm", r.fit.reduced_scattering_per_mm},
+                   {"absorption_per_mm", r.fit.absorption_per_mm},
+                   {"residual_per_mm4", r.fit.residual},
+                   {"grid", {{"reduced_scattering_per_mm", r.fit.grid_reduced_scattering_per_mm}, {"absorption_per_mm", r.fit.grid_absorption_per_mm}, {"residual_per_mm4", r.fit.grid_residual}}},
+                   {"bins", r.estimate.distances_mm.size()},
+                   {"rank", r.estimate.rank},
+                   {"least_squares_residual", r.estimate.residual_norm},
+                   {"distance_mm", r.estimate.distances_mm},
+                   {"profile_estimate_per_mm2", r.estimate.profile_per_mm2}};
+            if (r.psnr_db) j["psnr_db"] = std::isfinite(*r.psnr_db) ? Json(*r.psnr_db) : Json("identical");
+            channels.push_back(j);
+        }
+        std::cout << Json{{"skinspec_version", version}, {"input", input}, {"eta", o.eta}, {"step_mm", o.step_mm}, {"channels", channels}}.dump(2) << '\n';
+        return;
+    }
+    std::cout << "input: " << input << "\n";
+    std::cout << fmt::format("{:>8} {:>12} {:>12} {:>12} {:>12} {:>10} {:>6} {:>6}\n", "channel", "sigma_s'/mm", "sigma_a/mm", "grid s'",
+                             "grid a", "PSNR dB", "bins", "rank");
+    for (std::size_t c = 0; c < reports.size(); ++c) {
+        const auto& r = reports[c];
+        std::cout << fmt::format("{:>8} {:>12.5f} {:>12.6f} {:>12.3f} {:>12.4f} {:>10} {:>6} {:>6}\n", names[c], r.fit.reduced_scattering_per_mm,
+                                 r.fit.absorption_per_mm, r.fit.grid_reduced_scattering_per_mm, r.fit.grid_absorption_per_mm,
+                                 r.psnr_db ? fmt::format("{:.2f}", *r.psnr_db) : std::string("-"), r.estimate.distances_mm.size(), r.estimate.rank);
+    }
+    if (!o.output_dir.empty()) std::cerr << "wrote " << o.output_dir << "/profile_estimate.csv, profile_fit.png" << (geometry ? ", resynthesised.exr" : "") << '\n';
+}
+
+}  // namespace
+
+void add_fit_profile_command(CLI::App& app) {
+    auto o = std::make_shared<FitOptions>();
+    auto* cmd = app.add_subcommand("fit-profile", "Dipole parameters (sigma_s', sigma_a) from an image with known light, a patch list or R(r)");
+    cmd->add_option("--irradiance", o->irradiance, "Planar input: image of the irradiance entering the surface (per mm^2; EXR)");
+    cmd->add_option("--exitance", o->exitance, "Planar input: image of the observed exitance pi L_o / F_t (per mm^2; EXR)");
+    cmd->add_option("--pitch", o->pitch_mm, "Planar input: pixel pitch in mm");
+    cmd->add_option("--mask", o->mask, "Planar input: image whose non-zero pixels are valid observations");
+    cmd->add_option("--patches", o->patches, "Patch list CSV: x_mm,y_mm,z_mm,nx,ny,nz,c,l,visible");
+    cmd->add_option("--profile", o->profile, "Radial profile CSV: r_mm and R (1/mm^2) columns (e.g. skinspec profile output)");
+    cmd->add_option("--column", o->column, "With --profile: the column to fit (default the second)");
+    cmd->add_flag("--synthetic", o->synthetic, "Fit the built-in synthetic scene of seed 001 Sec. 4.1 (a demonstration)");
+    cmd->add_option("--step", o->step_mm, "Distance quantisation step in mm (seed 001 Eq. 15-16)")->capture_default_str();
+    cmd->add_option("--eta", o->eta, "Relative index of refraction")->capture_default_str();
+    cmd->add_option("--tikhonov", o->tikhonov, "Tikhonov lambda for r = W+ l (default 0: the paper's pseudo-inverse)")->capture_default_str();
+    cmd->add_flag("--non-negative", o->non_negative, "Constrain the estimated profile to R' >= 0");
+    cmd->add_option("--grid-scattering", o->grid_scattering, "Grid of sigma_s' (per mm), FIRST:LAST:STEP")->capture_default_str();
+    cmd->add_option("--grid-absorption", o->grid_absorption, "Grid of sigma_a (per mm), FIRST:LAST:STEP")->capture_default_str();
+    cmd->add_flag("--no-refine", o->no_refine, "Stop at the grid's best (no local optimiser)");
+    cmd->add_option("--total-reflectance", o->total_reflectance, "Measured total diffuse reflectance: constrains sigma_a (seed 004 Sec. 3)");
+    cmd->add_option("--fit-from", o->fit_from_mm, "Leave distances below this (mm) out of the dipole fit")->capture_default_str();
+    cmd->add_option("--output-dir", o->output_dir, "Write profile_estimate.csv, profile_fit.png and resynthesised.exr here");
+    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    cmd->add_flag("--json", o->json, "Print the result as JSON");
+    cmd->callback([o] { run_fit_profile(*o); });
+}
+
+}  // namespace skinspec::cli
