@@ -43,19 +43,8 @@ struct FitOptions {
 };
 
 ParameterGrid parse_grid(const std::string& text, const std::string& option) {
-    std::vector<double> parts;
-    std::size_t start = 0;
-    while (true) {
-        const auto colon = text.find(':', start);
-        const auto field = std::string_view(text).substr(start, colon == std::string::npos ? std::string::npos : colon - start);
-        const auto v = parse_double(field);
-        if (!v || !std::isfinite(*v)) throw InputError(option + ": '" + std::string(field) + "' is not a finite number (expected FIRST:LAST:STEP, per mm)");
-        parts.push_back(*v);
-        if (colon == std::string::npos) break;
-        start = colon + 1;
-    }
-    if (parts.size() != 3) throw InputError(option + ": '" + text + "' must have the form FIRST:LAST:STEP (per mm)");
-    return {parts[0], parts[1], parts[2]};
+    const auto [first, last, step] = parse_colon_triple(text, option, "per mm");
+    return {first, last, step};
 }
 
 // CSV lines without '#' comments or blanks, split; the first line is the header.

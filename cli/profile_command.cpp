@@ -33,19 +33,7 @@ struct ProfileOptions {
 
 // FIRST:LAST:STEP in mm, FIRST >= 0, STEP > 0, at most a million radii.
 std::vector<double> parse_radii(const std::string& text) {
-    std::vector<double> parts;
-    std::size_t start = 0;
-    while (true) {
-        const auto colon = text.find(':', start);
-        const auto field = std::string_view(text).substr(start, colon == std::string::npos ? std::string::npos : colon - start);
-        const auto value = parse_double(field);
-        if (!value || !std::isfinite(*value)) throw InputError("--radii: '" + std::string(field) + "' is not a finite number (expected FIRST:LAST:STEP in mm)");
-        parts.push_back(*value);
-        if (colon == std::string::npos) break;
-        start = colon + 1;
-    }
-    if (parts.size() != 3) throw InputError("--radii: '" + text + "' must have the form FIRST:LAST:STEP (mm)");
-    const double first = parts[0], last = parts[1], step = parts[2];
+    const auto [first, last, step] = parse_colon_triple(text, "--radii", "mm");
     if (first < 0.0) throw InputError("--radii: FIRST = " + format_number(first) + " mm is outside [0, inf)");
     if (step <= 0.0) throw InputError("--radii: STEP = " + format_number(step) + " mm is outside (0, inf)");
     if (last < first) throw InputError("--radii: LAST = " + format_number(last) + " mm is below FIRST = " + format_number(first) + " mm");

@@ -1,6 +1,10 @@
 #include "spectral/text_fields.hpp"
 
 #include <charconv>
+#include <cmath>
+#include <string>
+
+#include "spectral/input_error.hpp"
 
 namespace skinspec {
 
@@ -48,6 +52,27 @@ std::string format_number(double value) {
     char buffer[64];
     const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
     return ec == std::errc() ? std::string(buffer, end) : std::string("?");
+}
+
+std::array<double, 3> parse_colon_triple(std::string_view text, std::string_view option, std::string_view unit) {
+    std::vector<double> parts;
+    std::size_t start = 0;
+    while (true) {
+        const auto colon = text.find(':', start);
+        const auto field = text.substr(start, colon == std::string_view::npos ? std::string_view::npos : colon - start);
+        const auto value = parse_double(field);
+        if (!value || !std::isfinite(*value)) {
+            throw InputError(std::string(option) + ": '" + std::string(field) + "' is not a finite number (expected FIRST:LAST:STEP in " +
+                             std::string(unit) + ")");
+        }
+        parts.push_back(*value);
+        if (colon == std::string_view::npos) break;
+        start = colon + 1;
+    }
+    if (parts.size() != 3) {
+        throw InputError(std::string(option) + ": '" + std::string(text) + "' must have the form FIRST:LAST:STEP (" + std::string(unit) + ")");
+    }
+    return {parts[0], parts[1], parts[2]};
 }
 
 }  // namespace skinspec

@@ -1,5 +1,6 @@
 #pragma once
 // Small helpers for the text formats skinspec reads (CSV tables, option values).
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -16,6 +17,10 @@ std::optional<double> parse_double(std::string_view field);
 
 // Fields separated by commas, or by runs of blanks when the line has no comma; each trimmed.
 std::vector<std::string_view> split_fields(std::string_view line);
+
+// "FIRST:LAST:STEP" as three finite numbers; InputError naming `option` and `unit` otherwise (ranges are
+// checked by the caller).
+std::array<double, 3> parse_colon_triple(std::string_view text, std::string_view option, std::string_view unit);
 
 // Shortest round-trip text of a double, for messages ("0.1", not "0.100000").
 std::string format_number(double value);
