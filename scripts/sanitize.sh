@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (docs/STABILITY.md), in build-asan/.
+# Run after ./scripts/setup.sh (which installs the packages). Any sanitizer report fails its test.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build-asan -DSKINSPEC_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
+cmake --build build-asan -j 2
+ctest --test-dir build-asan --output-on-failure -j 2 --timeout 900
