@@ -11,6 +11,7 @@
 #include "layers/diffusion/diffusion_profiles.hpp"
 #include "materials/material_file.hpp"
 #include "skinspec/version.hpp"
+#include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
@@ -96,14 +97,8 @@ void run_profile(const ProfileOptions& o) {
     const auto mode = parse_diffusion_mode(o.mode, "--mode");
     const auto radii = parse_radii(o.radii);
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
-    for (const auto& file : {o.output, o.plot}) {
-        if (!file.empty() && !o.overwrite && std::filesystem::exists(file)) {
-            throw InputError(file + ": exists already (use --overwrite to replace it)");
-        }
-    }
-    if (!o.plot.empty() && !o.plot.ends_with(".png") && !o.plot.ends_with(".svg")) {
-        throw InputError("--plot " + o.plot + ": extension not supported (allowed: .png, .svg)");
-    }
+    if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".csv"});
+    if (!o.plot.empty()) check_output_path(o.plot, o.overwrite, {".png", ".svg"});
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);

@@ -253,9 +253,6 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
 }
 
 void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra) {
-    for (const auto& s : spectra) {
-        if (!s.result.bands.empty()) throw InputError("--plot: " + s.result.material + " has bands, not wavelengths, to plot against");
-    }
     std::vector<PlotCurve> curves;
     bool any_t = false;
     for (const auto& s : spectra) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -87,8 +88,13 @@ Surface surface(double n_above, double n_top, const DiffusionOptions& options, d
     const double mu = std::cos(incidence_deg * std::numbers::pi / 180.0);
     if (options.surface_roughness) {
         // Seed 002 Sec. 2.4: rho_d replaces F_dr (Eq. 24) and rho_dt the Fresnel transmittance (Eq. 25-26).
-        const RoughSurface rough(*options.surface_roughness, n_above, n_top);
-        return {rough.internal_diffuse_reflectance(), 1.0 - rough.entry_transmittance(mu)};
+        // rho_d depends only on the roughness and the two indices: computed once (seed 002: "once for a given
+        // material"), not per wavelength.
+        thread_local std::optional<RoughSurface> rough;
+        if (!rough || rough->roughness() != *options.surface_roughness || rough->n_outside() != n_above || rough->n_inside() != n_top) {
+            rough.emplace(*options.surface_roughness, n_above, n_top);
+        }
+        return {rough->internal_diffuse_reflectance(), 1.0 - rough->entry_transmittance(mu)};
     }
     return {face_reflectance(n_top, n_above), fresnel_reflectance(mu, n_above, n_top)};
 }

@@ -15,6 +15,8 @@ public:
     RoughSurface(double beckmann_roughness, double n_outside, double n_inside);
 
     double roughness() const { return m_; }
+    double n_outside() const { return n_out_; }
+    double n_inside() const { return n_in_; }
     // rho_d: cosine-weighted average over incident directions inside the medium of the reflected fraction.
     double internal_diffuse_reflectance() const { return rho_d_; }
     // rho_dt(theta) = 1 - int f_r cos: the fraction of light from outside at polar cosine mu that enters.
