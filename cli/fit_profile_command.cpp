@@ -12,6 +12,7 @@
 
 #include "cli/spectral_output.hpp"
 #include "layers/profile_fit/profile_fit.hpp"
+#include "layers/profile_fit/profile_inputs.hpp"
 #include "layers/profile_fit/synthetic_scene.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/chart_image.hpp"
@@ -47,96 +48,6 @@ ParameterGrid parse_grid(const std::string& text, const std::string& option) {
     return {first, last, step};
 }
 
-// CSV lines without '#' comments or blanks, split; the first line is the header.
-std::vector<std::vector<std::string>> read_csv(const std::string& file) {
-    std::ifstream in(file);
-    if (!std::filesystem::is_regular_file(file) || !in) throw InputError(file + ": cannot open the CSV file");
-    std::vector<std::vector<std::string>> rows;
-    std::string line;
-    while (std::getline(in, line)) {
-        const auto t = trim(line);
-        if (t.empty() || t.front() == '#') continue;
-        std::vector<std::string> fields;
-        for (const auto f : split_fields(t)) fields.emplace_back(f);
-        rows.push_back(std::move(fields));
-    }
-    if (rows.size() < 2) throw InputError(file + ": needs a header line and at least one data line");
-    return rows;
-}
-
-double number(const std::string& file, std::size_t row, const std::string& field, const std::string& text) {
-    const auto v = parse_double(text);
-    if (!v || !std::isfinite(*v)) throw InputError(fmt::format("{}: data line {}: field '{}' = '{}' is not a finite number", file, row, field, text));
-    return *v;
-}
-
-std::vector<SurfacePatch> read_patches(const std::string& file) {
-    const auto rows = read_csv(file);
-    const std::vector<std::string> header{"x_mm", "y_mm", "z_mm", "nx", "ny", "nz", "c", "l", "visible"};
-    if (rows[0] != header) throw InputError(file + ": the header must be x_mm,y_mm,z_mm,nx,ny,nz,c,l,visible");
-    std::vector<SurfacePatch> patches;
-    for (std::size_t i = 1; i < rows.size(); ++i) {
-        const auto& r = rows[i];
-        if (r.size() != header.size()) throw InputError(fmt::format("{}: data line {} has {} fields, expected 9", file, i, r.size()));
-        std::array<double, 9> v{};
-        for (std::size_t k = 0; k < 9; ++k) v[k] = number(file, i, header[k], r[k]);
-        const double normal = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
-        if (std::abs(normal - 1.0) > 1e-3) throw InputError(fmt::format("{}: data line {}: the normal has length {:.4g}, expected 1", file, i, normal));
-        if (v[6] < 0.0 || v[7] < 0.0) throw InputError(fmt::format("{}: data line {}: c and l must be in [0, inf)", file, i));
-        if (v[8] != 0.0 && v[8] != 1.0) throw InputError(fmt::format("{}: data line {}: field 'visible' = {} is not 0 or 1", file, i, r[8]));
-        patches.push_back({{v[0], v[1], v[2]}, v[6], v[7], v[8] == 1.0});
-    }
-    return patches;
-}
-
-std::pair<std::vector<double>, std::vector<double>> read_profile(const std::string& file, const std::string& column) {
-    const auto rows = read_csv(file);
-    std::size_t k = 1;
-    if (!column.empty()) {
-        const auto it = std::find(rows[0].begin(), rows[0].end(), column);
-        if (it == rows[0].end()) throw InputError(file + ": no column '" + column + "'");
-        k = static_cast<std::size_t>(it - rows[0].begin());
-    }
-    if (rows[0].size() < 2 || k == 0) throw InputError(file + ": expected r_mm and a profile column (1/mm^2)");
-    std::vector<double> r, v;
-    for (std::size_t i = 1; i < rows.size(); ++i) {
-        if (rows[i].size() != rows[0].size()) throw InputError(fmt::format("{}: data line {} has {} fields, expected {}", file, i, rows[i].size(), rows[0].size()));
-        r.push_back(number(file, i, rows[0][0], rows[i][0]));
-        v.push_back(number(file, i, rows[0][k], rows[i][k]));
-    }
-    return {r, v};
-}
-
-// One planar scene per channel of the image pair (irradiance per mm^2 becomes power per pixel).
-std::vector<PlanarScene> read_planar(const FitOptions& o, std::vector<std::string>& channel_names) {
-    if (!(o.pitch_mm > 0.0)) throw InputError("--pitch = " + format_number(o.pitch_mm) + " mm is outside (0, inf)");
-    const auto e = read_data_image(o.irradiance);
-    const auto l = read_data_image(o.exitance);
-    if (e.width != l.width || e.height != l.height) {
-        throw InputError(fmt::format("{} is {}x{} but {} is {}x{}: the images must have the same size", o.irradiance, e.width, e.height,
-                                     o.exitance, l.width, l.height));
-    }
-    if (e.channels != l.channels) throw InputError(fmt::format("{} has {} channels but {} has {}", o.irradiance, e.channels, o.exitance, l.channels));
-    std::vector<char> valid(static_cast<std::size_t>(e.width) * e.height, 1);
-    if (!o.mask.empty()) {
-        const auto m = read_data_image(o.mask);
-        if (m.width != e.width || m.height != e.height) throw InputError(fmt::format("{} is {}x{}, the images {}x{}", o.mask, m.width, m.height, e.width, e.height));
-        for (std::size_t p = 0; p < valid.size(); ++p) valid[p] = m.values[p * m.channels] > 0.0f ? 1 : 0;
-    }
-    const int channels = std::min(e.channels, 3);  // colour channels; alpha is ignored
-    std::vector<PlanarScene> scenes;
-    for (int c = 0; c < channels; ++c) {
-        PlanarScene s{e.width, e.height, o.pitch_mm, {}, {}, valid};
-        for (std::size_t p = 0; p < valid.size(); ++p) {
-            s.incident.push_back(e.values[p * e.channels + c] * o.pitch_mm * o.pitch_mm);
-            s.observed.push_back(l.values[p * l.channels + c]);
-        }
-        scenes.push_back(std::move(s));
-        channel_names.push_back(c < static_cast<int>(e.channel_names.size()) ? e.channel_names[c] : fmt::format("channel{}", c));
-    }
-    return scenes;
-}
-
 void write_outputs(const FitOptions& o, const std::vector<std::string>& names, const std::vector<ProfileFitReport>& reports,
                    const std::optional<PlanarScene>& geometry) {
     namespace fs = std::filesystem;
@@ -165,7 +76,7 @@ void write_outputs(const FitOptions& o, const std::vector<std::string>& names, c
     }
     const auto plot = dir / "profile_fit.png";
     if (fs::exists(plot) && !o.overwrite) throw InputError(plot.string() + ": exists already (use --overwrite to replace it)");
-    write_line_plot(plot, "fit-profile: estimated R'(d) and fitted dipole", "Distance d (mm)", "R (1/mm^2)", curves, true);
+    write_line_plot(plot, "fit-profile: estimated R'(d) and fitted dipole", "Distance d (mm)", "R (1/mm^2)", curves, {.log_y = true});
     if (geometry) {
         const auto exr = dir / "resynthesised.exr";
         check_output_path(exr, o.overwrite, {".exr"});
@@ -228,21 +139,21 @@ void run_fit_profile(const FitOptions& o) {
             if (!o.output_dir.empty()) write_synthetic_inputs(o, scenes.front());
             input = "synthetic: 64 x 64 patches at 0.05 mm, dipole sigma_s' 2.19, sigma_a 0.002 /mm, eta 1.3";
         } else {
-            scenes = read_planar(o, names);
+            scenes = read_planar_scenes({o.irradiance, o.exitance, o.mask, o.pitch_mm}, names);
             input = fmt::format("{} and {} ({}x{} px at {:g} mm)", o.irradiance, o.exitance, scenes.front().width, scenes.front().height, o.pitch_mm);
         }
         for (const auto& s : scenes) reports.push_back(fit_planar(s, options));
         geometry = scenes.front();
     } else if (!o.patches.empty()) {
-        const auto patches = read_patches(o.patches);
+        const auto patches = read_patch_list(o.patches);
         reports.push_back(fit_patches(patches, options));
         names.push_back("l");
         input = fmt::format("{} ({} patches)", o.patches, patches.size());
     } else {
-        const auto [r, v] = read_profile(o.profile, o.column);
-        reports.push_back(fit_radial(r, v, options));
+        const auto samples = read_radial_profile(o.profile, o.column);
+        reports.push_back(fit_radial(samples.radii_mm, samples.profile_per_mm2, options));
         names.push_back(o.column.empty() ? "R" : o.column);
-        input = fmt::format("{} ({} radii)", o.profile, r.size());
+        input = fmt::format("{} ({} radii)", o.profile, samples.radii_mm.size());
     }
 
     if (!o.output_dir.empty()) write_outputs(o, names, reports, geometry);

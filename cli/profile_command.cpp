@@ -89,7 +89,7 @@ void write_profile_plot(const std::string& file, const SpectralProfiles& p) {
         }
     }
     write_line_plot(file, fmt::format("{} ({}): radial diffusion profiles", p.material, p.model), "Radius r (mm)",
-                    any_t ? "R(r), T(r) (1/mm^2)" : "R(r) (1/mm^2)", curves, true);
+                    any_t ? "R(r), T(r) (1/mm^2)" : "R(r) (1/mm^2)", curves, {.log_y = true});
 }
 
 void run_profile(const ProfileOptions& o) {

@@ -511,6 +511,28 @@ def make_example(out):
                 ["wavelength_nm", "reflectance"], rows, "hold")
 
 
+# --- reference values for the benchmarks and validations ------------------------------------------------
+
+def make_reference_slabs(reference, out):
+    """Prahl's adding-doubling slabs (not spectral: no wavelength column and no domain, DATA_FORMAT.md)."""
+    rows = [l for l in reference.read_text(encoding="utf-8").splitlines() if l and not l.startswith("#")]
+    lines = [
+        "# skinspec-table: 1",
+        "# title: Total reflectance and transmittance of Henyey-Greenstein slabs by adding-doubling (Prahl)",
+        "# source: shared/reference/adding_doubling_slabs.csv (Prahl's adding-doubling, 64/56 quadrature points, "
+        "about 1e-3 relative)",
+        f"# generated_by: {GENERATOR}",
+        "# units: a = albedo mu_s/(mu_a+mu_s), b = optical thickness (mu_a+mu_s) d, g, n_slab [dimensionless]; "
+        "rd, tt, a_abs [fraction of the incident power]",
+        "# note: normally incident collimated beam, surroundings n = 1 on both sides, no glass slides",
+        "# note: rd excludes the specular surface reflection ((n-1)/(n+1))^2; tt = unscattered + diffuse",
+    ] + rows
+    path = out / "reference" / "adding_doubling_slabs.csv"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    print(f"wrote {path.relative_to(ROOT)} ({len(rows) - 1} rows)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--sources", type=pathlib.Path, default=ROOT.parent / "shared" / "data-sources")
@@ -529,6 +551,7 @@ def main():
     make_phantom_background(args.out)
     make_biospec_presets(args.out)
     make_jensen_materials(args.reference / "jensen2001_measured_materials.csv", args.out)
+    make_reference_slabs(args.reference / "adding_doubling_slabs.csv", args.out)
 
 
 if __name__ == "__main__":

@@ -16,17 +16,24 @@ int channel(double c) { return static_cast<int>(std::lround(std::clamp(c, 0.0, 1
 }  // namespace
 
 void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
-                     const std::string& y_label, const std::vector<PlotCurve>& curves, bool log_y) {
+                     const std::string& y_label, const std::vector<PlotCurve>& curves, PlotAxes axes) {
+    const bool log_x = axes.log_x, log_y = axes.log_y;
     const auto ext = file.extension().string();
     if (ext != ".png" && ext != ".svg") throw InputError(file.string() + ": plot extension '" + ext + "' is not supported (allowed: .png, .svg)");
     if (curves.empty()) throw InputError(file.string() + ": nothing to plot");
     double x_min = 1e300, x_max = -1e300, y_max = 0.0;
     for (const auto& c : curves) {
         for (std::size_t i = 0; i < c.value.size(); ++i) {
-            x_min = std::min(x_min, c.x[i]);
-            x_max = std::max(x_max, c.x[i]);
+            if (log_x && !(c.x[i] > 0.0)) continue;
+            x_min = std::min(x_min, log_x ? std::log10(c.x[i]) : c.x[i]);
+            x_max = std::max(x_max, log_x ? std::log10(c.x[i]) : c.x[i]);
             y_max = std::max(y_max, c.value[i] + 2.0 * c.stderr[i]);
         }
+    }
+    if (log_x && x_min > x_max) throw InputError(file.string() + ": no point with a positive x on the logarithmic x axis");
+    if (log_x) {
+        x_min = std::floor(x_min);
+        x_max = std::ceil(x_max);
     }
     if (x_max <= x_min) x_max = x_min + 1.0;
     double y_min = 0.0;
@@ -44,6 +51,7 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     } else {
         y_max = y_max <= 1.0 ? std::max(0.05, std::ceil(y_max * 10.0 * 1.05) / 10.0) : y_max * 1.05;
     }
+    const auto x_of = [&](double x) { return log_x ? std::log10(x) : x; };
     const auto y_of = [&](double v) { return log_y ? std::clamp(v > 0.0 ? std::log10(v) : y_min, y_min, y_max) : std::clamp(v, 0.0, y_max); };
 
     auto pls = std::make_unique<plstream>();
@@ -55,7 +63,7 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
     pls->init();
     pls->col0(1);
-    pls->env(x_min, x_max, y_min, y_max, 0, log_y ? 20 : 1);  // 20: logarithmic y axis with grid
+    pls->env(x_min, x_max, y_min, y_max, 0, (log_x ? 10 : 0) + (log_y ? 20 : 0) + (log_x || log_y ? 0 : 1));  // 10/20: log x/y axes
     pls->lab(x_label.c_str(), y_label.c_str(), title.c_str());
 
     std::vector<PLINT> opts, colours, styles;
@@ -71,23 +79,27 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         const int r = channel(c.colour[0] * scale), g = channel(c.colour[1] * scale), b = channel(c.colour[2] * scale);
         pls->scol0a(band_colour, r, g, b, 0.25);
         pls->scol0a(line_colour, r, g, b, 1.0);
-        std::vector<PLFLT> bx, by;
+        std::vector<std::size_t> shown;
         for (std::size_t i = 0; i < c.value.size(); ++i) {
-            bx.push_back(c.x[i]);
-            by.push_back(y_of(c.value[i] + 2.0 * c.stderr[i]));
+            if (!log_x || c.x[i] > 0.0) shown.push_back(i);
         }
-        for (std::size_t i = c.value.size(); i-- > 0;) {
-            bx.push_back(c.x[i]);
-            by.push_back(y_of(c.value[i] - 2.0 * c.stderr[i]));
+        std::vector<PLFLT> bx, by, lx, ly;
+        for (const auto i : shown) {
+            bx.push_back(x_of(c.x[i]));
+            by.push_back(y_of(c.value[i] + 2.0 * c.stderr[i]));
+            lx.push_back(x_of(c.x[i]));
+            ly.push_back(y_of(c.value[i]));
+        }
+        for (auto i = shown.rbegin(); i != shown.rend(); ++i) {
+            bx.push_back(x_of(c.x[*i]));
+            by.push_back(y_of(c.value[*i] - 2.0 * c.stderr[*i]));
         }
         pls->col0(band_colour);
         pls->fill(static_cast<PLINT>(bx.size()), bx.data(), by.data());
         pls->col0(line_colour);
         pls->lsty(c.dashed ? 2 : 1);
         pls->width(2.0);
-        std::vector<PLFLT> ly;
-        for (const double v : c.value) ly.push_back(y_of(v));
-        pls->line(static_cast<PLINT>(c.value.size()), c.x.data(), ly.data());
+        pls->line(static_cast<PLINT>(lx.size()), lx.data(), ly.data());
         opts.push_back(PL_LEGEND_LINE);
         colours.push_back(line_colour);
         styles.push_back(c.dashed ? 2 : 1);

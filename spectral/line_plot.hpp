@@ -18,9 +18,15 @@ struct PlotCurve {
     bool dashed = false;
 };
 
-// .png or .svg by extension; InputError otherwise or when the file cannot be written. With log_y the y axis
-// is logarithmic and spans at most eight decades below the largest value (smaller values sit on the floor).
+// Logarithmic axes: a log y axis spans at most eight decades below the largest value (smaller values sit on
+// the floor); a log x axis spans the positive x values (points at x <= 0 are left out).
+struct PlotAxes {
+    bool log_x = false;
+    bool log_y = false;
+};
+
+// .png or .svg by extension; InputError otherwise or when the file cannot be written.
 void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
-                     const std::string& y_label, const std::vector<PlotCurve>& curves, bool log_y = false);
+                     const std::string& y_label, const std::vector<PlotCurve>& curves, PlotAxes axes = {});
 
 }  // namespace skinspec

@@ -20,9 +20,11 @@ std::vector<double> values_of(const ParameterGrid& g, const char* name) {
         throw InputError(fmt::format("{} grid {:g}:{:g}:{:g} is not a range FIRST:LAST:STEP with 0 <= FIRST <= LAST and STEP > 0",
                                      name, g.first, g.last, g.step));
     }
+    // The count first (a tiny STEP must not run away); values never pass LAST (the refinement box ends there).
+    const double intervals = std::floor((g.last - g.first) / g.step * (1.0 + 1e-12));
+    if (!(intervals < 1'000'000.0)) throw InputError(fmt::format("{} grid {:g}:{:g}:{:g} has more than 1,000,000 values", name, g.first, g.last, g.step));
     std::vector<double> out;
-    for (int i = 0; g.first + i * g.step <= g.last * (1.0 + 1e-12) + 1e-300; ++i) out.push_back(g.first + i * g.step);
-    if (out.size() > 1'000'000) throw InputError(std::string(name) + " grid has more than 1,000,000 values");
+    for (int i = 0; i <= static_cast<int>(intervals); ++i) out.push_back(std::min(g.first + i * g.step, g.last));
     return out;
 }
 
