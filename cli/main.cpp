@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/bench_command.hpp"
+#include "cli/stress_command.hpp"
 #include "cli/color_command.hpp"
 #include "cli/materials_command.hpp"
 #include "cli/spectrum_command.hpp"
@@ -30,6 +32,8 @@ int main(int argc, char** argv) {
     skinspec::cli::add_mcml_command(app);
     skinspec::cli::add_profile_command(app);
     skinspec::cli::add_fit_profile_command(app);
+    skinspec::cli::add_bench_command(app);
+    skinspec::cli::add_stress_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -16,8 +16,8 @@ int channel(double c) { return static_cast<int>(std::lround(std::clamp(c, 0.0, 1
 }  // namespace
 
 void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
-                     const std::string& y_label, const std::vector<PlotCurve>& curves, PlotAxes axes) {
-    const bool log_x = axes.log_x, log_y = axes.log_y;
+                     const std::string& y_label, const std::vector<PlotCurve>& curves, PlotStyle style) {
+    const bool log_x = style.log_x, log_y = style.log_y;
     const auto ext = file.extension().string();
     if (ext != ".png" && ext != ".svg") throw InputError(file.string() + ": plot extension '" + ext + "' is not supported (allowed: .png, .svg)");
     if (curves.empty()) throw InputError(file.string() + ": nothing to plot");
@@ -57,13 +57,20 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     auto pls = std::make_unique<plstream>();
     pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
     pls->sfnam(file.string().c_str());
-    pls->spage(0.0, 0.0, 1000, 650, 0, 0);
+    pls->spage(0.0, 0.0, style.legend_outside ? 1500 : 1000, 650, 0, 0);
     pls->scmap0n(std::max<PLINT>(16, 2 + 2 * static_cast<PLINT>(curves.size())));  // a band and a line colour per curve
     pls->scol0a(0, 255, 255, 255, 1.0);  // background
     pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
     pls->init();
     pls->col0(1);
-    pls->env(x_min, x_max, y_min, y_max, 0, (log_x ? 10 : 0) + (log_y ? 20 : 0) + (log_x || log_y ? 0 : 1));  // 10/20: log x/y axes
+    if (style.legend_outside) {
+        pls->adv(0);
+        pls->vpor(0.07, 0.6, 0.12, 0.9);
+        pls->wind(x_min, x_max, y_min, y_max);
+        pls->box(log_x ? "bcnstlg" : "bcnstg", 0.0, 0, log_y ? "bcnstvlg" : "bcnstvg", 0.0, 0);
+    } else {
+        pls->env(x_min, x_max, y_min, y_max, 0, (log_x ? 10 : 0) + (log_y ? 20 : 0) + (log_x || log_y ? 0 : 1));  // 10/20: log x/y axes
+    }
     pls->lab(x_label.c_str(), y_label.c_str(), title.c_str());
 
     std::vector<PLINT> opts, colours, styles;
@@ -110,9 +117,10 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     pls->col0(1);
     PLFLT legend_width = 0.0, legend_height = 0.0;
     const std::vector<PLINT> text_colours(curves.size(), 1);
+    const bool two_columns = curves.size() > 6 && !style.legend_outside;
     pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
-                PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, 0.02, 0.02, 0.08, 0, 1, 1,
-                curves.size() > 6 ? static_cast<PLINT>((curves.size() + 1) / 2) : 0, curves.size() > 6 ? 2 : 0,
+                style.legend_outside ? PL_POSITION_OUTSIDE | PL_POSITION_TOP | PL_POSITION_RIGHT : PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT,
+                0.02, 0.02, 0.08, 0, 1, 1, two_columns ? static_cast<PLINT>((curves.size() + 1) / 2) : 0, two_columns ? 2 : 0,
                 static_cast<PLINT>(curves.size()), opts.data(), 1.0, curves.size() > 6 ? 0.65 : 0.9, 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
                 nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), nullptr, nullptr, nullptr, nullptr);
     pls.reset();  // the destructor finishes and closes the file

@@ -46,6 +46,9 @@ TEST_CASE("diffuse Fresnel reflectance and dipole limits", "[dipole]") {
     CHECK(diffuse_fresnel_reflectance(1.0) == Approx(0.0016).margin(1e-12));  // ~0 at matched index (the fit's residual)
     CHECK(diffuse_fresnel_reflectance(1.3) == Approx(-1.440 / 1.69 + 0.710 / 1.3 + 0.668 + 0.0636 * 1.3));
     CHECK(diffuse_fresnel_reflectance(0.8) > diffuse_fresnel_reflectance(0.95));  // leaving a denser medium reflects more
+    // Outside [0.4, 2.5] the fits drift from the exact average and pass 1 near eta = 3.8 (stress grid finding).
+    CHECK_THROWS_WITH(diffuse_fresnel_reflectance(4.0), Catch::Contains("eta = 4 is outside [0.4, 2.5]"));
+    CHECK_THROWS_WITH(diffuse_fresnel_reflectance(0.2), Catch::Contains("eta = 0.2 is outside [0.4, 2.5]"));
     // No absorption: alpha' = 1, all light comes back.
     CHECK(Dipole({1.0, 0.0, 1.3}).total_reflectance() == Approx(1.0));
     // No scattering: nothing is diffusely reflected.

@@ -6,6 +6,7 @@
 #include "layers/diffusion/dipole.hpp"
 #include "layers/profile_fit/dipole_fit.hpp"
 #include "layers/profile_fit/profile_solve.hpp"
+#include "layers/profile_fit/profile_system.hpp"
 #include "layers/profile_fit/synthetic_scene.hpp"
 #include "spectral/input_error.hpp"
 
@@ -108,5 +109,8 @@ TEST_CASE("bad fit inputs give clear errors", "[profile-fit]") {
     bad.valid[0] = bad.valid[1] = 1;
     CHECK_THROWS_WITH(planar_system(bad, 0.1), Catch::Contains("n > m"));
     CHECK_THROWS_WITH(planar_system(scene, -0.1), Catch::Contains("quantisation step = -0.1 mm is outside (0, inf)"));
+    // Patches 1e80 mm apart: the bin count is checked before it is converted (fuzz finding: UB before).
+    const std::vector<SurfacePatch> far{{{0.0, 0.0, 0.0}, 1.0, 1.0, true}, {{1e80, 0.0, 0.0}, 1.0, 1.0, true}};
+    CHECK_THROWS_WITH(patch_system(far, 0.1), Catch::Contains("distance bins for m = 2 usable patches (n > m"));
     CHECK_THROWS_WITH(solve_profile(planar_system(scene, 0.1), {-1.0, false}), Catch::Contains("lambda = -1 is outside [0, inf)"));
 }

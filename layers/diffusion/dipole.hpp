@@ -8,6 +8,9 @@ namespace skinspec {
 // Diffuse Fresnel reflectance of the boundary for relative index eta = n_inside / n_outside:
 // eta >= 1 seed 004 (Egan & Hilgeman): -1.440/eta^2 + 0.710/eta + 0.668 + 0.0636 eta;
 // eta < 1 seed 002 (transport-models.md Sec. 2): -0.4399 + 0.7099/eta - 0.3319/eta^2 + 0.0636/eta^3.
+// InputError for eta outside [0.4, 2.5], where the fits stay within 0.005 of the exact average.
+constexpr double min_fitted_relative_index = 0.4;
+constexpr double max_fitted_relative_index = 2.5;
 double diffuse_fresnel_reflectance(double eta);
 
 struct DipoleMedium {
@@ -19,7 +22,7 @@ struct DipoleMedium {
 
 class Dipole {
 public:
-    // InputError for negative or non-finite coefficients, sigma_t' = 0, or eta outside (0.2, 5).
+    // InputError for negative or non-finite coefficients, sigma_t' = 0, or eta outside [0.4, 2.5].
     explicit Dipole(const DipoleMedium& medium);
 
     double reduced_albedo() const { return alpha_prime_; }

@@ -20,16 +20,16 @@ void check_step(double step_mm) {
     if (!(step_mm > 0.0 && std::isfinite(step_mm))) throw InputError("quantisation step = " + format_number(step_mm) + " mm is outside (0, inf)");
 }
 
-std::size_t bin_count(double max_distance_mm, double step_mm) {
-    return static_cast<std::size_t>(std::floor(max_distance_mm / step_mm)) + 2;  // the last bin closes the last interval
-}
-
-void check_sizes(std::size_t bins, std::size_t rows) {
-    if (bins > rows) {
-        throw InputError(fmt::format("the quantisation gives n = {} distance bins for m = {} usable patches (n > m: "
+// Bins 0, step, ... up to the largest distance (the last bin closes the last interval); InputError when there
+// are more bins than usable patches (n > m), checked in floating point so no distance can overflow the count.
+std::size_t bin_count(double max_distance_mm, double step_mm, std::size_t rows) {
+    const double bins = std::floor(max_distance_mm / step_mm) + 2.0;
+    if (!(bins <= static_cast<double>(rows))) {
+        throw InputError(fmt::format("the quantisation gives n = {:.6g} distance bins for m = {} usable patches (n > m: "
                                      "under-determined); use a larger step or more patches",
                                      bins, rows));
     }
+    return static_cast<std::size_t>(bins);
 }
 
 void mark_bins(ProfileSystem& s) {
@@ -66,8 +66,7 @@ ProfileSystem planar_system(const PlanarScene& scene, double step_mm) {
     }
     const double h = scene.pitch_mm;
     const double max_distance = h * std::hypot(scene.width - 1, scene.height - 1);
-    const std::size_t n = bin_count(max_distance, step_mm);
-    check_sizes(n, s.rows.size());
+    const std::size_t n = bin_count(max_distance, step_mm, s.rows.size());
     s.w.resize(static_cast<Eigen::Index>(s.rows.size()), static_cast<Eigen::Index>(n));
     s.l.resize(static_cast<Eigen::Index>(s.rows.size()));
     for (std::size_t r = 0; r < s.rows.size(); ++r) s.l[static_cast<Eigen::Index>(r)] = scene.observed[s.rows[r]];
@@ -112,8 +111,7 @@ ProfileSystem patch_system(const std::vector<SurfacePatch>& patches, double step
     }
     if (s.rows.empty()) throw InputError("patch list: no visible patch");
     max_distance = glm::length(hi - lo);
-    const std::size_t n = bin_count(max_distance, step_mm);
-    check_sizes(n, s.rows.size());
+    const std::size_t n = bin_count(max_distance, step_mm, s.rows.size());
     s.w = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(s.rows.size()), static_cast<Eigen::Index>(n));
     s.l.resize(static_cast<Eigen::Index>(s.rows.size()));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.rows.size()), [&](const tbb::blocked_range<std::size_t>& range) {

@@ -1,0 +1,268 @@
+#include "cli/bench_command.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/progress.hpp"
+#include "cli/spectral_output.hpp"
+#include "layers/benchmark/error_fits.hpp"
+#include "layers/benchmark/runtime_benchmark.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/chart_image.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/line_plot.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct BenchCommandOptions {
+    bool quick = false;
+    std::uint64_t seed = 1;
+    double tolerance_percent = 1.0;
+    std::string output, plot, json;
+    bool overwrite = false;
+};
+
+bool is_walk(BenchSolver s) { return s == BenchSolver::biospec_walk || s == BenchSolver::volumetric_walk; }
+
+// The points of one case (indices into report.points).
+std::vector<std::size_t> points_of(const BenchReport& report, std::size_t case_index) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < report.points.size(); ++i) {
+        if (report.points[i].case_index == case_index) out.push_back(i);
+    }
+    return out;
+}
+
+struct CaseSummary {
+    std::vector<bool> pareto;  // per point of the case
+    struct WalkSlopes {
+        BenchSolver solver;
+        std::optional<PowerLawFit> against_time, against_rays;
+    };
+    std::vector<WalkSlopes> slopes;
+    std::optional<std::size_t> fastest;  // point index meeting the tolerance
+};
+
+// Walk slopes use the points whose error is resolved (above twice the reference's floor).
+CaseSummary summarise(const BenchReport& report, std::size_t case_index, double tolerance) {
+    const auto indices = points_of(report, case_index);
+    std::vector<double> seconds, errors;
+    for (const auto i : indices) {
+        seconds.push_back(report.points[i].seconds);
+        errors.push_back(report.points[i].relative_error);
+    }
+    CaseSummary s;
+    s.pareto = pareto_front(seconds, errors);
+    if (const auto k = fastest_within(seconds, errors, tolerance)) s.fastest = indices[*k];
+    for (const auto solver : {BenchSolver::biospec_walk, BenchSolver::volumetric_walk}) {
+        std::vector<double> t, rays, e;
+        for (const auto i : indices) {
+            const auto& p = report.points[i];
+            if (p.solver == solver && p.relative_error > 2.0 * report.cases[case_index].resolvable_error) {
+                t.push_back(p.seconds);
+                rays.push_back(static_cast<double>(p.rays));
+                e.push_back(p.relative_error);
+            }
+        }
+        if (!t.empty()) s.slopes.push_back({solver, fit_power_law(t, e), fit_power_law(rays, e)});
+    }
+    return s;
+}
+
+std::string budget_text(const BenchPoint& p) {
+    return p.rays > 0 ? fmt::format("{} rays x{}", p.rays, p.repetitions) : std::string("closed form");
+}
+
+void print_report(const BenchReport& report, const BenchCommandOptions& o) {
+    const double tolerance = o.tolerance_percent / 100.0;
+    std::cout << fmt::format("skinspec bench{}: run time against error, seed {} (reference runs: a different seed)\n",
+                             o.quick ? " --quick" : "", o.seed);
+    for (std::size_t c = 0; c < report.cases.size(); ++c) {
+        const auto& k = report.cases[c];
+        const auto summary = summarise(report, c, tolerance);
+        std::cout << fmt::format("\n{}: {} reference {:.6f}{} [{}{}]\n", k.name, k.quantity, k.reference.value,
+                                 k.reference.stderr > 0 ? fmt::format(" +- {:.6f}", k.reference.stderr) : std::string(), k.reference_source,
+                                 k.reference_seconds > 0 ? fmt::format(", {:.1f} s", k.reference_seconds) : std::string());
+        std::cout << fmt::format("  {:<10} {:>20} {:>12} {:>22} {:>10} {:>6}\n", "solver", "budget", "seconds", "value", "error %", "pareto");
+        const auto indices = points_of(report, c);
+        for (std::size_t j = 0; j < indices.size(); ++j) {
+            const auto& p = report.points[indices[j]];
+            std::cout << fmt::format("  {:<10} {:>20} {:>12.4g} {:>22} {:>10.3f} {:>6}{}\n", to_string(p.solver), budget_text(p), p.seconds,
+                                     p.value.stderr > 0 ? fmt::format("{:.5f} +- {:.5f}", p.value.value, p.value.stderr) : fmt::format("{:.5f}", p.value.value),
+                                     100.0 * p.relative_error, summary.pareto[j] ? "*" : "", p.note.empty() ? std::string() : "  (" + p.note + ")");
+        }
+        for (const auto& w : summary.slopes) {
+            if (w.against_time && w.against_rays) {
+                std::cout << fmt::format("  {} walk: error ~ time^({:.2f} +- {:.2f}), ~ rays^({:.2f} +- {:.2f}) over {} budgets (Monte Carlo: -0.5); "
+                                         "{:g} % error in ~{:.3g} s (fitted)\n",
+                                         to_string(w.solver), w.against_time->slope, w.against_time->slope_stderr, w.against_rays->slope,
+                                         w.against_rays->slope_stderr, w.against_time->points, o.tolerance_percent, w.against_time->x_at(tolerance));
+            }
+        }
+        if (summary.fastest) {
+            const auto& p = report.points[*summary.fastest];
+            std::cout << fmt::format("  fastest to {:g} % error: {} ({}, {:.3g} s)\n", o.tolerance_percent, to_string(p.solver), budget_text(p), p.seconds);
+        } else {
+            std::cout << fmt::format("  no solver reached {:g} % error within the budgets\n", o.tolerance_percent);
+        }
+        std::cout << fmt::format("  errors below {:.2g} % are not resolved by the reference\n", 100.0 * k.resolvable_error);
+    }
+    if (!report.pair_sweep.empty()) {
+        std::cout << fmt::format("\nMulti-pole profile ({} radii, first slab) against the series summed to 1e-14:\n", report.pair_sweep_radii);
+        std::cout << fmt::format("  {:>10} {:>8} {:>12} {:>16}\n", "tolerance", "pairs", "seconds", "max rel. error");
+        for (const auto& p : report.pair_sweep) std::cout << fmt::format("  {:>10.0e} {:>8} {:>12.4g} {:>16.3g}\n", p.tolerance, p.pairs, p.seconds, p.max_relative_error);
+    }
+    if (!report.scaling.empty()) {
+        std::cout << "\nThread scaling (rays per second per core):\n";
+        for (const auto& s : report.scaling) {
+            std::cout << fmt::format("  {:<8} {:<34} {:>9} rays: 1 thread {:.3g}/s, 2 threads {:.3g}/s per core, speed-up {:.2f}x\n", to_string(s.solver),
+                                     s.workload, s.rays, s.rays / s.seconds_one_thread, s.rays / s.seconds_two_threads / 2.0,
+                                     s.seconds_one_thread / s.seconds_two_threads);
+        }
+    }
+    if (!report.colours.empty()) {
+        std::cout << "\nTime per colour (one swatch patch, CIEDE2000 uncertainty <= 0.3, 2 threads):\n";
+        for (const auto& c : report.colours) {
+            std::cout << fmt::format("  {:<20} {:.3f} s, {} rays, Delta E uncertainty {:.3f}{}\n", c.material, c.seconds, c.rays, c.delta_e_uncertainty,
+                                     c.converged ? "" : " (budget spent before the target)");
+        }
+    }
+    if (report.partial) std::cout << "\nstopped early: the figures above are what finished\n";
+}
+
+std::string to_csv(const BenchReport& report) {
+    std::string csv = fmt::format("# skinspec {} bench: one row per solver and budget; seconds per run (wall, 2 threads); error relative, RMS over the runs\n"
+                                  "case,quantity,reference,reference_stderr,solver,rays,runs,seconds,value,value_stderr,relative_error\n",
+                                  version);
+    for (const auto& p : report.points) {
+        const auto& c = report.cases[p.case_index];
+        csv += fmt::format("\"{}\",{},{:.9g},{:.3g},{},{},{},{:.6g},{:.9g},{:.3g},{:.6g}\n", c.name, c.quantity, c.reference.value, c.reference.stderr,
+                           to_string(p.solver), p.rays, p.repetitions, p.seconds, p.value.value, p.value.stderr, p.relative_error);
+    }
+    return csv;
+}
+
+Json to_json(const BenchReport& report, const BenchCommandOptions& o) {
+    Json cases = Json::array();
+    for (std::size_t c = 0; c < report.cases.size(); ++c) {
+        const auto& k = report.cases[c];
+        const auto summary = summarise(report, c, o.tolerance_percent / 100.0);
+        Json points = Json::array();
+        const auto indices = points_of(report, c);
+        for (std::size_t j = 0; j < indices.size(); ++j) {
+            const auto& p = report.points[indices[j]];
+            points.push_back({{"solver", to_string(p.solver)}, {"rays", p.rays}, {"runs", p.repetitions}, {"seconds", p.seconds},
+                              {"value", p.value.value}, {"value_stderr", p.value.stderr}, {"relative_error", p.relative_error},
+                              {"pareto", static_cast<bool>(summary.pareto[j])}, {"note", p.note}});
+        }
+        Json slopes = Json::object();
+        for (const auto& w : summary.slopes) {
+            if (w.against_time && w.against_rays) {
+                slopes[std::string(to_string(w.solver))] = {{"slope_against_time", w.against_time->slope}, {"slope_against_time_stderr", w.against_time->slope_stderr},
+                                                            {"slope_against_rays", w.against_rays->slope}, {"slope_against_rays_stderr", w.against_rays->slope_stderr},
+                                                            {"points", w.against_time->points}, {"seconds_for_tolerance", w.against_time->x_at(o.tolerance_percent / 100.0)}};
+            }
+        }
+        cases.push_back({{"name", k.name}, {"quantity", k.quantity}, {"reference", k.reference.value}, {"reference_stderr", k.reference.stderr},
+                         {"reference_source", k.reference_source}, {"resolvable_error", k.resolvable_error}, {"points", points}, {"walk_slopes", slopes},
+                         {"fastest_within_tolerance", summary.fastest ? Json(std::string(to_string(report.points[*summary.fastest].solver))) : Json(nullptr)}});
+    }
+    Json pairs = Json::array();
+    for (const auto& p : report.pair_sweep) pairs.push_back({{"tolerance", p.tolerance}, {"pairs", p.pairs}, {"seconds", p.seconds}, {"max_relative_error", p.max_relative_error}});
+    Json scaling = Json::array();
+    for (const auto& s : report.scaling) {
+        scaling.push_back({{"solver", to_string(s.solver)}, {"workload", s.workload}, {"rays", s.rays}, {"seconds_one_thread", s.seconds_one_thread},
+                           {"seconds_two_threads", s.seconds_two_threads}, {"speedup", s.seconds_one_thread / s.seconds_two_threads}});
+    }
+    Json colours = Json::array();
+    for (const auto& c : report.colours) {
+        colours.push_back({{"material", c.material}, {"seconds", c.seconds}, {"rays", c.rays}, {"delta_e_uncertainty", c.delta_e_uncertainty}, {"converged", c.converged}});
+    }
+    return {{"skinspec_version", version}, {"quick", o.quick}, {"seed", o.seed}, {"tolerance_percent", o.tolerance_percent}, {"partial", report.partial},
+            {"cases", cases}, {"multipole_pair_sweep", pairs}, {"thread_scaling", scaling}, {"time_per_colour", colours}};
+}
+
+// Error against time, log-log: a line per walk and case; a diffusion point as a dashed level from its time on.
+void write_plot(const std::string& file, const BenchReport& report) {
+    static const std::vector<RGB> palette{{0.85, 0.15, 0.10}, {0.10, 0.55, 0.20}, {0.10, 0.30, 0.90}, {0.75, 0.45, 0.00},
+                                          {0.55, 0.10, 0.65}, {0.00, 0.60, 0.65}, {0.40, 0.40, 0.40}};
+    double longest = 0.0;
+    for (const auto& p : report.points) longest = std::max(longest, p.seconds);
+    std::vector<PlotCurve> curves;
+    for (std::size_t c = 0; c < report.cases.size(); ++c) {
+        const auto colour = palette[c % palette.size()];
+        for (const auto solver : {BenchSolver::biospec_walk, BenchSolver::volumetric_walk, BenchSolver::multipole, BenchSolver::dipole}) {
+            PlotCurve curve{fmt::format("{}: {}", report.cases[c].name, to_string(solver)), {}, {}, {}, colour, !is_walk(solver)};
+            for (const auto i : points_of(report, c)) {
+                const auto& p = report.points[i];
+                if (p.solver != solver) continue;
+                curve.x.push_back(p.seconds);
+                curve.value.push_back(100.0 * p.relative_error);
+                if (!is_walk(solver)) {
+                    curve.x.push_back(longest);
+                    curve.value.push_back(100.0 * p.relative_error);
+                }
+            }
+            curve.stderr.assign(curve.x.size(), 0.0);
+            if (!curve.x.empty()) curves.push_back(std::move(curve));
+        }
+    }
+    write_line_plot(file, "skinspec bench: error against run time (walks solid, diffusion dashed)", "Run time (s)", "Relative error (%)", curves,
+                    {.log_x = true, .log_y = true, .legend_outside = true});
+}
+
+void run_bench(const BenchCommandOptions& o) {
+    if (!(o.tolerance_percent > 0.0 && o.tolerance_percent < 100.0)) {
+        throw InputError("--tolerance = " + format_number(o.tolerance_percent) + " % is outside (0, 100)");
+    }
+    if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".csv"});
+    if (!o.json.empty()) check_output_path(o.json, o.overwrite, {".json"});
+    if (!o.plot.empty()) check_output_path(o.plot, o.overwrite, {".png", ".svg"});
+    const InterruptGuard interrupt;
+    BenchOptions options;
+    options.quick = o.quick;
+    options.seed = o.seed;
+    options.cancel = &InterruptGuard::cancel_flag();
+    options.on_stage = [](const std::string& stage) { std::cerr << "bench: " << stage << '\n'; };
+    const auto report = run_benchmark(options);
+    print_report(report, o);
+    if (report.points.empty()) return;
+    if (!o.output.empty()) {
+        write_text_file(o.output, to_csv(report), o.overwrite);
+        std::cerr << "wrote " << o.output << '\n';
+    }
+    if (!o.json.empty()) {
+        write_text_file(o.json, to_json(report, o).dump(2) + "\n", o.overwrite);
+        std::cerr << "wrote " << o.json << '\n';
+    }
+    if (!o.plot.empty()) {
+        write_plot(o.plot, report);
+        std::cerr << "wrote " << o.plot << '\n';
+    }
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+    auto o = std::make_shared<BenchCommandOptions>();
+    auto* cmd = app.add_subcommand("bench", "Run time against error for every solver: slopes, Pareto front, thread scaling, time per colour");
+    cmd->add_flag("--quick", o->quick, "The short form (under a minute): fewer budgets and seeds, shorter references");
+    cmd->add_option("--seed", o->seed, "Seed of the swept runs (the references use a different one)")->capture_default_str();
+    cmd->add_option("--tolerance", o->tolerance_percent, "Relative error (%) for 'which solver is fastest'")->capture_default_str();
+    cmd->add_option("--output", o->output, "CSV of every point");
+    cmd->add_option("--json", o->json, "The whole report as JSON, FILE.json");
+    cmd->add_option("--plot", o->plot, "Log-log plot of error against time, FILE.png or FILE.svg");
+    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    cmd->callback([o] { run_bench(*o); });
+}
+
+}  // namespace skinspec::cli
