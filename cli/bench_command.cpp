@@ -13,6 +13,7 @@
 #include "layers/benchmark/error_fits.hpp"
 #include "layers/benchmark/runtime_benchmark.hpp"
 #include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"
@@ -256,7 +257,7 @@ void add_bench_command(CLI::App& app) {
     auto o = std::make_shared<BenchCommandOptions>();
     auto* cmd = app.add_subcommand("bench", "Run time against error for every solver: slopes, Pareto front, thread scaling, time per colour");
     cmd->add_flag("--quick", o->quick, "The short form (under a minute): fewer budgets and seeds, shorter references");
-    cmd->add_option("--seed", o->seed, "Seed of the swept runs (the references use a different one)")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the swept runs (the references use a different one)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_option("--tolerance", o->tolerance_percent, "Relative error (%) for 'which solver is fastest'")->capture_default_str();
     cmd->add_option("--output", o->output, "CSV of every point");
     cmd->add_option("--json", o->json, "The whole report as JSON, FILE.json");

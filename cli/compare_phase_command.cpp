@@ -149,7 +149,7 @@ void add_compare_phase_command(CLI::App& app) {
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--stderr", o->stderr_target, "Standard error target per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--plot", o->plot, "Plot the spectra to FILE.png or FILE.svg");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace the --plot file if it exists");

@@ -15,6 +15,7 @@
 #include "layers/profile_fit/profile_inputs.hpp"
 #include "layers/profile_fit/synthetic_scene.hpp"
 #include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"

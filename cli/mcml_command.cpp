@@ -13,6 +13,7 @@
 #include "cli/spectral_output.hpp"
 #include "layers/rte/mcml_files.hpp"
 #include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -137,8 +138,8 @@ void add_mcml_command(CLI::App& app) {
     auto o = std::make_shared<McmlOptions>();
     auto* cmd = app.add_subcommand("mcml", "Run an MCML .mci file with the volumetric walk; writes MCML .mco files (and JSON with standard errors)");
     cmd->add_option("file", o->file, "MCML input file (.mci)")->required();
-    cmd->add_option("--photons", o->photons, "Override the photon count of every run")->check(CLI::PositiveNumber);
-    cmd->add_option("--seed", o->seed, "Random seed (identical results for any thread count)")->capture_default_str();
+    cmd->add_option("--photons", o->photons, "Override the photon count of every run")->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
+    cmd->add_option("--seed", o->seed, "Random seed (identical results for any thread count)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--boundaries", o->boundaries, "Fresnel at the outer boundaries: random (all-or-none, MCML) or split")->capture_default_str();
     cmd->add_option("--output-dir", o->output_dir, "Write the .mco files here (default: the current folder, as MCML does)");

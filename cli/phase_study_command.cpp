@@ -11,6 +11,7 @@
 #include "layers/phase_study/phantom_sheet.hpp"
 #include "layers/phase_study/phase_study.hpp"
 #include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/data_paths.hpp"
 #include "spectral/input_error.hpp"
@@ -165,7 +166,7 @@ void add_phase_study_command(CLI::App& app) {
     cmd->add_option("--output-dir", o->output_dir, "Write goniometer CSV and plots and phantom-sheet images here");
     cmd->add_option("--background", o->background, "Phantom background image (any OpenImageIO format; default data/images/phantom_background.png)");
     cmd->add_option("--separations", o->separations, "Sheet-to-background separations, comma list (background is 8 units wide)")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_flag("--json", o->json, "Print every table's numbers as one JSON object");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing files in --output-dir");
     cmd->callback([o] { run_phase_study_command(*o); });

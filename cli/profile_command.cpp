@@ -11,6 +11,7 @@
 #include "layers/diffusion/diffusion_profiles.hpp"
 #include "materials/material_file.hpp"
 #include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"

@@ -278,12 +278,4 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
                     "Wavelength (nm)", any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
 }
 
-void write_text_file(const std::string& file, const std::string& text, bool overwrite) {
-    if (std::filesystem::exists(file) && !overwrite) throw InputError(file + ": exists already (use --overwrite to replace it)");
-    std::ofstream out(file);
-    if (!out) throw InputError(file + ": cannot be written");
-    out << text;
-    if (!out) throw InputError(file + ": write failed");
-}
-
 }  // namespace skinspec::cli

@@ -33,7 +33,4 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra);
 // material's simulated sRGB colour, as PNG or SVG.
 void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra);
 
-// Writes `text` to `file`; refuses to replace an existing file unless `overwrite`.
-void write_text_file(const std::string& file, const std::string& text, bool overwrite);
-
 }  // namespace skinspec::cli

@@ -13,6 +13,7 @@
 #include "layers/diffusion/diffusion_model.hpp"
 #include "layers/rte/rte_model.hpp"
 #include "materials/material_file.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -195,7 +196,7 @@ void add_spectrum_command(CLI::App& app) {
                    ->check(CLI::PositiveNumber);
     rays->excludes(se);
     cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength with --stderr")->capture_default_str()->check(CLI::PositiveNumber);
-    cmd->add_option("--seed", o->seed, "Random seed (results are identical for any thread count)")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed (results are identical for any thread count)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
     cmd->add_option("--reflector", o->reflector, "Hypodermis reflector on|off (off: light leaving the bottom is transmittance)");

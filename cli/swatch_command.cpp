@@ -283,7 +283,7 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--display", o->display, "OCIO display for PNG/TIFF")->capture_default_str();
     cmd->add_option("--view", o->view, "OCIO view for PNG/TIFF")->capture_default_str();
     cmd->add_option("--patch-size", o->patch_px, "Patch size in pixels")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and patch")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "spectral/data_paths.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -509,13 +510,7 @@ std::string to_toml(const Material& material) {
 }
 
 void write_material(const Material& material, const std::filesystem::path& file, bool overwrite) {
-    if (std::filesystem::exists(file) && !overwrite) {
-        throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
-    }
-    std::ofstream out(file);
-    if (!out) throw InputError(file.string() + ": cannot be written");
-    out << to_toml(material);
-    if (!out) throw InputError(file.string() + ": write failed");
+    write_text_file(file, to_toml(material), overwrite);
 }
 
 }  // namespace skinspec

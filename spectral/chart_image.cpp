@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "spectral/data_paths.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec {
@@ -47,7 +48,9 @@ void set_metadata(OIIO::ImageBuf& buf, const ImageMetadata& metadata) {
 
 void write(OIIO::ImageBuf& buf, const std::filesystem::path& file, OIIO::TypeDesc format) {
     buf.set_write_format(format);
-    if (!buf.write(file.string())) throw InputError(file.string() + ": cannot be written (" + buf.geterror() + ")");
+    write_atomically(file, [&](const std::filesystem::path& temporary) {
+        if (!buf.write(temporary.string())) throw InputError(file.string() + ": cannot be written (" + buf.geterror() + ")");
+    });
 }
 
 // Draws `label` (lines separated by '\n') at the top-left of `roi`, in black or white for contrast.

@@ -6,6 +6,7 @@
 
 #include <plplot/plstream.h>
 
+#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec {
@@ -54,77 +55,79 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     const auto x_of = [&](double x) { return log_x ? std::log10(x) : x; };
     const auto y_of = [&](double v) { return log_y ? std::clamp(v > 0.0 ? std::log10(v) : y_min, y_min, y_max) : std::clamp(v, 0.0, y_max); };
 
-    auto pls = std::make_unique<plstream>();
-    pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
-    pls->sfnam(file.string().c_str());
-    pls->spage(0.0, 0.0, style.legend_outside ? 1500 : 1000, 650, 0, 0);
-    pls->scmap0n(std::max<PLINT>(16, 2 + 2 * static_cast<PLINT>(curves.size())));  // a band and a line colour per curve
-    pls->scol0a(0, 255, 255, 255, 1.0);  // background
-    pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
-    pls->init();
-    pls->col0(1);
-    if (style.legend_outside) {
-        pls->adv(0);
-        pls->vpor(0.07, 0.6, 0.12, 0.9);
-        pls->wind(x_min, x_max, y_min, y_max);
-        pls->box(log_x ? "bcnstlg" : "bcnstg", 0.0, 0, log_y ? "bcnstvlg" : "bcnstvg", 0.0, 0);
-    } else {
-        pls->env(x_min, x_max, y_min, y_max, 0, (log_x ? 10 : 0) + (log_y ? 20 : 0) + (log_x || log_y ? 0 : 1));  // 10/20: log x/y axes
-    }
-    pls->lab(x_label.c_str(), y_label.c_str(), title.c_str());
+    write_atomically(file, [&](const std::filesystem::path& temporary) {
+        auto pls = std::make_unique<plstream>();
+        pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
+        pls->sfnam(temporary.string().c_str());
+        pls->spage(0.0, 0.0, style.legend_outside ? 1500 : 1000, 650, 0, 0);
+        pls->scmap0n(std::max<PLINT>(16, 2 + 2 * static_cast<PLINT>(curves.size())));  // a band and a line colour per curve
+        pls->scol0a(0, 255, 255, 255, 1.0);  // background
+        pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
+        pls->init();
+        pls->col0(1);
+        if (style.legend_outside) {
+            pls->adv(0);
+            pls->vpor(0.07, 0.6, 0.12, 0.9);
+            pls->wind(x_min, x_max, y_min, y_max);
+            pls->box(log_x ? "bcnstlg" : "bcnstg", 0.0, 0, log_y ? "bcnstvlg" : "bcnstvg", 0.0, 0);
+        } else {
+            pls->env(x_min, x_max, y_min, y_max, 0, (log_x ? 10 : 0) + (log_y ? 20 : 0) + (log_x || log_y ? 0 : 1));  // 10/20: log x/y axes
+        }
+        pls->lab(x_label.c_str(), y_label.c_str(), title.c_str());
 
-    std::vector<PLINT> opts, colours, styles;
-    std::vector<PLFLT> widths;
-    std::vector<const char*> labels;
-    for (std::size_t k = 0; k < curves.size(); ++k) {
-        const auto& c = curves[k];
-        const int band_colour = 2 + 2 * static_cast<int>(k);
-        const int line_colour = band_colour + 1;
-        // Very light skin colours would vanish on white: darken the line, keep the hue.
-        const double luma = 0.2126 * c.colour[0] + 0.7152 * c.colour[1] + 0.0722 * c.colour[2];
-        const double scale = luma > 0.7 ? 0.7 / luma : 1.0;
-        const int r = channel(c.colour[0] * scale), g = channel(c.colour[1] * scale), b = channel(c.colour[2] * scale);
-        pls->scol0a(band_colour, r, g, b, 0.25);
-        pls->scol0a(line_colour, r, g, b, 1.0);
-        std::vector<std::size_t> shown;
-        for (std::size_t i = 0; i < c.value.size(); ++i) {
-            if (!log_x || c.x[i] > 0.0) shown.push_back(i);
+        std::vector<PLINT> opts, colours, styles;
+        std::vector<PLFLT> widths;
+        std::vector<const char*> labels;
+        for (std::size_t k = 0; k < curves.size(); ++k) {
+            const auto& c = curves[k];
+            const int band_colour = 2 + 2 * static_cast<int>(k);
+            const int line_colour = band_colour + 1;
+            // Very light skin colours would vanish on white: darken the line, keep the hue.
+            const double luma = 0.2126 * c.colour[0] + 0.7152 * c.colour[1] + 0.0722 * c.colour[2];
+            const double scale = luma > 0.7 ? 0.7 / luma : 1.0;
+            const int r = channel(c.colour[0] * scale), g = channel(c.colour[1] * scale), b = channel(c.colour[2] * scale);
+            pls->scol0a(band_colour, r, g, b, 0.25);
+            pls->scol0a(line_colour, r, g, b, 1.0);
+            std::vector<std::size_t> shown;
+            for (std::size_t i = 0; i < c.value.size(); ++i) {
+                if (!log_x || c.x[i] > 0.0) shown.push_back(i);
+            }
+            std::vector<PLFLT> bx, by, lx, ly;
+            for (const auto i : shown) {
+                bx.push_back(x_of(c.x[i]));
+                by.push_back(y_of(c.value[i] + 2.0 * c.stderr[i]));
+                lx.push_back(x_of(c.x[i]));
+                ly.push_back(y_of(c.value[i]));
+            }
+            for (auto i = shown.rbegin(); i != shown.rend(); ++i) {
+                bx.push_back(x_of(c.x[*i]));
+                by.push_back(y_of(c.value[*i] - 2.0 * c.stderr[*i]));
+            }
+            pls->col0(band_colour);
+            pls->fill(static_cast<PLINT>(bx.size()), bx.data(), by.data());
+            pls->col0(line_colour);
+            pls->lsty(c.dashed ? 2 : 1);
+            pls->width(2.0);
+            pls->line(static_cast<PLINT>(lx.size()), lx.data(), ly.data());
+            opts.push_back(PL_LEGEND_LINE);
+            colours.push_back(line_colour);
+            styles.push_back(c.dashed ? 2 : 1);
+            widths.push_back(2.0);
+            labels.push_back(c.label.c_str());
         }
-        std::vector<PLFLT> bx, by, lx, ly;
-        for (const auto i : shown) {
-            bx.push_back(x_of(c.x[i]));
-            by.push_back(y_of(c.value[i] + 2.0 * c.stderr[i]));
-            lx.push_back(x_of(c.x[i]));
-            ly.push_back(y_of(c.value[i]));
-        }
-        for (auto i = shown.rbegin(); i != shown.rend(); ++i) {
-            bx.push_back(x_of(c.x[*i]));
-            by.push_back(y_of(c.value[*i] - 2.0 * c.stderr[*i]));
-        }
-        pls->col0(band_colour);
-        pls->fill(static_cast<PLINT>(bx.size()), bx.data(), by.data());
-        pls->col0(line_colour);
-        pls->lsty(c.dashed ? 2 : 1);
-        pls->width(2.0);
-        pls->line(static_cast<PLINT>(lx.size()), lx.data(), ly.data());
-        opts.push_back(PL_LEGEND_LINE);
-        colours.push_back(line_colour);
-        styles.push_back(c.dashed ? 2 : 1);
-        widths.push_back(2.0);
-        labels.push_back(c.label.c_str());
-    }
-    pls->lsty(1);
-    pls->col0(1);
-    PLFLT legend_width = 0.0, legend_height = 0.0;
-    const std::vector<PLINT> text_colours(curves.size(), 1);
-    const bool two_columns = curves.size() > 6 && !style.legend_outside;
-    pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
-                style.legend_outside ? PL_POSITION_OUTSIDE | PL_POSITION_TOP | PL_POSITION_RIGHT : PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT,
-                0.02, 0.02, 0.08, 0, 1, 1, two_columns ? static_cast<PLINT>((curves.size() + 1) / 2) : 0, two_columns ? 2 : 0,
-                static_cast<PLINT>(curves.size()), opts.data(), 1.0, curves.size() > 6 ? 0.65 : 0.9, 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
-                nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), nullptr, nullptr, nullptr, nullptr);
-    pls.reset();  // the destructor finishes and closes the file
-    if (!std::filesystem::exists(file)) throw InputError(file.string() + ": the plot could not be written");
+        pls->lsty(1);
+        pls->col0(1);
+        PLFLT legend_width = 0.0, legend_height = 0.0;
+        const std::vector<PLINT> text_colours(curves.size(), 1);
+        const bool two_columns = curves.size() > 6 && !style.legend_outside;
+        pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
+                    style.legend_outside ? PL_POSITION_OUTSIDE | PL_POSITION_TOP | PL_POSITION_RIGHT : PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT,
+                    0.02, 0.02, 0.08, 0, 1, 1, two_columns ? static_cast<PLINT>((curves.size() + 1) / 2) : 0, two_columns ? 2 : 0,
+                    static_cast<PLINT>(curves.size()), opts.data(), 1.0, curves.size() > 6 ? 0.65 : 0.9, 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
+                    nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), nullptr, nullptr, nullptr, nullptr);
+        pls.reset();  // the destructor finishes and closes the file
+        if (!std::filesystem::exists(temporary)) throw InputError(file.string() + ": the plot could not be written");
+    });
 }
 
 }  // namespace skinspec
