@@ -118,7 +118,7 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
         std::cout << fmt::format("  errors below {:.2g} % are not resolved by the reference\n", 100.0 * k.resolvable_error);
     }
     if (!report.pair_sweep.empty()) {
-        std::cout << fmt::format("\nMulti-pole profile ({} radii, first slab) against the series summed to 1e-14:\n", report.pair_sweep_radii);
+        std::cout << fmt::format("\nMultipole profile ({} radii, first slab) against the series summed to 1e-14:\n", report.pair_sweep_radii);
         std::cout << fmt::format("  {:>10} {:>8} {:>12} {:>16}\n", "tolerance", "pairs", "seconds", "max rel. error");
         for (const auto& p : report.pair_sweep) std::cout << fmt::format("  {:>10.0e} {:>8} {:>12.4g} {:>16.3g}\n", p.tolerance, p.pairs, p.seconds, p.max_relative_error);
     }
@@ -217,7 +217,7 @@ void write_plot(const std::string& file, const BenchReport& report) {
             if (!curve.x.empty()) curves.push_back(std::move(curve));
         }
     }
-    write_line_plot(file, "skinspec bench: error against run time (walks solid, diffusion dashed)", "Run time (s)", "Relative error (%)", curves,
+    write_line_plot(file, "Error against run time", "Run time (s); walks solid, diffusion dashed", "Relative error (%)", curves,
                     {.log_x = true, .log_y = true, .legend_outside = true});
 }
 

@@ -59,7 +59,7 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         auto pls = std::make_unique<plstream>();
         pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
         pls->sfnam(temporary.string().c_str());
-        pls->spage(0.0, 0.0, style.legend_outside ? 1500 : 1000, 650, 0, 0);
+        pls->spage(0.0, 0.0, style.legend_outside ? 1500 : 1000, style.legend_outside ? 900 : 650, 0, 0);
         pls->scmap0n(std::max<PLINT>(16, 2 + 2 * static_cast<PLINT>(curves.size())));  // a band and a line colour per curve
         pls->scol0a(0, 255, 255, 255, 1.0);  // background
         pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
@@ -67,7 +67,7 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         pls->col0(1);
         if (style.legend_outside) {
             pls->adv(0);
-            pls->vpor(0.07, 0.6, 0.12, 0.9);
+            pls->vpor(0.09, 0.55, 0.1, 0.92);
             pls->wind(x_min, x_max, y_min, y_max);
             pls->box(log_x ? "bcnstlg" : "bcnstg", 0.0, 0, log_y ? "bcnstvlg" : "bcnstvg", 0.0, 0);
         } else {
@@ -121,9 +121,9 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         const std::vector<PLINT> text_colours(curves.size(), 1);
         const bool two_columns = curves.size() > 6 && !style.legend_outside;
         pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
-                    style.legend_outside ? PL_POSITION_OUTSIDE | PL_POSITION_TOP | PL_POSITION_RIGHT : PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT,
+                    style.legend_outside ? PL_POSITION_OUTSIDE | PL_POSITION_RIGHT : PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT,
                     0.02, 0.02, 0.08, 0, 1, 1, two_columns ? static_cast<PLINT>((curves.size() + 1) / 2) : 0, two_columns ? 2 : 0,
-                    static_cast<PLINT>(curves.size()), opts.data(), 1.0, curves.size() > 6 ? 0.65 : 0.9, 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
+                    static_cast<PLINT>(curves.size()), opts.data(), 1.0, style.legend_outside ? 0.55 : (curves.size() > 6 ? 0.65 : 0.9), style.legend_outside ? 1.5 : 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
                     nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), nullptr, nullptr, nullptr, nullptr);
         pls.reset();  // the destructor finishes and closes the file
         if (!std::filesystem::exists(temporary)) throw InputError(file.string() + ": the plot could not be written");
