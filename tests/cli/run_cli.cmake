@@ -1,10 +1,10 @@
 # Runs PROGRAM with ARGS (a ;-list), then checks the exit code against EXPECT_EXIT and the combined
 # standard output and error against EXPECT_REGEX. A crash shows as a non-numeric result and fails.
-# With NO_OUTPUT (a ;-list of paths, or "-"): those paths are removed first and must not exist afterwards,
+# With CHECK_OUTPUTS and NO_OUTPUT (a ;-list of paths, or "-"): those paths are removed first and must not exist afterwards,
 # no temporary *.partial-* file may be left next to them or in the working folder, and the existing_output.*
 # files of the working folder must be unchanged.
 set(checked_outputs "")
-if(DEFINED NO_OUTPUT AND NOT NO_OUTPUT STREQUAL "-")
+if(CHECK_OUTPUTS AND NOT NO_OUTPUT STREQUAL "-")
   set(checked_outputs ${NO_OUTPUT})
 endif()
 foreach(path IN LISTS checked_outputs)
@@ -26,7 +26,7 @@ if(NOT "${all}" MATCHES "${EXPECT_REGEX}")
   message(FATAL_ERROR "output does not match '${EXPECT_REGEX}':\n${all}")
 endif()
 
-if(DEFINED NO_OUTPUT)
+if(CHECK_OUTPUTS)
   set(folders ".")
   foreach(path IN LISTS checked_outputs)
     if(EXISTS "${path}")
