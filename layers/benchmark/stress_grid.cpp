@@ -312,7 +312,9 @@ void diffusion_stack_cases(Grid& grid) {
         {"index 4 epidermis", {"epidermis.refractive_index=4"}},
     };
     for (const auto mode : {DiffusionMode::multipole, DiffusionMode::dipole}) {
-        for (const auto& [label, overrides_text] : variants) {
+        for (const auto& variant : variants) {
+            const auto& label = variant.first;
+            const auto& overrides_text = variant.second;
             for (const double wavelength : {360.0, 370.0, 820.0}) {
                 grid.run("diffusion-stack", fmt::format("{}: {}, {:g} nm", to_string(mode), label, wavelength), [&](Checks& c) {
                     std::vector<MaterialOverride> overrides;
