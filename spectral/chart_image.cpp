@@ -151,14 +151,17 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
 
 DataImage read_data_image(const std::filesystem::path& file) {
     if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
-    OIIO::ImageBuf in(file.string());
-    if (!in.read(0, 0, true, OIIO::TypeDesc::FLOAT)) throw InputError(file.string() + ": cannot be read as an image (" + in.geterror() + ")");
-    const auto& spec = in.spec();
+    // ImageInput, not ImageBuf: an ImageBuf reads through OIIO's shared image cache, which keeps the first spec it
+    // saw for a file name; a file rewritten with another size under the same name then overflowed the pixel
+    // buffer (found by fuzz_fit_images, docs/STABILITY.md).
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) throw InputError(file.string() + ": cannot be read as an image (" + OIIO::geterror() + ")");
+    const auto spec = in->spec();
     if (spec.width < 2 || spec.height < 2 || spec.nchannels < 1) throw InputError(file.string() + ": image smaller than 2 x 2 pixels");
     DataImage out{spec.width, spec.height, spec.nchannels, std::vector<float>(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels),
                   spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF, spec.channelnames};
-    if (!in.get_pixels(OIIO::ROI(0, spec.width, 0, spec.height, 0, 1, 0, spec.nchannels), OIIO::TypeDesc::FLOAT, out.values.data())) {
-        throw InputError(file.string() + ": cannot be read as an image (" + in.geterror() + ")");
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.values.data())) {
+        throw InputError(file.string() + ": cannot be read as an image (" + in->geterror() + ")");
     }
     return out;
 }

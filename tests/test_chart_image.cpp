@@ -75,3 +75,18 @@ TEST_CASE("output paths are checked before anything is written", "[chart_image]"
     CHECK_THROWS_WITH(space_chromaticities("CIE-XYZ-D65"), Catch::Contains("has no RGB primaries"));
     if (geteuid() != 0) CHECK_THROWS_WITH(check_output_path("/proc/x.png", false, {".png"}), Catch::Contains("not writable"));
 }
+
+TEST_CASE("a data image rewritten with another size reads back at its new size (fuzz finding)", "[chart_image]") {
+    // OIIO's shared image cache used to keep the first spec of a file name: 2 x 2 x 1 cached, 8 x 8 x 3 read into
+    // a buffer of the old size (heap overflow under ASan).
+    const auto file = std::filesystem::temp_directory_path() / ("skinspec_rewrite_" + std::to_string(::getpid()) + ".exr");
+    write_data_image(file, {2, 2, 1, std::vector<float>(4, 0.5f), true, {"Y"}}, {});
+    CHECK(read_data_image(file).values.size() == 4);
+    write_data_image(file, {8, 8, 3, std::vector<float>(192, 0.25f), true, {"R", "G", "B"}}, {});
+    const auto again = read_data_image(file);
+    CHECK(again.width == 8);
+    CHECK(again.channels == 3);
+    CHECK(again.values.size() == 192);
+    CHECK(again.values.back() == 0.25f);
+    std::filesystem::remove(file);
+}
