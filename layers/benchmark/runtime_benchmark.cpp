@@ -36,6 +36,17 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// Mean wall time of `call`, repeated until at least `min_seconds` have passed (at least once).
+double mean_seconds_per_call(const std::function<void()>& call, double min_seconds) {
+    int calls = 0;
+    const auto start = Clock::now();
+    do {
+        call();
+        ++calls;
+    } while (seconds_since(start) < min_seconds);
+    return seconds_since(start) / calls;
+}
+
 struct Stopped {};
 
 struct Plan {
@@ -111,13 +122,8 @@ public:
     void time_deterministic(std::size_t case_index, BenchSolver solver, const std::function<double()>& evaluate, std::string note = {}) {
         const auto& c = report_.cases[case_index];
         double value = evaluate();
-        int calls = 0;
-        const auto start = Clock::now();
-        do {
-            value = evaluate();
-            ++calls;
-        } while (seconds_since(start) < plan_.min_timing_seconds);
-        BenchPoint p{case_index, solver, 0, 1, seconds_since(start) / calls, {value, 0.0},
+        const double seconds = mean_seconds_per_call([&] { value = evaluate(); }, plan_.min_timing_seconds);
+        BenchPoint p{case_index, solver, 0, 1, seconds, {value, 0.0},
                      std::abs(value - c.reference.value) / c.reference.value, std::move(note)};
         report_.points.push_back(p);
         check_cancel();
@@ -137,8 +143,7 @@ std::string trust_note(const SpectralResult& result) {
 }
 
 // Prahl's slabs: Rd by the volumetric walk, the multipole (finite slab) and the dipole (semi-infinite).
-void adding_doubling_cases(Benchmark& bench) {
-    const auto slabs = adding_doubling_slabs();
+void adding_doubling_cases(Benchmark& bench, const std::vector<AddingDoublingSlab>& slabs) {
     for (const std::size_t row : {0u, 3u, 5u}) {
         const auto& slab = slabs.at(row);
         const auto index = bench.add_case({fmt::format("slab a {:.3f} b {:g} g {:g} n {:g}", slab.albedo, slab.optical_thickness, slab.g, slab.refractive_index),
@@ -214,9 +219,8 @@ void jensen_case(Benchmark& bench) {
 
 // The multipole profile of the first slab (per cm) at 400 radii to 1 cm, pair tolerance 1e-1 ... 1e-10,
 // against the series summed to 1e-14.
-void pair_sweep(Benchmark& bench) {
+void pair_sweep(Benchmark& bench, const AddingDoublingSlab& slab) {
     bench.stage("multipole profile: pair tolerance sweep");
-    const auto slab = adding_doubling_slabs().front();
     const auto layer = slab.stack().layers.front();
     const double face = diffuse_fresnel_reflectance(slab.refractive_index);
     const DiffusionSlab d{layer.mu_s_per_cm * (1.0 - slab.g), layer.mu_a_per_cm, layer.thickness_cm, face, face};
@@ -228,24 +232,18 @@ void pair_sweep(Benchmark& bench) {
     for (const double tolerance : {1e-1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
         const Multipole model(d, tolerance);
         RadialProfile profile;
-        int calls = 0;
-        const auto start = Clock::now();
-        do {
-            profile = model.reflectance_profile(radii);
-            ++calls;
-        } while (seconds_since(start) < bench.plan().min_timing_seconds);
+        const double seconds = mean_seconds_per_call([&] { profile = model.reflectance_profile(radii); }, bench.plan().min_timing_seconds);
         double worst = 0.0;
         for (std::size_t i = 0; i < radii.size(); ++i) worst = std::max(worst, std::abs(profile.values[i] - exact.values[i]) / exact.values[i]);
-        report.pair_sweep.push_back({tolerance, profile.max_pairs, seconds_since(start) / calls, worst});
+        report.pair_sweep.push_back({tolerance, profile.max_pairs, seconds, worst});
         bench.check_cancel();
     }
 }
 
-void thread_scaling(Benchmark& bench) {
+void thread_scaling(Benchmark& bench, const AddingDoublingSlab& slab) {
     const auto rays = bench.plan().scaling_rays;
     bench.stage(fmt::format("thread scaling 1 -> 2 ({} rays)", rays));
     const auto stack = std::get<LayerStack>(load_material("biospec-moderately"));
-    const auto slab = adding_doubling_slabs().front();
     const auto time_with = [&](int threads, const std::function<void()>& run) {
         const tbb::global_control control(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
         const auto start = Clock::now();
@@ -290,11 +288,12 @@ void colour_timings(Benchmark& bench) {
 BenchReport run_benchmark(const BenchOptions& options) {
     Benchmark bench(options);
     try {
-        adding_doubling_cases(bench);
+        const auto slabs = adding_doubling_slabs();
+        adding_doubling_cases(bench, slabs);
         preset_cases(bench);
         jensen_case(bench);
-        pair_sweep(bench);
-        thread_scaling(bench);
+        pair_sweep(bench, slabs.front());
+        thread_scaling(bench, slabs.front());
         colour_timings(bench);
     } catch (const Stopped&) {
         bench.report().partial = true;
