@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
-#include "layers/biospec/biospec_solver.hpp"
+#include "transport/biospec/biospec_solver.hpp"
 #include "materials/material_file.hpp"
 
 using namespace skinspec;

@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "layers/diffusion/dipole.hpp"
-#include "layers/diffusion/layered_diffusion.hpp"
+#include "transport/diffusion/dipole.hpp"
+#include "transport/diffusion/layered_diffusion.hpp"
 
 using namespace skinspec;
 

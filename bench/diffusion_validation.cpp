@@ -14,10 +14,10 @@
 
 #include <fmt/format.h>
 
-#include "layers/diffusion/dipole.hpp"
-#include "layers/diffusion/multipole.hpp"
-#include "layers/fresnel.hpp"
-#include "layers/rte/rte_model.hpp"
+#include "transport/diffusion/dipole.hpp"
+#include "transport/diffusion/multipole.hpp"
+#include "transport/fresnel.hpp"
+#include "transport/rte/rte_model.hpp"
 
 using namespace skinspec;
 

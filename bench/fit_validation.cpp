@@ -13,10 +13,10 @@
 
 #include <fmt/format.h>
 
-#include "layers/profile_fit/dipole_fit.hpp"
-#include "layers/profile_fit/profile_solve.hpp"
-#include "layers/profile_fit/synthetic_scene.hpp"
-#include "layers/rte/rte_model.hpp"
+#include "inverse/profile_fit/dipole_fit.hpp"
+#include "inverse/profile_fit/profile_solve.hpp"
+#include "inverse/profile_fit/synthetic_scene.hpp"
+#include "transport/rte/rte_model.hpp"
 
 using namespace skinspec;
 

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
-#include "layers/rte/mcml_files.hpp"
+#include "formats/mcml_files.hpp"
 #include "spectral/data_paths.hpp"
 
 using namespace skinspec;

@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "layers/rte/adding_doubling_reference.hpp"
-#include "layers/rte/rte_model.hpp"
+#include "formats/adding_doubling_reference.hpp"
+#include "transport/rte/rte_model.hpp"
 
 using namespace skinspec;
 

@@ -10,8 +10,8 @@
 
 #include "cli/progress.hpp"
 #include "cli/spectral_output.hpp"
-#include "layers/benchmark/error_fits.hpp"
-#include "layers/benchmark/runtime_benchmark.hpp"
+#include "studies/benchmark/error_fits.hpp"
+#include "studies/benchmark/runtime_benchmark.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"

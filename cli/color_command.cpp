@@ -7,7 +7,7 @@
 
 #include "cli/color_output.hpp"
 #include "spectral/data_paths.hpp"
-#include "spectral/spectrum_csv.hpp"
+#include "formats/spectrum_csv.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec::cli {

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "layers/phase_study/phase_comparison.hpp"
-#include "layers/phase_study/phase_study.hpp"
+#include "studies/phase_study/phase_comparison.hpp"
+#include "studies/phase_study/phase_study.hpp"
 #include "materials/material_file.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"

@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/spectral_output.hpp"
-#include "layers/profile_fit/profile_fit.hpp"
-#include "layers/profile_fit/profile_inputs.hpp"
-#include "layers/profile_fit/synthetic_scene.hpp"
+#include "inverse/profile_fit/profile_fit.hpp"
+#include "formats/profile_inputs.hpp"
+#include "inverse/profile_fit/synthetic_scene.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"

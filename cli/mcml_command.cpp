@@ -11,7 +11,7 @@
 
 #include "cli/progress.hpp"
 #include "cli/spectral_output.hpp"
-#include "layers/rte/mcml_files.hpp"
+#include "formats/mcml_files.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
@@ -129,7 +129,7 @@ void run_mcml(const McmlOptions& o) {
                    {"boundaries", o.boundaries}, {"runs", all}};
     if (o.json) std::cout << doc.dump(2) << '\n';
     if (!o.json_output.empty()) write_text_file(o.json_output, doc.dump(2) + "\n", true);
-    if (InterruptGuard::interrupted()) std::exit(130);
+    if (InterruptGuard::interrupted()) std::exit(InterruptGuard::exit_code());
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/spectral_output.hpp"
-#include "layers/phase_study/phantom_sheet.hpp"
-#include "layers/phase_study/phase_study.hpp"
+#include "studies/phase_study/phantom_sheet.hpp"
+#include "studies/phase_study/phase_study.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"

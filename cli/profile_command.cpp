@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
-#include "layers/diffusion/diffusion_profiles.hpp"
 #include "materials/material_file.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
@@ -24,10 +24,9 @@ struct ProfileOptions {
     std::string preset;
     std::string material_file;
     std::vector<std::string> overrides;
-    std::string mode = "multipole";
+    SolverOptions solver;
     std::string wavelengths = "450,550,650";
     std::string radii = "0:10:0.01";
-    double roughness = 0.0;
     std::string output;
     std::string plot;
     bool overwrite = false;
@@ -59,7 +58,7 @@ std::string to_csv(const SpectralProfiles& p) {
     }
     out += fmt::format("# dipole pairs (largest): {}, inverse-transform samples: {}, converged: {}\n", p.max_pairs, p.frequencies,
                        p.converged ? "yes" : "NO");
-    for (const auto& w : p.warnings) out += "# warning: " + w + "\n";
+    for (const auto& w : summarise_warnings(p.warnings)) out += "# warning: " + w + "\n";
     out += "r_mm";
     for (const auto& c : p.channels) out += ",R_" + column_tag(c) + "_per_mm2";
     for (const auto& c : p.channels) out += ",T_" + column_tag(c) + "_per_mm2";
@@ -95,7 +94,7 @@ void write_profile_plot(const std::string& file, const SpectralProfiles& p) {
 
 void run_profile(const ProfileOptions& o) {
     if (!o.preset.empty() && !o.material_file.empty()) throw InputError("--preset and --material: give one material, not both");
-    const auto mode = parse_diffusion_mode(o.mode, "--mode");
+    const auto& solver = chosen_solver(o.solver, "multipole");
     const auto radii = parse_radii(o.radii);
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
     if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".csv"});
@@ -103,10 +102,8 @@ void run_profile(const ProfileOptions& o) {
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
-    DiffusionOptions options{mode, {}};
-    if (o.roughness > 0.0) options.surface_roughness = o.roughness;
-    const auto profiles = diffusion_profiles(material, grid, radii, options, true);
-    for (const auto& w : profiles.warnings) std::cerr << "skinspec: warning: " << w << '\n';
+    const auto profiles = solve_profiles(solver, material, ProfileRequest{grid, radii, true, solver_switches(o.solver)});
+    print_warning_summary(profiles.material, profiles.warnings);
     const auto csv = to_csv(profiles);
     if (o.output.empty()) {
         std::cout << csv;
@@ -124,14 +121,13 @@ void run_profile(const ProfileOptions& o) {
 
 void add_profile_command(CLI::App& app) {
     auto o = std::make_shared<ProfileOptions>();
-    auto* cmd = app.add_subcommand("profile", "Radial diffuse reflectance R(r) and transmittance T(r) in a diffusion mode (CSV, plot)");
+    auto* cmd = app.add_subcommand("profile", "Radial diffuse reflectance R(r) and transmittance T(r) of a solver that computes them (CSV, plot)");
     cmd->add_option("--preset", o->preset, "Preset name (default biospec-moderately)");
     cmd->add_option("--material", o->material_file, "Material TOML file");
     cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
-    cmd->add_option("--mode", o->mode, "multipole (layered slabs) or dipole (semi-infinite)")->capture_default_str();
+    add_solver_options(*cmd, o->solver, "multipole");
     cmd->add_option("--wavelengths", o->wavelengths, "Wavelengths (nm) for layered materials; homogeneous ones use their bands")->capture_default_str();
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm")->capture_default_str();
-    cmd->add_option("--roughness", o->roughness, "Beckmann RMS slope of a rough top surface, (0, 2] (default smooth)")->check(CLI::Range(1e-6, 2.0));
     cmd->add_option("--output", o->output, "CSV file (default: standard output)");
     cmd->add_option("--plot", o->plot, "Log-scale plot, FILE.png or FILE.svg");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");

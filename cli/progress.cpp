@@ -10,38 +10,80 @@ namespace skinspec::cli {
 namespace {
 
 CancelFlag cancel_requested{false};
+volatile std::sig_atomic_t received_signal = 0;
 
-extern "C" void on_interrupt(int) {
-    if (cancel_requested.load()) _exit(130);
+extern "C" void on_stop_signal(int signal) {
+    if (cancel_requested.load()) _exit(128 + signal);
+    received_signal = signal;
     cancel_requested.store(true);
 }
 
+// Runs longer than this are announced once, with their estimated duration.
+constexpr double long_run_seconds = 60.0;
+
 }  // namespace
 
-ProgressBar::ProgressBar(std::string label) : label_(std::move(label)), enabled_(isatty(STDERR_FILENO) != 0) {}
+std::string duration_text(double seconds) {
+    if (seconds >= 3600.0) return fmt::format("{} h {} min", static_cast<long>(seconds / 3600.0), static_cast<long>(seconds / 60.0) % 60);
+    if (seconds >= 60.0) return fmt::format("{} min {} s", static_cast<long>(seconds / 60.0), static_cast<long>(seconds) % 60);
+    return fmt::format("{:.0f} s", seconds);
+}
 
-ProgressBar::~ProgressBar() {
+ProgressBar::ProgressBar(std::string label, std::string unit)
+    : label_(std::move(label)), unit_(std::move(unit)), enabled_(isatty(STDERR_FILENO) != 0), start_(std::chrono::steady_clock::now()) {}
+
+ProgressBar::~ProgressBar() { clear(); }
+
+void ProgressBar::clear() {
     if (drawn_) std::fputs("\r\033[K", stderr);
+    drawn_ = false;
 }
 
 void ProgressBar::operator()(const Progress& p) {
-    if (!enabled_) return;
     const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    // Share of the work done: rays against the planner's estimate when there is one, else finished items.
+    double share = p.wavelengths_total ? static_cast<double>(p.wavelengths_done) / static_cast<double>(p.wavelengths_total) : 1.0;
+    if (p.rays_expected > 0 && p.rays_done > 0) share = std::max(share, std::min(1.0, static_cast<double>(p.rays_done) / static_cast<double>(p.rays_expected)));
+    const bool estimable = share > 0.0 && elapsed > 0.5;
+    const double left = estimable ? elapsed * (1.0 - share) / share : 0.0;
+    if (estimable && !noted_ && elapsed + left > long_run_seconds) {
+        noted_ = true;
+        clear();
+        std::fputs(fmt::format("skinspec: note: {}: estimated {} in all ({} left); Ctrl-C or SIGTERM stops and keeps what "
+                               "finished\n", label_, duration_text(elapsed + left), duration_text(left)).c_str(), stderr);
+    }
+    if (!enabled_) return;
     if (drawn_ && now - last_ < std::chrono::milliseconds(100) && p.wavelengths_done < p.wavelengths_total) return;
     last_ = now;
     drawn_ = true;
     const std::size_t width = 30;
-    const auto filled = p.wavelengths_total ? width * p.wavelengths_done / p.wavelengths_total : width;
-    std::fputs(fmt::format("\r\033[K{} [{}{}] {}/{} wavelengths, {:.3g} rays{}", label_, std::string(filled, '#'),
-                           std::string(width - filled, '.'), p.wavelengths_done, p.wavelengths_total,
-                           static_cast<double>(p.rays_done), cancel_requested ? " (stopping)" : "")
+    const auto filled = static_cast<std::size_t>(static_cast<double>(width) * std::clamp(share, 0.0, 1.0));
+    const auto rays = p.rays_done ? fmt::format(", {:.3g} rays", static_cast<double>(p.rays_done)) : std::string();
+    std::fputs(fmt::format("\r\033[K{} [{}{}] {}/{} {}{}{}{}", label_, std::string(filled, '#'), std::string(width - filled, '.'),
+                           p.wavelengths_done, p.wavelengths_total, unit_, rays,
+                           estimable ? ", " + duration_text(left) + " left" : std::string(), cancel_requested ? " (stopping)" : "")
                    .c_str(),
                stderr);
 }
 
-InterruptGuard::InterruptGuard() { std::signal(SIGINT, on_interrupt); }
-InterruptGuard::~InterruptGuard() { std::signal(SIGINT, SIG_DFL); }
+InterruptGuard::InterruptGuard() {
+    for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, on_stop_signal);
+}
+InterruptGuard::~InterruptGuard() {
+    for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, SIG_DFL);
+}
 const CancelFlag& InterruptGuard::cancel_flag() { return cancel_requested; }
 bool InterruptGuard::interrupted() { return cancel_requested.load(); }
+
+std::string InterruptGuard::reason() {
+    switch (received_signal) {
+        case SIGTERM: return "stopped (SIGTERM)";
+        case SIGHUP: return "stopped (SIGHUP)";
+        default: return "interrupted";
+    }
+}
+
+int InterruptGuard::exit_code() { return 128 + (received_signal ? static_cast<int>(received_signal) : SIGINT); }
 
 }  // namespace skinspec::cli

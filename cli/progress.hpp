@@ -1,33 +1,46 @@
 #pragma once
-// Terminal progress and Ctrl-C handling for long runs: a one-line bar on standard error when it is a
-// terminal, and a SIGINT handler that asks the solver to stop (a second Ctrl-C exits at once).
+// Terminal progress and stopping for long runs: a one-line bar on standard error when it is a terminal, with
+// the time left once it can be estimated, a one-time note (terminal or not) when a run is estimated to take
+// minutes, and handlers for SIGINT, SIGTERM and SIGHUP (what Ctrl-C, batch schedulers, `timeout` and
+// container stops send) that ask the solver to stop, so what finished is kept; a second signal exits at once.
 #include <chrono>
 #include <string>
 
-#include "layers/spectral_request.hpp"
+#include "transport/spectral_request.hpp"
 
 namespace skinspec::cli {
 
 class ProgressBar {
 public:
-    explicit ProgressBar(std::string label);
+    // `unit`: what Progress's done/total count, e.g. "wavelengths" or "patches".
+    explicit ProgressBar(std::string label, std::string unit = "wavelengths");
     ~ProgressBar();
     void operator()(const Progress& progress);
+    // Removes the bar from the terminal (before anything else is printed).
+    void clear();
 
 private:
     std::string label_;
+    std::string unit_;
     bool enabled_;
     bool drawn_ = false;
+    bool noted_ = false;
+    std::chrono::steady_clock::time_point start_;
     std::chrono::steady_clock::time_point last_;
 };
 
-// Installs the SIGINT handler for the lifetime of the object; cancel_flag() is what solvers watch.
+// "2 h 13 min", "4 min 5 s", "12 s".
+std::string duration_text(double seconds);
+
+// Installs the handlers for the lifetime of the object; cancel_flag() is what solvers watch.
 class InterruptGuard {
 public:
     InterruptGuard();
     ~InterruptGuard();
     static const CancelFlag& cancel_flag();
     static bool interrupted();
+    static std::string reason();  // "interrupted (SIGINT)", "stopped (SIGTERM)", ...
+    static int exit_code();       // 128 + the signal number, as a shell reports it
 };
 
 }  // namespace skinspec::cli

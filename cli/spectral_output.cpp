@@ -2,12 +2,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 #include <fmt/format.h>
 
 #include "skinspec/version.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -50,6 +52,19 @@ std::vector<Column> scalar_columns(const SpectralResult& r) {
         }
     }
     return cols;
+}
+
+// An override's value as the material file reads it: a number, a boolean, or the text.
+Json override_value(const std::string& text) {
+    if (text == "true" || text == "false") return text == "true";
+    if (const auto number = parse_double(text)) return *number;
+    return text;
+}
+
+Json provenance_json(const Provenance& p) {
+    Json overrides = Json::array();
+    for (const auto& [key, value] : p.overrides) overrides.push_back(Json{{"key", key}, {"value", override_value(value)}});
+    return Json{{"solver", p.solver}, {"skinspec_version", p.version}, {"overrides", overrides}, {"material_toml", p.material_toml}};
 }
 
 Json result_json(const ReportedSpectrum& s) {
@@ -123,7 +138,10 @@ Json result_json(const ReportedSpectrum& s) {
         j["converged"] = converged;
         j["truncated_rays"] = truncated;
     }
-    j["warnings"] = r.warnings;
+    Json warnings = Json::array();
+    for (const auto& w : r.warnings) warnings.push_back(Json{{"kind", w.kind}, {"subject", w.subject}, {"at", w.at}, {"value", w.value}});
+    j["warnings"] = warnings;
+    j["provenance"] = provenance_json(r.provenance);
     j["seconds"] = s.seconds;
     if (s.color) j["color"] = to_json(*s.color);
     return j;
@@ -162,6 +180,18 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
             out += ", " + k + " " + std::visit([](const auto& x) { return fmt::format("{}", x); }, v);
         }
         out += '\n';
+        const auto& p = s.result.provenance;
+        std::string overrides;
+        for (const auto& [key, value] : p.overrides) overrides += " " + key + "=" + value;
+        out += fmt::format("# provenance {}: solver {}, skinspec {}, overrides{}\n", s.result.material, p.solver, p.version,
+                           overrides.empty() ? std::string(" none") : overrides);
+        out += "# material_toml " + s.result.material + ":\n";
+        std::size_t from = 0;
+        while (from < p.material_toml.size()) {
+            const auto to = std::min(p.material_toml.find('\n', from), p.material_toml.size());
+            out += "#   " + p.material_toml.substr(from, to - from) + "\n";
+            from = to + 1;
+        }
     }
     if (spectra.empty()) return out;
     const auto& first = spectra.front().result;
@@ -276,6 +306,10 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
     write_line_plot(file, "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +
                               (uncertain ? " spectra (bands: +-2 standard errors)" : " spectra"),
                     "Wavelength (nm)", any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
+}
+
+void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings) {
+    for (const auto& line : summarise_warnings(warnings)) std::cerr << "skinspec: warning: " << subject << ": " << line << '\n';
 }
 
 }  // namespace skinspec::cli

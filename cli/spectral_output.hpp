@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/color_output.hpp"
-#include "layers/spectral_request.hpp"
+#include "transport/spectral_request.hpp"
 
 namespace skinspec::cli {
 
@@ -32,5 +32,8 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra);
 // R (solid) and T (dashed, when computed) of every material with +-2 standard-error bands, drawn in the
 // material's simulated sRGB colour, as PNG or SVG.
 void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra);
+
+// One line on standard error per kind of warning (the full list goes to the JSON output).
+void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings);
 
 }  // namespace skinspec::cli

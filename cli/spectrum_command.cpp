@@ -8,12 +8,11 @@
 #include <tbb/global_control.h>
 
 #include "cli/progress.hpp"
+#include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
-#include "layers/biospec/biospec_solver.hpp"
-#include "layers/diffusion/diffusion_model.hpp"
-#include "layers/rte/rte_model.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/atomic_file.hpp"
+#include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -34,10 +33,7 @@ struct SpectrumOptions {
     std::string quantities = "R";
     std::string reflector;
     std::string variant;
-    std::string mode = "biospec";
-    double roughness = 0.0;
-    std::string estimator = "weighted";
-    std::string fold_into_skin = "drop";
+    SolverOptions solver;
     std::string output;
     std::string plot;
     bool force = false;
@@ -78,89 +74,64 @@ void run_spectrum(const SpectrumOptions& o) {
     auto names = o.presets;
     names.insert(names.end(), o.materials.begin(), o.materials.end());
     if (names.empty()) names = {"biospec-lightly", "biospec-moderately", "biospec-heavily"};
-    const auto overrides = overrides_for(o);
+    const auto& solver = chosen_solver(o.solver);
 
-    SpectralRequest request;
-    request.wavelengths = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
-    request.quantities = parse_quantities(o.quantities);
-    request.incidence_deg = o.incidence_deg;
-    request.seed = o.seed;
-    if (o.rays > 0) {
-        request.max_rays_per_wavelength = o.rays;
-    } else {
-        request.stderr_target = o.stderr_target > 0.0 ? o.stderr_target : 0.002;
-        request.max_rays_per_wavelength = o.max_rays;
-    }
-    if (o.mode != "biospec" && o.mode != "rte" && o.mode != "dipole" && o.mode != "multipole") {
-        throw InputError("--mode: '" + o.mode + "' is not a mode (allowed: biospec, rte, dipole, multipole)");
-    }
-    const bool diffusion = o.mode == "dipole" || o.mode == "multipole";
-    DiffusionOptions diffusion_options;
-    if (diffusion) diffusion_options.mode = parse_diffusion_mode(o.mode, "--mode");
-    if (o.roughness > 0.0) {
-        if (!diffusion) throw InputError("--roughness: only the diffusion modes (dipole, multipole) model a rough surface");
-        diffusion_options.surface_roughness = o.roughness;
-    }
-    BiospecOptions options;
-    options.estimator = parse_absorption_estimator(o.estimator, "--estimator");
-    options.fold_into_skin = parse_fold_into_skin(o.fold_into_skin, "--fold-into-skin");
+    SolverRequest request;
+    request.overrides = overrides_for(o);
+    request.switches = solver_switches(o.solver);
+    auto& spectral = request.spectral;
+    spectral.wavelengths = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
+    spectral.quantities = parse_quantities(o.quantities);
+    spectral.incidence_deg = o.incidence_deg;
+    spectral.seed = o.seed;
+    spectral.max_rays_per_wavelength = o.max_rays;
+    if (o.rays > 0) request.fixed_rays_per_wavelength = o.rays;
+    else if (o.stderr_target > 0.0) spectral.stderr_target = o.stderr_target;
+    else if (solver.capabilities().uncertainty) spectral.stderr_target = 0.002;
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
-    for (const auto& file : {o.output, o.plot}) {
-        if (!file.empty() && !o.force && std::filesystem::exists(file)) {
-            throw InputError(file + ": exists already (use --overwrite to replace it)");
-        }
-    }
-    if (!o.plot.empty() && !o.plot.ends_with(".png") && !o.plot.ends_with(".svg")) {
-        throw InputError("--plot " + o.plot + ": extension not supported (allowed: .png, .svg)");
-    }
+    if (!o.output.empty()) check_output_path(o.output, o.force, {".csv", ".json"});
+    if (!o.plot.empty()) check_output_path(o.plot, o.force, {".png", ".svg"});
 
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     const InterruptGuard interrupt;
-    request.cancel = &InterruptGuard::cancel_flag();
+    spectral.cancel = &InterruptGuard::cancel_flag();
+
+    // Every material is loaded and checked against the solver before any ray is traced.
+    std::vector<Material> materials;
+    for (const auto& name : names) {
+        auto material = load_material(name, request.overrides);
+        if (!o.layers.empty()) {
+            if (const auto* stack = std::get_if<LayerStack>(&material)) material = stack->sub_stack(o.layers);
+            else throw InputError("--layers: material '" + name + "' is homogeneous and has no layers");
+        }
+        check_request(solver, material, request);
+        if (!materials.empty() && std::holds_alternative<HomogeneousMaterial>(material) != std::holds_alternative<HomogeneousMaterial>(materials.front())) {
+            throw InputError("material '" + name + "' has " + (std::holds_alternative<HomogeneousMaterial>(material) ? "bands" : "wavelengths") +
+                             ", the materials before it " + (std::holds_alternative<HomogeneousMaterial>(material) ? "wavelengths" : "bands") +
+                             ": run them separately");
+        }
+        if (!o.plot.empty() && std::holds_alternative<HomogeneousMaterial>(material)) {
+            throw InputError("--plot: " + name + " has bands, not wavelengths, to plot against");
+        }
+        materials.push_back(std::move(material));
+    }
 
     std::vector<ReportedSpectrum> spectra;
-    for (const auto& name : names) {
+    for (const auto& material : materials) {
         if (InterruptGuard::interrupted()) break;
-        const auto material = load_material(name, overrides);
-        const auto* full = std::get_if<LayerStack>(&material);
-        if (const auto* homogeneous = std::get_if<HomogeneousMaterial>(&material); homogeneous && diffusion) {
-            if (!spectra.empty() && spectra.front().result.bands.empty()) {
-                throw InputError("material '" + name + "' has bands, the materials before it wavelengths: run them separately");
-            }
-            const auto start = std::chrono::steady_clock::now();
-            auto result = solve_diffusion_bands(*homogeneous, request, diffusion_options);
-            spectra.push_back({std::move(result), std::nullopt, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
-            continue;
-        }
-        if (full && !spectra.empty() && !spectra.front().result.bands.empty()) {
-            throw InputError("material '" + name + "' has wavelengths, the materials before it bands: run them separately");
-        }
-        if (!full) {
-            throw InputError("material '" + name + "' is homogeneous; the BioSpec walk needs a layered material "
-                             "(homogeneous materials are for the diffusion modes)");
-        }
-        const auto sub = o.layers.empty() ? std::optional<LayerStack>{} : full->sub_stack(o.layers);
-        const LayerStack* stack = sub ? &*sub : full;
-        ProgressBar bar(stack->name);
-        request.on_progress = [&bar](const Progress& p) { bar(p); };
+        ProgressBar bar(material_name(material));
+        spectral.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
-        auto result = diffusion        ? solve_diffusion_spectrum(*stack, request, diffusion_options)
-                      : o.mode == "rte" ? solve_rte_spectrum(*stack, request)
-                                        : solve_biospec(*stack, request, options);
+        auto result = solve_spectrum(solver, material, request);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        auto color = reflectance_color(result, illuminant, observer);
+        bar.clear();
+        auto color = result.bands.empty() ? reflectance_color(result, illuminant, observer) : std::nullopt;
         spectra.push_back({std::move(result), std::move(color), seconds});
     }
 
-    for (const auto& s : spectra) {
-        for (const auto& w : s.result.warnings) std::cerr << "skinspec: warning: " << s.result.material << ": " << w << '\n';
-        if (!o.plot.empty() && !s.result.bands.empty()) {
-            throw InputError("--plot: " + s.result.material + " has bands (" + std::to_string(s.result.bands.size()) +
-                             "), not wavelengths, to plot against");
-        }
-    }
+    for (const auto& s : spectra) print_warning_summary(s.result.material, s.result.warnings);
     if (o.json) std::cout << to_json(spectra).dump(2) << '\n';
     else std::cout << to_table(spectra);
     if (!o.output.empty()) {
@@ -173,8 +144,8 @@ void run_spectrum(const SpectrumOptions& o) {
         std::cerr << "wrote " << o.plot << '\n';
     }
     if (InterruptGuard::interrupted()) {
-        std::cerr << "skinspec: interrupted: the wavelengths finished so far were written, marked partial\n";
-        std::exit(130);
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": the wavelengths finished so far were written, marked partial\n";
+        std::exit(InterruptGuard::exit_code());
     }
 }
 
@@ -201,16 +172,7 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
     cmd->add_option("--reflector", o->reflector, "Hypodermis reflector on|off (off: light leaving the bottom is transmittance)");
     cmd->add_option("--variant", o->variant, "Model variant: biospec (default) or biospec-2004");
-    cmd->add_option("--mode", o->mode,
-                    "Solver: biospec (the BioSpec walk), rte (volumetric walk; layers need volumetric_* scattering), "
-                    "multipole (layered diffusion) or dipole (semi-infinite diffusion); diffusion needs reduced scattering")
-        ->capture_default_str();
-    cmd->add_option("--roughness", o->roughness, "Diffusion modes: Beckmann RMS slope of a rough top surface, (0, 2] (default smooth)")
-        ->check(CLI::Range(1e-6, 2.0));
-    cmd->add_option("--estimator", o->estimator, "Absorption estimator: weighted (default) or random (the original per-crossing test)")
-        ->capture_default_str();
-    cmd->add_option("--fold-into-skin", o->fold_into_skin, "Fold-perturbed reflections pointing into the skin: drop (2004 code) or resample")
-        ->capture_default_str();
+    add_solver_options(*cmd, o->solver);
     cmd->add_option("--output", o->output, "Write the result to FILE.csv or FILE.json");
     cmd->add_option("--plot", o->plot, "Plot R (and T) with +-2 standard-error bands to FILE.png or FILE.svg");
     cmd->add_flag("--overwrite,--force", o->force, "Replace the --output / --plot files if they exist");

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "cli/progress.hpp"
-#include "layers/benchmark/stress_grid.hpp"
+#include "studies/benchmark/stress_grid.hpp"
 
 namespace skinspec::cli {
 namespace {

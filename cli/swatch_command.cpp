@@ -10,8 +10,10 @@
 
 #include "cli/color_output.hpp"
 #include "cli/progress.hpp"
-#include "layers/diffusion/lit_patch.hpp"
-#include "layers/swatch/swatch_chart.hpp"
+#include "cli/solver_options.hpp"
+#include "cli/spectral_output.hpp"
+#include "appearance/lit_patch.hpp"
+#include "appearance/swatch_chart.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
@@ -43,12 +45,11 @@ struct SwatchOptions {
     bool overwrite = false;
     bool json = false;
     std::vector<std::string> lit;  // spot | edge | pattern FILE
-    std::string diffusion_mode = "multipole";
+    SolverOptions solver;
     std::string wavelengths = "400:700:10";
     double field_mm = 20.0;
     int pixels = 256;
     double spot_radius_mm = 2.0;
-    double roughness = 0.0;
 };
 
 const std::vector<std::string> default_sweeps{"epidermis.melanosome_fraction=0.01:0.42:8", "dermis.blood_fraction=0.002:0.05:5"};
@@ -81,8 +82,9 @@ void run_lit_swatch(const SwatchOptions& o) {
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const std::string name = o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file;
     const auto material = load_material(name, overrides);
-    DiffusionOptions options{parse_diffusion_mode(o.diffusion_mode, "--mode"), {}};
-    if (o.roughness > 0.0) options.surface_roughness = o.roughness;
+    // A lit patch needs radial profiles: the multipole unless --mode names another solver.
+    const auto& solver = chosen_solver(o.solver, "multipole");
+    const auto switches = solver_switches(o.solver);
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
@@ -105,19 +107,20 @@ void run_lit_swatch(const SwatchOptions& o) {
     const InterruptGuard interrupt;
     ProgressBar bar("lit swatch");
     const auto start = std::chrono::steady_clock::now();
-    const auto patch = render_lit_patch(material, grid, *light, view, options,
-                                        [&bar](std::size_t done, std::size_t total) { bar(Progress{0, done, total}); },
+    const auto patch = render_lit_patch(material, grid, *light, view, solver, switches,
+                                        [&bar](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); },
                                         &InterruptGuard::cancel_flag());
+    bar.clear();
     if (patch.partial) {
-        std::cerr << "skinspec: interrupted: nothing written (a lit swatch needs every wavelength)\n";
-        std::exit(130);
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (a lit swatch needs every wavelength)\n";
+        std::exit(InterruptGuard::exit_code());
     }
     const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
     if (bands && patch.exitance.size() != 3) throw InputError(name + ": a lit swatch of a band material needs exactly three bands (R, G, B)");
     const auto image = bands ? rgb_planes_to_image(patch.exitance, view.width_px, view.height_px, "Linear Rec.709", space, cm)
                              : spectral_planes_to_image(patch.exitance, view.width_px, view.height_px, grid.nm(), illuminant, observer, space, cm);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for (const auto& w : patch.profiles.warnings) std::cerr << "skinspec: warning: " << w << '\n';
+    print_warning_summary(name, patch.profiles.warnings);
 
     const auto lighting = light->description();
     const ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
@@ -162,6 +165,8 @@ void run_swatch(const SwatchOptions& o) {
     request.delta_e = o.delta_e;
     request.seed = o.seed;
     request.max_rays_per_wavelength = o.max_rays;
+    request.solver = std::string(chosen_solver(o.solver).name());
+    request.switches = solver_switches(o.solver);
     if (o.patch_px < 32 || o.patch_px > 2048) throw InputError("--patch-size " + std::to_string(o.patch_px) + " is outside [32, 2048]");
 
     // Every output is checked before any work: nothing is written for a bad request.
@@ -178,11 +183,12 @@ void run_swatch(const SwatchOptions& o) {
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     const InterruptGuard interrupt;
     request.cancel = &InterruptGuard::cancel_flag();
-    ProgressBar bar("swatch");
-    request.on_progress = [&bar](std::size_t done, std::size_t total) { bar(Progress{0, done, total}); };
+    ProgressBar bar("swatch", "patches");
+    request.on_progress = [&bar](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); };
 
     const auto start = std::chrono::steady_clock::now();
     const auto chart = compute_swatch(request);
+    bar.clear();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::vector<RGB> working;
@@ -200,7 +206,7 @@ void run_swatch(const SwatchOptions& o) {
     }
 
     ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
-                           {"skinspec:model", "biospec"},
+                           {"skinspec:model", request.solver},
                            {"skinspec:material", request.material},
                            {"skinspec:seed", std::to_string(request.seed)},
                            {"skinspec:partial", chart.partial ? "true" : "false"}};
@@ -260,7 +266,7 @@ void run_swatch(const SwatchOptions& o) {
                                  chart.patches.size(), rays, seconds, worst, request.delta_e,
                                  std::get<std::string>(chart.settings.at("wavelengths")), chart.partial ? "; PARTIAL (interrupted)" : "");
     }
-    if (chart.partial) std::exit(130);
+    if (chart.partial) std::exit(InterruptGuard::exit_code());
 }
 
 }  // namespace
@@ -292,12 +298,11 @@ void add_swatch_command(CLI::App& app) {
                     "Render one patch in a diffusion mode under structured light: spot, edge, or pattern FILE (an image "
                     "whose luminance is the irradiance)")
         ->expected(1, 2);
-    cmd->add_option("--mode", o->diffusion_mode, "With --lit: multipole or dipole")->capture_default_str();
+    add_solver_options(*cmd, o->solver, "biospec; multipole with --lit");
     cmd->add_option("--wavelengths", o->wavelengths, "With --lit: wavelengths (nm) for layered materials")->capture_default_str();
     cmd->add_option("--field", o->field_mm, "With --lit: width of the patch in mm")->capture_default_str();
     cmd->add_option("--pixels", o->pixels, "With --lit: image width in pixels, [8, 4096]")->capture_default_str();
     cmd->add_option("--spot-radius", o->spot_radius_mm, "With --lit spot: radius of the lit disc in mm")->capture_default_str();
-    cmd->add_option("--roughness", o->roughness, "With --lit: Beckmann RMS slope of a rough top surface, (0, 2]")->check(CLI::Range(1e-6, 2.0));
     cmd->callback([o] { run_swatch(*o); });
 }
 

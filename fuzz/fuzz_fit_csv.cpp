@@ -1,8 +1,8 @@
 // libFuzzer target: the CSV inputs of skinspec fit-profile, a patch list and a radial profile (the same bytes
 // read as both). A file that reads is also fitted, so the fit sees the values the reader lets through.
 #include "fuzz/fuzz_input.hpp"
-#include "layers/profile_fit/profile_fit.hpp"
-#include "layers/profile_fit/profile_inputs.hpp"
+#include "inverse/profile_fit/profile_fit.hpp"
+#include "formats/profile_inputs.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const auto file = skinspec::fuzz::input_file(data, size, ".csv").string();

@@ -5,8 +5,8 @@
 #include <cstring>
 
 #include "fuzz/fuzz_input.hpp"
-#include "layers/profile_fit/profile_fit.hpp"
-#include "layers/profile_fit/profile_inputs.hpp"
+#include "inverse/profile_fit/profile_fit.hpp"
+#include "formats/profile_inputs.hpp"
 #include "spectral/chart_image.hpp"
 
 namespace {

@@ -1,7 +1,7 @@
 // libFuzzer target: spectrum CSV files (skinspec color, docs/DATA_FORMAT.md), read with the default rules
 // and with values over one allowed.
 #include "fuzz/fuzz_input.hpp"
-#include "spectral/spectrum_csv.hpp"
+#include "formats/spectrum_csv.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const auto file = skinspec::fuzz::input_file(data, size, ".csv");

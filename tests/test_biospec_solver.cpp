@@ -4,8 +4,8 @@
 
 #include <tbb/global_control.h>
 
-#include "layers/biospec/biospec_solver.hpp"
-#include "layers/measured_profile.hpp"
+#include "transport/biospec/biospec_solver.hpp"
+#include "transport/measured_profile.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "layers/color_precision.hpp"
+#include "solvers/color_precision.hpp"
 #include "spectral/color_uncertainty.hpp"
 
 using namespace skinspec;

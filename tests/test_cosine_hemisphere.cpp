@@ -2,8 +2,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "layers/cosine_hemisphere.hpp"
-#include "layers/random_stream.hpp"
+#include "transport/cosine_hemisphere.hpp"
+#include "transport/random_stream.hpp"
 #include "sampling_checks.hpp"
 
 using namespace skinspec;

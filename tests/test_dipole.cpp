@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "layers/diffusion/dipole.hpp"
+#include "transport/diffusion/dipole.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "layers/benchmark/error_fits.hpp"
+#include "studies/benchmark/error_fits.hpp"
 
 using namespace skinspec;
 

@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "layers/fresnel.hpp"
+#include "transport/fresnel.hpp"
 
 using namespace skinspec;
 

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "layers/henyey_greenstein.hpp"
-#include "layers/random_stream.hpp"
+#include "transport/henyey_greenstein.hpp"
+#include "transport/random_stream.hpp"
 #include "sampling_checks.hpp"
 
 using namespace skinspec;

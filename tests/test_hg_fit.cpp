@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "layers/measured_profile.hpp"
-#include "layers/phase_study/hg_fit.hpp"
+#include "transport/measured_profile.hpp"
+#include "studies/phase_study/hg_fit.hpp"
 
 using namespace skinspec;
 

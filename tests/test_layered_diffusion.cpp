@@ -5,8 +5,8 @@
 #include <numbers>
 #include <vector>
 
-#include "layers/diffusion/dipole.hpp"
-#include "layers/diffusion/layered_diffusion.hpp"
+#include "transport/diffusion/dipole.hpp"
+#include "transport/diffusion/layered_diffusion.hpp"
 #include "spectral/input_error.hpp"
 
 using namespace skinspec;

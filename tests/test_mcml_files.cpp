@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "layers/rte/mcml_files.hpp"
+#include "formats/mcml_files.hpp"
 #include "spectral/data_paths.hpp"
 #include "spectral/input_error.hpp"
 

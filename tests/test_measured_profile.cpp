@@ -3,8 +3,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "layers/measured_profile.hpp"
-#include "layers/random_stream.hpp"
+#include "transport/measured_profile.hpp"
+#include "transport/random_stream.hpp"
 
 using namespace skinspec;
 

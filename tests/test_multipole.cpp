@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "layers/diffusion/dipole.hpp"
-#include "layers/diffusion/multipole.hpp"
+#include "transport/diffusion/dipole.hpp"
+#include "transport/diffusion/multipole.hpp"
 #include "spectral/input_error.hpp"
 
 using namespace skinspec;

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "layers/phase_study/phantom_sheet.hpp"
+#include "studies/phase_study/phantom_sheet.hpp"
 
 using namespace skinspec;
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "layers/phase_study/phase_comparison.hpp"
+#include "studies/phase_study/phase_comparison.hpp"
 #include "materials/material_file.hpp"
 
 using namespace skinspec;

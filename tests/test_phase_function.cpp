@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "layers/phase_function.hpp"
+#include "transport/phase_function.hpp"
 
 using namespace skinspec;
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "layers/phase_study/phase_sampling.hpp"
-#include "layers/phase_study/phase_study.hpp"
+#include "studies/phase_study/phase_sampling.hpp"
+#include "studies/phase_study/phase_study.hpp"
 
 using namespace skinspec;
 

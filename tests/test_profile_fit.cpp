@@ -3,11 +3,11 @@
 #include <cmath>
 #include <vector>
 
-#include "layers/diffusion/dipole.hpp"
-#include "layers/profile_fit/dipole_fit.hpp"
-#include "layers/profile_fit/profile_solve.hpp"
-#include "layers/profile_fit/profile_system.hpp"
-#include "layers/profile_fit/synthetic_scene.hpp"
+#include "transport/diffusion/dipole.hpp"
+#include "inverse/profile_fit/dipole_fit.hpp"
+#include "inverse/profile_fit/profile_solve.hpp"
+#include "inverse/profile_fit/profile_system.hpp"
+#include "inverse/profile_fit/synthetic_scene.hpp"
 #include "spectral/input_error.hpp"
 
 using namespace skinspec;

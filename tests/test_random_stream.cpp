@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "layers/random_stream.hpp"
+#include "transport/random_stream.hpp"
 
 using namespace skinspec;
 

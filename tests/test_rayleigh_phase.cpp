@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "layers/random_stream.hpp"
-#include "layers/rayleigh_phase.hpp"
+#include "transport/random_stream.hpp"
+#include "transport/rayleigh_phase.hpp"
 #include "sampling_checks.hpp"
 
 using namespace skinspec;

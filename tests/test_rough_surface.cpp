@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 
-#include "layers/diffusion/dipole.hpp"
-#include "layers/diffusion/rough_surface.hpp"
-#include "layers/fresnel.hpp"
+#include "transport/diffusion/dipole.hpp"
+#include "transport/diffusion/rough_surface.hpp"
+#include "transport/fresnel.hpp"
 #include "spectral/input_error.hpp"
 
 using namespace skinspec;

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "layers/rte/rte_model.hpp"
+#include "transport/rte/rte_model.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 

@@ -9,8 +9,8 @@
 
 #include <tbb/global_control.h>
 
-#include "layers/rte/adding_doubling_reference.hpp"
-#include "layers/rte/rte_model.hpp"
+#include "formats/adding_doubling_reference.hpp"
+#include "transport/rte/rte_model.hpp"
 #include "spectral/input_error.hpp"
 
 using namespace skinspec;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "layers/random_stream.hpp"
-#include "layers/skin_fold.hpp"
+#include "transport/random_stream.hpp"
+#include "transport/skin_fold.hpp"
 #include "sampling_checks.hpp"
 
 using namespace skinspec;

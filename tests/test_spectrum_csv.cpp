@@ -3,7 +3,7 @@
 #include <string>
 
 #include "spectral/input_error.hpp"
-#include "spectral/spectrum_csv.hpp"
+#include "formats/spectrum_csv.hpp"
 
 using namespace skinspec;
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "layers/benchmark/stress_grid.hpp"
+#include "studies/benchmark/stress_grid.hpp"
 
 using namespace skinspec;
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "layers/swatch/swatch_chart.hpp"
+#include "appearance/swatch_chart.hpp"
 #include "spectral/input_error.hpp"
 
 using namespace skinspec;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "layers/random_stream.hpp"
-#include "layers/two_term_hg.hpp"
+#include "transport/random_stream.hpp"
+#include "transport/two_term_hg.hpp"
 #include "sampling_checks.hpp"
 
 using namespace skinspec;

@@ -21,7 +21,7 @@ skinspec_cli_test("compare-phase small" 0 "colour difference CIEDE2000" compare-
 skinspec_cli_test("mcml sample" 0 "diffuse R 0\\.2" mcml ${PROJECT_SOURCE_DIR}/data/mcml/sample.mci --photons 5000 --output-dir ${CMAKE_CURRENT_BINARY_DIR} --overwrite)
 skinspec_cli_test("spectrum rte mode" 0 "rays" spectrum --mode rte --preset biospec-lightly --set stratum_corneum.volumetric_mu_s_per_cm_at_500nm=200 --set epidermis.volumetric_mu_s_per_cm_at_500nm=300 --set dermis.volumetric_mu_s_per_cm_at_500nm=200 --set dermis.volumetric_g=0.8 --wavelengths 550 --rays 2000)
 skinspec_cli_test("spectrum multipole" 0 "biospec-lightly: 16 wavelengths \\(multipole model, deterministic\\).*colour of R" spectrum --mode multipole --preset biospec-lightly --wavelengths 400:700:20)
-skinspec_cli_test("spectrum multipole warns" 0 "warning: biospec-lightly: stratum_corneum: thinner than one transport mean free path" spectrum --mode multipole --preset biospec-lightly --wavelengths 550)
+skinspec_cli_test("spectrum multipole warns" 0 "warning: biospec-lightly: diffusion: layer thinner than one transport mean free path, merged with its neighbour: stratum_corneum at 550 nm" spectrum --mode multipole --preset biospec-lightly --wavelengths 550)
 skinspec_cli_test("spectrum dipole bands" 0 "\"band\": \\[[^]]*\"R\",[^]]*\"G\",[^]]*\"B\"" spectrum --mode dipole --preset jensen2001-skin1 --json)
 skinspec_cli_test("spectrum dipole no stderr" 0 "\"R_specular\": \\[[^]]*\\],\n *\"warnings\"" spectrum --mode dipole --preset jensen2001-marble --json)
 skinspec_cli_test("profile csv" 0 "r_mm,R_550nm_per_mm2,T_550nm_per_mm2\n0,[0-9.]+,0\n" profile --preset biospec-lightly --wavelengths 550 --radii 0:1:0.5)

@@ -1,0 +1,167 @@
+#include "appearance/lit_patch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "appearance/image_convolution.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+namespace {
+
+constexpr int samples_per_pixel_side = 8;
+
+// Linear interpolation of a profile sampled at radii j * dr.
+double interpolate(const std::vector<double>& values, double dr, double r) {
+    const double x = r / dr;
+    const auto j = static_cast<std::size_t>(x);
+    if (j + 1 >= values.size()) return values.back();
+    const double f = x - static_cast<double>(j);
+    return values[j] * (1.0 - f) + values[j + 1] * f;
+}
+
+}  // namespace
+
+Illumination Illumination::spot(double radius_mm) {
+    if (!(radius_mm > 0.0 && std::isfinite(radius_mm))) throw InputError("spot radius = " + format_number(radius_mm) + " mm is outside (0, inf)");
+    Illumination l;
+    l.kind_ = Kind::spot;
+    l.radius_mm_ = radius_mm;
+    return l;
+}
+
+Illumination Illumination::edge() {
+    Illumination l;
+    l.kind_ = Kind::edge;
+    return l;
+}
+
+Illumination Illumination::pattern(std::vector<float> irradiance, int width_px, int height_px) {
+    if (width_px <= 0 || height_px <= 0 || irradiance.size() != static_cast<std::size_t>(width_px) * height_px) {
+        throw InputError("illumination pattern: size does not match its pixels");
+    }
+    for (const float v : irradiance) {
+        if (!std::isfinite(v) || v < 0.0f) throw InputError("illumination pattern: irradiance = " + format_number(v) + " is outside [0, inf)");
+    }
+    Illumination l;
+    l.kind_ = Kind::pattern;
+    l.image_ = std::move(irradiance);
+    l.image_w_ = width_px;
+    l.image_h_ = height_px;
+    return l;
+}
+
+std::string Illumination::description() const {
+    switch (kind_) {
+        case Kind::spot: return fmt::format("spot of radius {:g} mm", radius_mm_);
+        case Kind::edge: return "shadow edge (lit for x > 0)";
+        case Kind::pattern: return fmt::format("projected pattern {}x{}", image_w_, image_h_);
+    }
+    return {};
+}
+
+std::vector<double> Illumination::rasterize(const PatchGeometry& view, int margin) const {
+    const int w = view.width_px + 2 * margin, h = view.height_px + 2 * margin;
+    std::vector<double> out(static_cast<std::size_t>(w) * h, 0.0);
+    const double h_mm = view.pixel_mm;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const int vx = x - margin, vy = y - margin;  // view pixel
+            double sum = 0.0;
+            if (kind_ == Kind::pattern) {
+                if (vx < 0 || vy < 0 || vx >= view.width_px || vy >= view.height_px) continue;
+                const int ix = std::min(image_w_ - 1, vx * image_w_ / view.width_px);
+                const int iy = std::min(image_h_ - 1, vy * image_h_ / view.height_px);
+                out[static_cast<std::size_t>(y) * w + x] = image_[static_cast<std::size_t>(iy) * image_w_ + ix];
+                continue;
+            }
+            for (int sy = 0; sy < samples_per_pixel_side; ++sy) {
+                for (int sx = 0; sx < samples_per_pixel_side; ++sx) {
+                    const double px = (vx + (sx + 0.5) / samples_per_pixel_side - 0.5 * view.width_px) * h_mm;
+                    const double py = (0.5 * view.height_px - vy - (sy + 0.5) / samples_per_pixel_side) * h_mm;
+                    sum += kind_ == Kind::spot ? (px * px + py * py <= radius_mm_ * radius_mm_ ? 1.0 : 0.0) : (px > 0.0 ? 1.0 : 0.0);
+                }
+            }
+            out[static_cast<std::size_t>(y) * w + x] = sum / (samples_per_pixel_side * samples_per_pixel_side);
+        }
+    }
+    return out;
+}
+
+LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light,
+                          const PatchGeometry& view, const SpectralSolver& solver, const SolverSwitches& switches,
+                          const std::function<void(std::size_t, std::size_t)>& on_progress, const std::atomic<bool>* cancel) {
+    for (const int px : {view.width_px, view.height_px}) {
+        if (px < 8 || px > 4096) throw InputError("image size " + std::to_string(px) + " px is outside [8, 4096]");
+    }
+    if (!(view.pixel_mm > 0.0 && view.pixel_mm <= 100.0)) throw InputError("pixel size = " + format_number(view.pixel_mm) + " mm is outside (0, 100]");
+    LitPatch out;
+    out.geometry = view;
+    // The kernel reaches half the larger side of the view: light from up to that far away is gathered.
+    const int margin = std::max(view.width_px, view.height_px) / 2;
+    out.kernel_radius_px = margin;
+    const double h = view.pixel_mm;
+    const double dr = h / samples_per_pixel_side;
+    std::vector<double> radii;
+    for (int j = 0; j * dr <= (margin + 2) * h * std::sqrt(2.0); ++j) radii.push_back(j * dr);
+    out.profiles = solve_profiles(solver, material, ProfileRequest{wavelengths, radii, false, switches});
+
+    const auto widened = light.rasterize(view, margin);
+    const int we = view.width_px + 2 * margin, he = view.height_px + 2 * margin;
+    const ImageConvolver convolver(widened, we, he, margin, margin);
+    const int side = 2 * margin + 1;
+
+    const std::size_t channels = out.profiles.channels.size();
+    for (std::size_t c = 0; c < channels; ++c) {
+        if (cancel && cancel->load()) {
+            out.partial = true;
+            break;
+        }
+        const auto& profile = out.profiles.channels[c];
+        // Kernel: R(r) integrated over each pixel (8 x 8 samples near the centre, the centre value further out).
+        std::vector<double> kernel(static_cast<std::size_t>(side) * side);
+        double sum = 0.0;
+        for (int j = -margin; j <= margin; ++j) {
+            for (int i = -margin; i <= margin; ++i) {
+                double value = 0.0;
+                if (std::max(std::abs(i), std::abs(j)) <= 3) {
+                    for (int sy = 0; sy < samples_per_pixel_side; ++sy) {
+                        for (int sx = 0; sx < samples_per_pixel_side; ++sx) {
+                            const double x = (i - 0.5 + (sx + 0.5) / samples_per_pixel_side) * h;
+                            const double y = (j - 0.5 + (sy + 0.5) / samples_per_pixel_side) * h;
+                            value += interpolate(profile.reflectance_per_mm2, dr, std::hypot(x, y));
+                        }
+                    }
+                    value *= h * h / (samples_per_pixel_side * samples_per_pixel_side);
+                } else {
+                    value = interpolate(profile.reflectance_per_mm2, dr, std::hypot(i * h, j * h)) * h * h;
+                }
+                kernel[static_cast<std::size_t>(j + margin) * side + static_cast<std::size_t>(i + margin)] = value;
+                sum += value;
+            }
+        }
+        // Energy: the kernel must sum to the material's total diffuse reflectance (analytic).
+        const double correction = profile.total_reflectance - sum;
+        kernel[static_cast<std::size_t>(margin) * side + static_cast<std::size_t>(margin)] += correction;
+        if (profile.total_reflectance > 0.0) {
+            out.largest_kernel_correction = std::max(out.largest_kernel_correction, std::abs(correction) / profile.total_reflectance);
+        }
+        const auto exitance = convolver.convolve(kernel);
+        std::vector<float> image(static_cast<std::size_t>(view.width_px) * view.height_px);
+        for (int y = 0; y < view.height_px; ++y) {
+            for (int x = 0; x < view.width_px; ++x) {
+                // FFT round-off (~1e-16 of the lit level) can leave dark pixels a hair below zero.
+                image[static_cast<std::size_t>(y) * view.width_px + x] =
+                    static_cast<float>(std::max(0.0, exitance[static_cast<std::size_t>(y + margin) * we + (x + margin)]));
+            }
+        }
+        out.exitance.push_back(std::move(image));
+        if (on_progress) on_progress(c + 1, channels);
+    }
+    return out;
+}
+
+}  // namespace skinspec

@@ -1,0 +1,34 @@
+#include "cli/solver_options.hpp"
+
+#include "spectral/input_error.hpp"
+
+namespace skinspec::cli {
+
+void add_solver_options(CLI::App& command, SolverOptions& o, const std::string& default_text) {
+    std::string modes;
+    for (const auto* s : solver_registry()) modes += "\n  " + std::string(s->name()) + ": " + std::string(s->description());
+    command.add_option("--mode", o.mode, "Solver (default " + default_text + "):" + modes);
+    command.add_option("--estimator", o.estimator, "biospec: absorption estimator, weighted (default) or random (per-crossing test)");
+    command.add_option("--fold-into-skin", o.fold_into_skin,
+                       "biospec: fold-perturbed reflections pointing into the skin, drop (default, as the 2004 code) or resample");
+    command.add_option("--boundaries", o.boundaries, "rte: Fresnel at the outer boundaries, random (default, as MCML) or split");
+    command.add_option("--roughness", o.roughness, "dipole, multipole: Beckmann RMS slope of a rough top surface, (0, 2] (default smooth)")
+        ->check(CLI::Range(1e-6, 2.0));
+}
+
+const SpectralSolver& chosen_solver(const SolverOptions& o, std::string_view fallback) {
+    return find_solver(o.mode.empty() ? fallback : std::string_view(o.mode), "--mode");
+}
+
+SolverSwitches solver_switches(const SolverOptions& o) {
+    SolverSwitches s;
+    if (!o.estimator.empty()) s.estimator = parse_absorption_estimator(o.estimator, "--estimator");
+    if (!o.fold_into_skin.empty()) s.fold_into_skin = parse_fold_into_skin(o.fold_into_skin, "--fold-into-skin");
+    if (o.boundaries == "random") s.boundaries = BoundaryMode::random;
+    else if (o.boundaries == "split") s.boundaries = BoundaryMode::split;
+    else if (!o.boundaries.empty()) throw InputError("--boundaries: '" + o.boundaries + "' is not allowed (allowed: random, split)");
+    if (o.roughness > 0.0) s.surface_roughness = o.roughness;
+    return s;
+}
+
+}  // namespace skinspec::cli

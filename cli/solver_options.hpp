@@ -1,0 +1,29 @@
+#pragma once
+// The command-line face of the solver registry, shared by every command that solves: `--mode` and the solver
+// switches. A switch left unset keeps the solver's default; a switch the chosen solver does not take is
+// refused by the registry (solvers/spectral_solver.hpp), never ignored.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "solvers/spectral_solver.hpp"
+
+namespace skinspec::cli {
+
+struct SolverOptions {
+    std::string mode;            // "" = the command's default
+    std::string estimator;       // "" = unset
+    std::string fold_into_skin;  // "" = unset
+    std::string boundaries;      // "" = unset
+    double roughness = 0.0;      // 0 = unset (smooth)
+};
+
+// Adds --mode and the switches with help texts that name the solvers taking each. `default_text` describes
+// the default of --mode ("biospec"); an empty options.mode means "the command's default".
+void add_solver_options(CLI::App& command, SolverOptions& options, const std::string& default_text = "biospec");
+
+// The solver named by --mode, or `fallback` when --mode was not given.
+const SpectralSolver& chosen_solver(const SolverOptions& options, std::string_view fallback = "biospec");
+SolverSwitches solver_switches(const SolverOptions& options);
+
+}  // namespace skinspec::cli

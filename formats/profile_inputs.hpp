@@ -1,0 +1,30 @@
+#pragma once
+// The files `skinspec fit-profile` reads (docs/PROFILE_FIT.md): a patch list CSV, a radial profile CSV, and
+// a planar image pair (irradiance and exitance per mm^2, optional mask). Every problem is an InputError
+// naming the file, the line or pixel, the field and what is allowed.
+#include <string>
+#include <vector>
+
+#include "inverse/profile_fit/profile_system.hpp"
+
+namespace skinspec {
+
+// x_mm,y_mm,z_mm,nx,ny,nz,c,l,visible (unit normals, c and l >= 0, visible 0 or 1).
+std::vector<SurfacePatch> read_patch_list(const std::string& file);
+
+struct RadialSamples {
+    std::vector<double> radii_mm;
+    std::vector<double> profile_per_mm2;
+};
+// r_mm and one profile column (the second, or `column` by name).
+RadialSamples read_radial_profile(const std::string& file, const std::string& column = {});
+
+struct PlanarInputs {
+    std::string irradiance, exitance, mask;  // file names; mask optional
+    double pitch_mm = 0.0;
+};
+// One planar scene per colour channel of the image pair (alpha ignored): irradiance per mm^2 becomes power
+// per pixel; `channel_names` gets the images' channel names. fit_planar checks the values (validate(PlanarScene)).
+std::vector<PlanarScene> read_planar_scenes(const PlanarInputs& inputs, std::vector<std::string>& channel_names);
+
+}  // namespace skinspec

@@ -1,0 +1,173 @@
+#include "solvers/spectral_solver.hpp"
+
+#include <algorithm>
+
+#include "skinspec/version.hpp"
+#include "solvers/biospec_walk_solver.hpp"
+#include "solvers/diffusion_solvers.hpp"
+#include "solvers/volumetric_walk_solver.hpp"
+#include "spectral/input_error.hpp"
+
+namespace skinspec {
+namespace {
+
+std::string join(const std::vector<std::string>& items) {
+    std::string out;
+    for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
+    return out.empty() ? std::string("none") : out;
+}
+
+// Names of the registered solvers for which `offers` holds.
+std::string offered_by(const std::function<bool(const SolverCapabilities&)>& offers) {
+    std::vector<std::string> names;
+    for (const auto* s : solver_registry()) {
+        if (offers(s->capabilities())) names.emplace_back(s->name());
+    }
+    return join(names);
+}
+
+std::string quantity_list(const Quantities& q) {
+    std::vector<std::string> names;
+    if (q.reflectance) names.emplace_back("R");
+    if (q.transmittance) names.emplace_back("T");
+    if (q.absorptance) names.emplace_back("A");
+    if (q.angular) names.emplace_back("brdf");
+    return join(names);
+}
+
+void check_material(const SpectralSolver& solver, const Material& material) {
+    const auto& caps = solver.capabilities();
+    const std::string who = "solver '" + std::string(solver.name()) + "'";
+    if (std::holds_alternative<HomogeneousMaterial>(material) && !caps.band_materials) {
+        throw InputError(who + " needs a layered material; '" + material_name(material) +
+                         "' is a homogeneous material given per band (solvers for band materials: " +
+                         offered_by([](const SolverCapabilities& c) { return c.band_materials; }) + ")");
+    }
+    if (std::holds_alternative<LayerStack>(material) && !caps.layered_materials) {
+        throw InputError(who + " needs a homogeneous band material; '" + material_name(material) +
+                         "' is layered (solvers for layered materials: " +
+                         offered_by([](const SolverCapabilities& c) { return c.layered_materials; }) + ")");
+    }
+}
+
+void check_switches(const SpectralSolver& solver, const SolverSwitches& switches) {
+    const auto& caps = solver.capabilities();
+    for (const auto s : switches.set()) {
+        if (std::find(caps.switches.begin(), caps.switches.end(), s) != caps.switches.end()) continue;
+        throw InputError("solver '" + std::string(solver.name()) + "' does not take the switch '" + std::string(to_string(s)) +
+                         "' (taken by: " +
+                         offered_by([s](const SolverCapabilities& c) {
+                             return std::find(c.switches.begin(), c.switches.end(), s) != c.switches.end();
+                         }) +
+                         ")");
+    }
+}
+
+}  // namespace
+
+std::string_view to_string(SolverSwitch s) {
+    switch (s) {
+        case SolverSwitch::estimator: return "estimator";
+        case SolverSwitch::fold_into_skin: return "fold-into-skin";
+        case SolverSwitch::roughness: return "roughness";
+        case SolverSwitch::boundaries: return "boundaries";
+        case SolverSwitch::thin_layer_phase: return "thin-layer-phase";
+    }
+    return "?";
+}
+
+std::vector<SolverSwitch> SolverSwitches::set() const {
+    std::vector<SolverSwitch> out;
+    if (estimator) out.push_back(SolverSwitch::estimator);
+    if (fold_into_skin) out.push_back(SolverSwitch::fold_into_skin);
+    if (surface_roughness) out.push_back(SolverSwitch::roughness);
+    if (boundaries) out.push_back(SolverSwitch::boundaries);
+    if (thin_layer_hg) out.push_back(SolverSwitch::thin_layer_phase);
+    return out;
+}
+
+SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&) const {
+    throw InputError("solver '" + std::string(name()) + "' does not compute radial profiles");
+}
+
+const std::vector<const SpectralSolver*>& solver_registry() {
+    // Adding a solver: its own files and one entry here (docs/SOLVERS.md).
+    static const std::vector<const SpectralSolver*> solvers{&biospec_walk_solver(), &volumetric_walk_solver(),
+                                                            &multipole_solver(), &dipole_solver()};
+    return solvers;
+}
+
+std::string solver_names() {
+    std::vector<std::string> names;
+    for (const auto* s : solver_registry()) names.emplace_back(s->name());
+    return join(names);
+}
+
+const SpectralSolver& find_solver(std::string_view name, std::string_view what) {
+    for (const auto* s : solver_registry()) {
+        if (s->name() == name) return *s;
+    }
+    throw InputError(std::string(what) + ": '" + std::string(name) + "' is not a solver (allowed: " + solver_names() + ")");
+}
+
+void check_request(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
+    const auto& caps = solver.capabilities();
+    const std::string who = "solver '" + std::string(solver.name()) + "'";
+    check_material(solver, material);
+    const auto& q = request.spectral.quantities;
+    const std::vector<std::pair<bool, const char*>> asked{{q.reflectance && !caps.quantities.reflectance, "R"},
+                                                          {q.transmittance && !caps.quantities.transmittance, "T"},
+                                                          {q.absorptance && !caps.quantities.absorptance, "A"},
+                                                          {q.angular && !caps.quantities.angular, "brdf"}};
+    for (const auto& [missing, quantity] : asked) {
+        if (!missing) continue;
+        const std::string wanted = quantity;
+        throw InputError(who + " does not compute " + wanted + " (it computes " + quantity_list(caps.quantities) + "; " + wanted +
+                         " is computed by: " + offered_by([&](const SolverCapabilities& c) {
+                             return wanted == "R" ? c.quantities.reflectance
+                                    : wanted == "T" ? c.quantities.transmittance
+                                    : wanted == "A" ? c.quantities.absorptance
+                                                    : c.quantities.angular;
+                         }) + ")");
+    }
+    if (!caps.uncertainty && (request.spectral.stderr_target || request.spectral.stderr_targets || request.fixed_rays_per_wavelength)) {
+        throw InputError(who + " is deterministic: it takes no standard-error target or ray count (Monte Carlo solvers: " +
+                         offered_by([](const SolverCapabilities& c) { return c.uncertainty; }) + ")");
+    }
+    check_switches(solver, request.switches);
+}
+
+void check_request(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
+    if (!solver.capabilities().radial_profiles) {
+        throw InputError("solver '" + std::string(solver.name()) + "' does not compute radial profiles R(r) (solvers that do: " +
+                         offered_by([](const SolverCapabilities& c) { return c.radial_profiles; }) + ")");
+    }
+    check_material(solver, material);
+    check_switches(solver, request.switches);
+}
+
+SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
+    check_request(solver, material, request);
+    const SolverRequest* effective = &request;
+    SolverRequest fixed;
+    if (request.fixed_rays_per_wavelength) {
+        fixed = request;
+        fixed.spectral.max_rays_per_wavelength = *request.fixed_rays_per_wavelength;
+        fixed.spectral.stderr_target.reset();
+        fixed.spectral.stderr_targets = nullptr;
+        effective = &fixed;
+    }
+    auto result = solver.solve(material, *effective);
+    result.provenance.solver = std::string(solver.name());
+    result.provenance.material_toml = to_toml(material);
+    for (const auto& o : request.overrides) result.provenance.overrides.emplace_back(o.key, o.value);
+    result.provenance.version = version;
+    return result;
+}
+
+SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
+    check_request(solver, material, request);
+    return solver.profiles(material, request);
+}
+
+}  // namespace skinspec

@@ -1,0 +1,91 @@
+#pragma once
+// One interface for every spectral solver (docs/SOLVERS.md): a solver declares what it supports, and every
+// consumer (spectrum, swatch, profile, bench, stress, the phase comparison) asks the registry for it by name.
+// A request for something a solver does not declare is refused by check_request() with one message naming
+// the solver, what was asked and which solvers do offer it; solvers never see such a request.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "materials/material_file.hpp"
+#include "transport/biospec/biospec_options.hpp"
+#include "transport/diffusion/diffusion_profiles.hpp"
+#include "transport/rte/rte_model.hpp"
+#include "transport/spectral_request.hpp"
+
+namespace skinspec {
+
+// Options that are not properties of the skin. Unset: the solver's default. Set for a solver that does not
+// declare the switch: refused.
+enum class SolverSwitch { estimator, fold_into_skin, roughness, boundaries, thin_layer_phase };
+std::string_view to_string(SolverSwitch s);
+
+struct SolverSwitches {
+    std::optional<AbsorptionEstimator> estimator;  // BioSpec walk: weighted or per-crossing random test
+    std::optional<FoldIntoSkin> fold_into_skin;    // BioSpec walk: drop or resample fold reflections into the skin
+    std::optional<double> surface_roughness;       // diffusion: Beckmann RMS slope of a rough top surface
+    std::optional<BoundaryMode> boundaries;        // volumetric walk: all-or-none or split Fresnel boundaries
+    std::optional<ThinLayerHg> thin_layer_hg;      // BioSpec walk: HG in place of the measured thin-layer profiles
+    std::vector<SolverSwitch> set() const;
+};
+
+struct SolverCapabilities {
+    Quantities quantities;           // which of R, T, A (per layer), brdf (angular bins) it computes
+    bool layered_materials = true;   // LayerStack materials (wavelength rows)
+    bool band_materials = false;     // homogeneous materials given per band (band rows)
+    bool uncertainty = true;         // Monte Carlo: standard errors, ray budgets and stderr targets
+    bool radial_profiles = false;    // R(r), T(r) per wavelength or band (profile command, lit swatches)
+    std::vector<SolverSwitch> switches;
+    std::vector<std::string> replay_fields;  // material fields re-weighted from traced paths (none yet)
+    std::string material_needs;      // what a layered material must describe for this solver, "" when nothing
+};
+
+// A request for one material. `spectral` is what the transport solvers consume; `overrides` are recorded in
+// the result's provenance (they were applied when the material was loaded).
+struct SolverRequest {
+    SpectralRequest spectral;
+    SolverSwitches switches;
+    std::optional<std::uint64_t> fixed_rays_per_wavelength;  // exactly this many rays, no stderr target
+    std::vector<MaterialOverride> overrides;
+};
+
+struct ProfileRequest {
+    WavelengthGrid wavelengths = WavelengthGrid::list({550.0});  // layered materials; band materials: all bands
+    std::vector<double> radii_mm;
+    bool transmittance = false;
+    SolverSwitches switches;
+};
+
+class SpectralSolver {
+public:
+    virtual ~SpectralSolver() = default;
+    virtual std::string_view name() const = 0;
+    virtual std::string_view description() const = 0;
+    virtual const SolverCapabilities& capabilities() const = 0;
+
+    // Only called through solve_spectrum() / solve_profiles(), i.e. with a request check_request() accepted.
+    virtual SpectralResult solve(const Material& material, const SolverRequest& request) const = 0;
+    virtual SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const;
+};
+
+// The registered solvers, in the order `--mode` lists them.
+const std::vector<const SpectralSolver*>& solver_registry();
+// InputError naming the allowed solvers for an unknown name; `what` is the option (e.g. "--mode").
+const SpectralSolver& find_solver(std::string_view name, std::string_view what = "--mode");
+// "biospec, rte, dipole, multipole".
+std::string solver_names();
+
+// InputError for anything the solver does not declare: the material's kind, a quantity, a switch, a
+// standard-error target or a ray count for a deterministic solver.
+void check_request(const SpectralSolver& solver, const Material& material, const SolverRequest& request);
+void check_request(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
+
+// check_request, solve, and the provenance (material TOML, overrides, switches, seed, version) filled in.
+SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request);
+SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
+
+}  // namespace skinspec

@@ -1,0 +1,305 @@
+#include "studies/benchmark/runtime_benchmark.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <span>
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include "solvers/spectral_solver.hpp"
+#include "transport/diffusion/diffusion_model.hpp"
+#include "transport/diffusion/dipole.hpp"
+#include "transport/diffusion/multipole.hpp"
+#include "transport/fresnel.hpp"
+#include "formats/adding_doubling_reference.hpp"
+#include "transport/rte/rte_model.hpp"
+#include "appearance/swatch_chart.hpp"
+#include "materials/material_file.hpp"
+
+namespace skinspec {
+
+std::string_view to_string(BenchSolver solver) {
+    switch (solver) {
+        case BenchSolver::biospec_walk: return "biospec";
+        case BenchSolver::volumetric_walk: return "rte";
+        case BenchSolver::dipole: return "dipole";
+        case BenchSolver::multipole: return "multipole";
+    }
+    return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Mean wall time of `call`, repeated until at least `min_seconds` have passed (at least once).
+double mean_seconds_per_call(const std::function<void()>& call, double min_seconds) {
+    int calls = 0;
+    const auto start = Clock::now();
+    do {
+        call();
+        ++calls;
+    } while (seconds_since(start) < min_seconds);
+    return seconds_since(start) / calls;
+}
+
+struct Stopped {};
+
+struct Plan {
+    std::vector<std::uint64_t> rays;
+    int repetitions;
+    std::uint64_t reference_rays;
+    double min_timing_seconds;  // deterministic solvers are repeated for at least this long
+    std::uint64_t scaling_rays;
+    std::vector<std::string> colour_materials;
+};
+
+Plan plan_of(bool quick) {
+    if (quick) return {{1000, 4000, 16000, 64000, 256000}, 4, 4'000'000, 0.02, 400'000, {"biospec-moderately"}};
+    return {{1000, 3162, 10000, 31623, 100000, 316228, 1'000'000}, 6, 20'000'000, 0.1, 4'000'000,
+            {"biospec-lightly", "biospec-moderately", "biospec-heavily"}};
+}
+
+class Benchmark {
+public:
+    explicit Benchmark(const BenchOptions& options) : options_(options), plan_(plan_of(options.quick)) {}
+
+    BenchReport& report() { return report_; }
+
+    void stage(const std::string& text) const {
+        if (options_.on_stage) options_.on_stage(text);
+    }
+    void check_cancel() const {
+        if (options_.cancel && options_.cancel->load()) throw Stopped{};
+    }
+
+    std::size_t add_case(BenchCase c) {
+        report_.cases.push_back(std::move(c));
+        return report_.cases.size() - 1;
+    }
+
+    // A long run of a walk with the reference seed as the case's reference.
+    std::size_t add_walk_reference_case(std::string name, std::string quantity, const std::function<Estimate(std::uint64_t, std::uint64_t)>& run,
+                                        const std::string& solver_name) {
+        stage(fmt::format("{}: reference ({} rays)", name, plan_.reference_rays));
+        const auto start = Clock::now();
+        const auto reference = run(plan_.reference_rays, options_.reference_seed);
+        const double seconds = seconds_since(start);
+        check_cancel();
+        return add_case({std::move(name), std::move(quantity), reference, 2.0 * reference.stderr / reference.value,
+                         fmt::format("{} walk, {} rays, seed {} (+- {:.2g} %)", solver_name, plan_.reference_rays, options_.reference_seed,
+                                     100.0 * reference.stderr / reference.value),
+                         seconds});
+    }
+
+    // The walk at every budget, `repetitions` seeds each.
+    void sweep_walk(std::size_t case_index, BenchSolver solver, const std::function<Estimate(std::uint64_t, std::uint64_t)>& run) {
+        const auto& c = report_.cases[case_index];
+        stage(fmt::format("{}: {} walk, {} budgets x {} seeds", c.name, to_string(solver), plan_.rays.size(), plan_.repetitions));
+        for (const auto rays : plan_.rays) {
+            BenchPoint p{case_index, solver, rays, plan_.repetitions, 0.0, {}, 0.0, {}};
+            double squares = 0.0, seconds = 0.0;
+            for (int k = 0; k < plan_.repetitions; ++k) {
+                const auto start = Clock::now();
+                const auto e = run(rays, options_.seed + static_cast<std::uint64_t>(k));
+                seconds += seconds_since(start);
+                check_cancel();
+                if (k == 0) p.value = e;
+                const double error = (e.value - c.reference.value) / c.reference.value;
+                squares += error * error;
+            }
+            p.seconds = seconds / plan_.repetitions;
+            p.relative_error = std::sqrt(squares / plan_.repetitions);
+            report_.points.push_back(p);
+        }
+    }
+
+    // A deterministic solver: timed over repeated calls.
+    void time_deterministic(std::size_t case_index, BenchSolver solver, const std::function<double()>& evaluate, std::string note = {}) {
+        const auto& c = report_.cases[case_index];
+        double value = evaluate();
+        const double seconds = mean_seconds_per_call([&] { value = evaluate(); }, plan_.min_timing_seconds);
+        BenchPoint p{case_index, solver, 0, 1, seconds, {value, 0.0},
+                     std::abs(value - c.reference.value) / c.reference.value, std::move(note)};
+        report_.points.push_back(p);
+        check_cancel();
+    }
+
+    const BenchOptions& options() const { return options_; }
+    const Plan& plan() const { return plan_; }
+
+private:
+    BenchOptions options_;
+    Plan plan_;
+    BenchReport report_;
+};
+
+std::string trust_note(const SpectralResult& result) {
+    return result.warnings.empty() ? std::string() : fmt::format("{} trust warning(s): {}", result.warnings.size(), summarise_warnings(result.warnings).front());
+}
+
+// Prahl's slabs: Rd by the volumetric walk, the multipole (finite slab) and the dipole (semi-infinite).
+void adding_doubling_cases(Benchmark& bench, const std::vector<AddingDoublingSlab>& slabs) {
+    for (const std::size_t row : {0u, 3u, 5u}) {
+        const auto& slab = slabs.at(row);
+        const auto index = bench.add_case({fmt::format("slab a {:.3f} b {:g} g {:g} n {:g}", slab.albedo, slab.optical_thickness, slab.g, slab.refractive_index),
+                                           "Rd", {slab.diffuse_reflectance, 0.0}, 1e-3,
+                                           "adding-doubling (Prahl), data/reference/adding_doubling_slabs.csv, ~1e-3 relative"});
+        bench.sweep_walk(index, BenchSolver::volumetric_walk, [&](std::uint64_t rays, std::uint64_t seed) {
+            RteRequest request;
+            request.stack = slab.stack();
+            request.photons = rays;
+            request.seed = seed;
+            request.cancel = bench.options().cancel;
+            return solve_rte(request).diffuse_reflectance;
+        });
+        // Similarity: sigma_s' = mu_s (1 - g) (transport-models.md Sec. 2); per cm, the slab 0.1 cm thick.
+        const auto layer = slab.stack().layers.front();
+        const double n = slab.refractive_index;
+        const double entry = 1.0 - fresnel_reflectance(1.0, 1.0, n);
+        const double face = n == 1.0 ? 0.0 : diffuse_fresnel_reflectance(n);
+        const double reduced = layer.mu_s_per_cm * (1.0 - slab.g);
+        bench.time_deterministic(index, BenchSolver::multipole, [&] {
+            return entry * Multipole({reduced, layer.mu_a_per_cm, layer.thickness_cm, face, face}).total_reflectance();
+        });
+        bench.time_deterministic(index, BenchSolver::dipole, [&] { return entry * Dipole({reduced, layer.mu_a_per_cm, n}).total_reflectance(); });
+    }
+}
+
+// The pigmentation presets at 550 nm: R by the BioSpec walk and both diffusion modes.
+void preset_cases(Benchmark& bench) {
+    for (const auto* name : {"biospec-lightly", "biospec-moderately", "biospec-heavily"}) {
+        const auto material = load_material(name);
+        const auto walk = [&](std::uint64_t rays, std::uint64_t seed) {
+            SolverRequest request;
+            request.spectral.max_rays_per_wavelength = rays;
+            request.spectral.seed = seed;
+            request.spectral.cancel = bench.options().cancel;
+            return solve_spectrum(find_solver("biospec"), material, request).wavelengths.front().reflectance;
+        };
+        const auto index = bench.add_walk_reference_case(fmt::format("{} 550 nm", name), "R", walk, "BioSpec");
+        bench.sweep_walk(index, BenchSolver::biospec_walk, walk);
+        for (const auto mode : {DiffusionMode::multipole, DiffusionMode::dipole}) {
+            const SolverRequest request;
+            const auto& solver = find_solver(to_string(mode));
+            const auto result = solve_spectrum(solver, material, request);
+            bench.time_deterministic(index, mode == DiffusionMode::dipole ? BenchSolver::dipole : BenchSolver::multipole,
+                                     [&] { return solve_spectrum(solver, material, request).wavelengths.front().reflectance.value; },
+                                     trust_note(result));
+        }
+    }
+}
+
+// Jensen's skin1, G band, as a 200-mfp slab for the walk (isotropic, sigma_s = sigma_s'): R total.
+void jensen_case(Benchmark& bench) {
+    const auto material = std::get<HomogeneousMaterial>(load_material("jensen2001-skin1"));
+    const std::size_t band = 1;
+    const double reduced = material.reduced_scattering_per_mm[band], absorption = material.absorption_per_mm[band];
+    const double n = material.relative_refractive_index;
+    const auto walk = [&](std::uint64_t rays, std::uint64_t seed) {
+        RteRequest request;
+        request.stack.layers.push_back({n, absorption * 10.0, reduced * 10.0, 200.0 / (reduced + absorption) / 10.0, PhaseFunction::isotropic()});
+        request.photons = rays;
+        request.seed = seed;
+        request.cancel = bench.options().cancel;
+        const auto r = solve_rte(request);
+        return Estimate{r.specular_reflectance.value + r.diffuse_reflectance.value, r.diffuse_reflectance.stderr};
+    };
+    const auto index = bench.add_walk_reference_case("jensen2001-skin1 G (200 mfp)", "R", walk, "volumetric");
+    bench.sweep_walk(index, BenchSolver::volumetric_walk, walk);
+    for (const auto mode : {DiffusionMode::multipole, DiffusionMode::dipole}) {
+        SpectralRequest request;
+        bench.time_deterministic(index, mode == DiffusionMode::dipole ? BenchSolver::dipole : BenchSolver::multipole,
+                                 [&] { return solve_diffusion_bands(material, request, {mode, std::nullopt}).wavelengths[band].reflectance.value; });
+    }
+}
+
+// The multipole profile of the first slab (per cm) at 400 radii to 1 cm, pair tolerance 1e-1 ... 1e-10,
+// against the series summed to 1e-14.
+void pair_sweep(Benchmark& bench, const AddingDoublingSlab& slab) {
+    bench.stage("multipole profile: pair tolerance sweep");
+    const auto layer = slab.stack().layers.front();
+    const double face = diffuse_fresnel_reflectance(slab.refractive_index);
+    const DiffusionSlab d{layer.mu_s_per_cm * (1.0 - slab.g), layer.mu_a_per_cm, layer.thickness_cm, face, face};
+    std::vector<double> radii;
+    for (int i = 0; i < 400; ++i) radii.push_back(0.0025 * i);
+    const auto exact = Multipole(d, 1e-14).reflectance_profile(radii);
+    auto& report = bench.report();
+    report.pair_sweep_radii = radii.size();
+    for (const double tolerance : {1e-1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
+        const Multipole model(d, tolerance);
+        RadialProfile profile;
+        const double seconds = mean_seconds_per_call([&] { profile = model.reflectance_profile(radii); }, bench.plan().min_timing_seconds);
+        double worst = 0.0;
+        for (std::size_t i = 0; i < radii.size(); ++i) worst = std::max(worst, std::abs(profile.values[i] - exact.values[i]) / exact.values[i]);
+        report.pair_sweep.push_back({tolerance, profile.max_pairs, seconds, worst});
+        bench.check_cancel();
+    }
+}
+
+void thread_scaling(Benchmark& bench, const AddingDoublingSlab& slab) {
+    const auto rays = bench.plan().scaling_rays;
+    bench.stage(fmt::format("thread scaling 1 -> 2 ({} rays)", rays));
+    const auto material = load_material("biospec-moderately");
+    const auto time_with = [&](int threads, const std::function<void()>& run) {
+        const tbb::global_control control(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+        const auto start = Clock::now();
+        run();
+        bench.check_cancel();
+        return seconds_since(start);
+    };
+    const auto biospec = [&] {
+        SolverRequest request;
+        request.spectral.max_rays_per_wavelength = rays;
+        request.spectral.cancel = bench.options().cancel;
+        solve_spectrum(find_solver("biospec"), material, request);
+    };
+    const auto rte = [&] {
+        RteRequest request;
+        request.stack = slab.stack();
+        request.photons = rays / 4;
+        request.cancel = bench.options().cancel;
+        solve_rte(request);
+    };
+    bench.report().scaling.push_back({BenchSolver::biospec_walk, "biospec-moderately 550 nm", rays, time_with(1, biospec), time_with(2, biospec)});
+    bench.report().scaling.push_back({BenchSolver::volumetric_walk, "slab a 0.990 b 10.1 g 0.9 n 1.4", rays / 4, time_with(1, rte), time_with(2, rte)});
+}
+
+void colour_timings(Benchmark& bench) {
+    for (const auto& material : bench.plan().colour_materials) {
+        bench.stage(fmt::format("{}: one swatch patch at Delta E <= 0.3", material));
+        SwatchRequest request;
+        request.material = material;
+        request.cancel = bench.options().cancel;
+        const auto start = Clock::now();
+        const auto chart = compute_swatch(request);
+        const double seconds = seconds_since(start);
+        bench.check_cancel();
+        const auto& patch = chart.patches.front();
+        bench.report().colours.push_back({material, seconds, patch.rays, patch.delta_e_uncertainty, patch.converged});
+    }
+}
+
+}  // namespace
+
+BenchReport run_benchmark(const BenchOptions& options) {
+    Benchmark bench(options);
+    try {
+        const auto slabs = adding_doubling_slabs();
+        adding_doubling_cases(bench, slabs);
+        preset_cases(bench);
+        jensen_case(bench);
+        pair_sweep(bench, slabs.front());
+        thread_scaling(bench, slabs.front());
+        colour_timings(bench);
+    } catch (const Stopped&) {
+        bench.report().partial = true;
+    }
+    return bench.report();
+}
+
+}  // namespace skinspec

@@ -1,0 +1,89 @@
+#pragma once
+// Run time against error for every solver (skinspec bench, docs/PERFORMANCE.md). Fixed cases, each with an
+// independent reference:
+//   - three adding-doubling slabs (data/reference, Prahl, ~1e-3 relative): Rd by the volumetric walk, the
+//     multipole (the finite slab) and the dipole (semi-infinite);
+//   - the lightly/moderately/heavily pigmented presets at 550 nm: R by the BioSpec walk against a long BioSpec
+//     run with a different seed (its standard error is stated), and by both diffusion modes;
+//   - Jensen's skin1 (G band) as a 200-mfp slab: R by the volumetric walk against a long walk, and diffusion.
+// The walks sweep their ray budget (several seeds per budget, RMS relative error); diffusion has no budget
+// for totals (closed form), so it gives one point whose error is the model's. The multipole profile's pair
+// tolerance is swept separately against the fully converged image series. Also: thread scaling 1 -> 2 and
+// the time per colour (one swatch patch at Delta E <= 0.3).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "transport/spectral_request.hpp"
+
+namespace skinspec {
+
+enum class BenchSolver { biospec_walk, volumetric_walk, dipole, multipole };
+std::string_view to_string(BenchSolver solver);
+
+struct BenchCase {
+    std::string name;
+    std::string quantity;           // "Rd" (specular excluded) or "R" (total)
+    Estimate reference;             // stderr 0 for a tabulated reference
+    double resolvable_error = 0.0;  // relative errors below this are not resolved by the reference
+    std::string reference_source;
+    double reference_seconds = 0.0;  // time of the long reference run (0 for tables)
+};
+
+struct BenchPoint {
+    std::size_t case_index = 0;
+    BenchSolver solver = BenchSolver::biospec_walk;
+    std::uint64_t rays = 0;      // the walks' budget per run (0: deterministic)
+    int repetitions = 1;         // runs with different seeds
+    double seconds = 0.0;        // mean wall time per run, all threads
+    Estimate value;              // the first run's value (stderr 0 for diffusion)
+    double relative_error = 0.0; // RMS over the runs of (value - reference) / reference
+    std::string note;            // e.g. the diffusion trust warnings
+};
+
+struct PairSweepPoint {
+    double tolerance = 0.0;
+    std::size_t pairs = 0;       // most pairs any radius needed
+    double seconds = 0.0;        // one profile of `radii` radii
+    double max_relative_error = 0.0;
+};
+
+struct ThreadScaling {
+    BenchSolver solver = BenchSolver::biospec_walk;
+    std::string workload;
+    std::uint64_t rays = 0;
+    double seconds_one_thread = 0.0;
+    double seconds_two_threads = 0.0;
+};
+
+struct ColourTiming {
+    std::string material;
+    double seconds = 0.0;
+    std::uint64_t rays = 0;
+    double delta_e_uncertainty = 0.0;
+    bool converged = true;
+};
+
+struct BenchOptions {
+    bool quick = false;                        // under a minute: fewer budgets, seeds and a shorter reference
+    std::uint64_t seed = 1;                    // runs use seed, seed + 1, ...
+    std::uint64_t reference_seed = 1'000'003;  // the long reference runs: a different stream
+    std::function<void(const std::string& stage)> on_stage;
+    const CancelFlag* cancel = nullptr;
+};
+
+struct BenchReport {
+    std::vector<BenchCase> cases;
+    std::vector<BenchPoint> points;
+    std::size_t pair_sweep_radii = 0;
+    std::vector<PairSweepPoint> pair_sweep;
+    std::vector<ThreadScaling> scaling;
+    std::vector<ColourTiming> colours;
+    bool partial = false;  // stopped by the cancel flag: what was finished is kept
+};
+
+BenchReport run_benchmark(const BenchOptions& options);
+
+}  // namespace skinspec

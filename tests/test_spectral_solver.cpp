@@ -1,0 +1,95 @@
+// The solver interface: the registry, what each solver declares, the central refusals and the provenance.
+#include <catch2/catch.hpp>
+
+#include "solvers/spectral_solver.hpp"
+#include "materials/material_file.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+SolverRequest one_wavelength(std::uint64_t rays = 2000) {
+    SolverRequest r;
+    r.spectral.wavelengths = WavelengthGrid::list({550.0});
+    r.fixed_rays_per_wavelength = rays;
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("the registry lists every solver once, by name", "[solver]") {
+    CHECK(solver_names() == "biospec, rte, multipole, dipole");
+    for (const auto* s : solver_registry()) CHECK(&find_solver(s->name()) == s);
+    CHECK_THROWS_WITH(find_solver("tripole"), Catch::Contains("--mode: 'tripole' is not a solver (allowed: biospec, rte, multipole, dipole)"));
+}
+
+TEST_CASE("a request for what a solver does not declare is refused with one message", "[solver]") {
+    const auto skin = load_material("biospec-lightly");
+    const auto bands = load_material("jensen2001-skin1");
+    auto brdf = one_wavelength();
+    brdf.spectral.quantities.angular = true;
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("rte"), skin, brdf),
+                      "solver 'rte' does not compute brdf (it computes R, T, A; brdf is computed by: biospec)");
+    auto absorptance = SolverRequest{};
+    absorptance.spectral.quantities.absorptance = true;
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("multipole"), skin, absorptance), Catch::Contains("solver 'multipole' does not compute A"));
+    auto estimator = SolverRequest{};
+    estimator.switches.estimator = AbsorptionEstimator::random_test;
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("dipole"), skin, estimator),
+                      "solver 'dipole' does not take the switch 'estimator' (taken by: biospec)");
+    auto fold = SolverRequest{};
+    fold.switches.fold_into_skin = FoldIntoSkin::resample;
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("multipole"), skin, fold), Catch::Contains("does not take the switch 'fold-into-skin'"));
+    auto rough = one_wavelength();
+    rough.switches.surface_roughness = 0.3;
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("biospec"), skin, rough), Catch::Contains("taken by: multipole, dipole"));
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("rte"), bands, one_wavelength()),
+                      Catch::Contains("solver 'rte' needs a layered material; 'jensen2001-skin1' is a homogeneous material given per band"));
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("dipole"), skin, one_wavelength()),
+                      Catch::Contains("solver 'dipole' is deterministic: it takes no standard-error target or ray count"));
+    auto target = SolverRequest{};
+    target.spectral.stderr_target = 0.01;
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("multipole"), skin, target), Catch::Contains("is deterministic"));
+    CHECK_THROWS_WITH(solve_profiles(find_solver("biospec"), skin, ProfileRequest{WavelengthGrid::list({550.0}), {0.0, 1.0}, false, {}}),
+                      "solver 'biospec' does not compute radial profiles R(r) (solvers that do: multipole, dipole)");
+}
+
+TEST_CASE("every declared capability is served", "[solver]") {
+    const auto skin = load_material("biospec-lightly");
+    for (const auto* solver : solver_registry()) {
+        const auto& caps = solver->capabilities();
+        if (!caps.material_needs.empty() && solver->name() == "rte") continue;  // the presets carry no volumetric scattering
+        SolverRequest request;
+        request.spectral.wavelengths = WavelengthGrid::list({550.0});
+        request.spectral.quantities = caps.quantities;
+        if (caps.uncertainty) request.fixed_rays_per_wavelength = 500;
+        const auto result = solve_spectrum(*solver, skin, request);
+        REQUIRE(result.wavelengths.size() == 1);
+        CHECK(result.has_uncertainty == caps.uncertainty);
+        const auto& w = result.wavelengths.front();
+        if (caps.quantities.absorptance) CHECK(w.absorptance_layers.size() == result.layer_names.size());
+        if (caps.quantities.angular) CHECK_FALSE(w.brdf_per_sr.empty());
+        if (caps.uncertainty) CHECK(w.rays == 500);
+        // Energy: R + T + sum A (+ A_surface) = 1 where every term is computed (a conservation law).
+        if (caps.quantities.absorptance) {
+            double sum = w.reflectance.value + w.transmittance.value + w.absorptance_surface.value;
+            for (const auto& a : w.absorptance_layers) sum += a.value;
+            CHECK(sum == Approx(1.0).margin(1e-9));
+        }
+    }
+}
+
+TEST_CASE("a result records its provenance: resolved material, overrides, solver, version; integers stay integers", "[solver]") {
+    const std::vector<MaterialOverride> overrides{{"epidermis.melanosome_fraction", "0.03"}};
+    const auto skin = load_material("biospec-moderately", overrides);
+    auto request = one_wavelength(300);
+    request.overrides = overrides;
+    request.spectral.seed = 42;
+    const auto result = solve_spectrum(find_solver("biospec"), skin, request);
+    CHECK(result.provenance.solver == "biospec");
+    REQUIRE(result.provenance.overrides.size() == 1);
+    CHECK(result.provenance.overrides.front() == std::pair<std::string, std::string>{"epidermis.melanosome_fraction", "0.03"});
+    CHECK(result.provenance.material_toml.find("melanosome_fraction = 0.03") != std::string::npos);
+    CHECK(std::get<std::uint64_t>(result.settings.at("seed")) == 42);
+    CHECK(std::get<std::uint64_t>(result.settings.at("max_rays_per_wavelength")) == 300);
+}

@@ -1,0 +1,138 @@
+#include "transport/biospec/biospec_solver.hpp"
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "transport/biospec/biospec_walk.hpp"
+#include "transport/ray_planner.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+namespace {
+
+void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOptions& o) {
+    if (stack.layers.empty()) throw InputError("material '" + stack.name + "': no layers to simulate");
+    if (!std::isfinite(r.incidence_deg) || r.incidence_deg < 0.0 || r.incidence_deg >= 90.0) {
+        throw InputError("incidence angle " + format_number(r.incidence_deg) + " deg is outside [0, 90)");
+    }
+    if (r.max_rays_per_wavelength < 1) throw InputError("ray budget 0 is outside [1, inf)");
+    if (r.stderr_target && !(std::isfinite(*r.stderr_target) && *r.stderr_target > 0.0)) {
+        throw InputError("standard error target " + format_number(*r.stderr_target) + " is outside (0, inf)");
+    }
+    if (r.rays_per_batch < 1) throw InputError("rays per batch 0 is outside [1, inf)");
+    if ((r.stderr_target || r.stderr_targets) && !r.quantities.reflectance && !r.quantities.transmittance) {
+        throw InputError("a standard error target needs R or T among the quantities");
+    }
+    const auto& edges = r.angular_bin_edges_deg;
+    if (r.quantities.angular && !edges.empty()) {
+        if (edges.size() < 2 || edges.front() != 0.0 || edges.back() != 90.0) {
+            throw InputError("angular bin edges must start at 0 and end at 90 deg");
+        }
+        for (std::size_t i = 1; i < edges.size(); ++i) {
+            if (!(edges[i] > edges[i - 1])) throw InputError("angular bin edges must increase strictly");
+        }
+    }
+    if (o.profile_table_entries < 1) throw InputError("profile table entries 0 is outside [1, inf)");
+    if (o.max_events_per_ray < 1) throw InputError("maximum events per ray 0 is outside [1, inf)");
+}
+
+std::map<std::string, SettingValue> settings(const LayerStack& stack, const SpectralRequest& r, const BiospecOptions& o) {
+    const auto& m = stack.model;
+    std::map<std::string, SettingValue> s{
+        {"variant", m.variant},
+        {"dermal_rayleigh", m.dermal_rayleigh},
+        {"ln10_molar_tables", m.molar_tables == DecadicConversion::multiply_ln10},
+        {"ln10_melanin_tables", m.melanin_tables == DecadicConversion::multiply_ln10},
+        {"baseline_absorption", m.baseline_absorption},
+        {"hemoglobin_molar_mass_g_per_mol", m.hemoglobin_molar_mass_g_per_mol},
+        {"absorption_estimator", std::string(to_string(o.estimator))},
+        {"fold_into_skin", std::string(to_string(o.fold_into_skin))},
+        {"fold_aspect_ratio", stack.fold_aspect_ratio},
+        {"bottom", std::string(to_string(stack.bottom))},
+        {"above_refractive_index", stack.above_refractive_index},
+        {"below_refractive_index", stack.below_refractive_index},
+        {"incidence_deg", r.incidence_deg},
+        {"seed", r.seed},
+        {"max_rays_per_wavelength", r.max_rays_per_wavelength},
+        {"rays_per_batch", r.rays_per_batch},
+        {"profile_table_entries", std::uint64_t{o.profile_table_entries}},
+        {"max_events_per_ray", std::uint64_t{o.max_events_per_ray}},
+        {"skinspec_version", std::string(version)},
+        {"thin_layer_phase", o.thin_layer_hg ? "henyey_greenstein (" + o.thin_layer_hg->source + ")" : std::string("measured")},
+    };
+    if (r.stderr_target) s["stderr_target"] = *r.stderr_target;
+    return s;
+}
+
+}  // namespace
+
+SpectralResult solve_biospec(const LayerStack& stack, const SpectralRequest& request, const BiospecOptions& options) {
+    validate(stack, request, options);
+    const auto edges = request.quantities.angular
+                           ? (request.angular_bin_edges_deg.empty() ? default_angular_bin_edges_deg() : request.angular_bin_edges_deg)
+                           : std::vector<double>{};
+    const std::size_t bins = edges.empty() ? 0 : edges.size() - 1;
+    const BiospecChannels channels(request.quantities, stack.layers.size(), bins);
+
+    std::vector<std::unique_ptr<BiospecWavelength>> setups;
+    for (const double nm : request.wavelengths.nm()) {
+        setups.push_back(std::make_unique<BiospecWavelength>(stack, nm, request.incidence_deg, options, channels, edges));
+    }
+    std::vector<std::size_t> targets;
+    if (channels.reflectance >= 0) targets.push_back(static_cast<std::size_t>(channels.reflectance));
+    if (channels.transmittance >= 0) targets.push_back(static_cast<std::size_t>(channels.transmittance));
+
+    const auto outcome = run_batches(request, channels.count, targets,
+                                     [&](std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
+                                         setups[w]->trace(random, rays, tally);
+                                     });
+
+    SpectralResult result;
+    result.model = "biospec";
+    result.material = stack.name;
+    result.settings = settings(stack, request, options);
+    for (const auto& layer : stack.layers) result.layer_names.push_back(layer.name);
+    result.angular_bin_edges_deg = edges;
+    result.quantities = request.quantities;
+    result.partial = outcome.cancelled;
+    for (std::size_t w = 0; w < request.wavelengths.size(); ++w) {
+        if (!outcome.finished[w]) continue;
+        const auto& t = outcome.tallies[w];
+        WavelengthResult r;
+        r.wavelength_nm = request.wavelengths[w];
+        const auto channel = [&](int c) { return c >= 0 ? t.estimate(static_cast<std::size_t>(c)) : Estimate{}; };
+        r.reflectance = channel(channels.reflectance);
+        r.specular_reflectance = channel(channels.specular);
+        r.transmittance = channel(channels.transmittance);
+        r.absorptance_surface = channel(channels.absorptance_surface);
+        if (channels.absorptance_first_layer >= 0) {
+            for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+                r.absorptance_layers.push_back(channel(channels.absorptance_first_layer + static_cast<int>(k)));
+            }
+        }
+        // Virtual goniometer (seed 000 Eq. 10): f = F_i / (delta omega_i cos theta_i), the fraction F_i of the
+        // incident flux leaving through polar bin i, delta omega_i its solid angle, theta_i its centre.
+        for (std::size_t b = 0; b < bins; ++b) {
+            constexpr double deg = std::numbers::pi / 180.0;
+            const double solid_angle = 2.0 * std::numbers::pi * (std::cos(edges[b] * deg) - std::cos(edges[b + 1] * deg));
+            const double cos_centre = std::cos(0.5 * (edges[b] + edges[b + 1]) * deg);
+            const double scale = 1.0 / (solid_angle * cos_centre);
+            const auto f = [&](int first) {
+                const auto e = channel(first + static_cast<int>(b));
+                return Estimate{e.value * scale, e.stderr * scale};
+            };
+            r.brdf_per_sr.push_back(f(channels.brdf_first_bin));
+            r.btdf_per_sr.push_back(f(channels.btdf_first_bin));
+        }
+        r.rays = t.rays();
+        r.truncated_rays = t.truncated();
+        r.converged = outcome.converged[w];
+        result.wavelengths.push_back(std::move(r));
+    }
+    return result;
+}
+
+}  // namespace skinspec

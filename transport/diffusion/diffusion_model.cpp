@@ -1,0 +1,238 @@
+#include "transport/diffusion/diffusion_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "transport/diffusion/dipole.hpp"
+#include "transport/diffusion/rough_surface.hpp"
+#include "transport/fresnel.hpp"
+#include "spectral/input_error.hpp"
+
+namespace skinspec {
+namespace {
+
+// One layer (or several merged) as the diffusion models see it; per mm.
+struct SlabSpec {
+    std::string name;
+    double thickness_mm;
+    double sigma_a_per_mm;
+    double sigma_s_reduced_per_mm;
+    double n_top, n_bottom;  // the slab's index at its top and bottom faces (they differ after a merge)
+    double mean_free_path_mm() const { return 1.0 / (sigma_a_per_mm + sigma_s_reduced_per_mm); }
+};
+
+// A smooth face's diffuse internal reflectance F_dr(eta) (seed 002 Eq. 8); exactly 0 for matched indices.
+double face_reflectance(double n_inside, double n_outside) {
+    return n_inside == n_outside ? 0.0 : diffuse_fresnel_reflectance(n_inside / n_outside);
+}
+
+SlabSpec merge(const SlabSpec& upper, const SlabSpec& lower) {
+    const double d = upper.thickness_mm + lower.thickness_mm;
+    const auto mix = [&](double a, double b) { return (a * upper.thickness_mm + b * lower.thickness_mm) / d; };
+    return {upper.name + "+" + lower.name, d, mix(upper.sigma_a_per_mm, lower.sigma_a_per_mm),
+            mix(upper.sigma_s_reduced_per_mm, lower.sigma_s_reduced_per_mm), upper.n_top, lower.n_bottom};
+}
+
+// Layers thinner than one transport mean free path are merged with the layer below (the last with the one above).
+std::vector<SlabSpec> merge_thin(std::vector<SlabSpec> slabs, std::vector<TrustWarning>& warnings) {
+    for (std::size_t i = 0; slabs.size() > 1 && i < slabs.size();) {
+        const double mfp = slabs[i].thickness_mm / slabs[i].mean_free_path_mm();
+        if (mfp >= 1.0) {
+            ++i;
+            continue;
+        }
+        const bool last = i + 1 == slabs.size();
+        warnings.push_back({slabs[i].name, "merged", mfp,
+                            fmt::format("{} is {:.2g} transport mean free paths thick; merged with {}", slabs[i].name, mfp,
+                                        last ? slabs[i - 1].name : slabs[i + 1].name)});
+        if (last) {
+            slabs[i - 1] = merge(slabs[i - 1], slabs[i]);
+            slabs.pop_back();
+            i = i - 1;
+        } else {
+            slabs[i] = merge(slabs[i], slabs[i + 1]);
+            slabs.erase(slabs.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+        }
+    }
+    return slabs;
+}
+
+void check_trust(const SlabSpec& s, bool finite, std::vector<TrustWarning>& warnings) {
+    const double albedo = s.sigma_s_reduced_per_mm / (s.sigma_a_per_mm + s.sigma_s_reduced_per_mm);
+    if (albedo < diffusion_min_reduced_albedo) {
+        warnings.push_back({s.name, "albedo", albedo,
+                            fmt::format("{}: reduced albedo {:.3g} is below {}", s.name, albedo, diffusion_min_reduced_albedo)});
+    }
+    const double mfp = s.thickness_mm / s.mean_free_path_mm();
+    if (finite && mfp < diffusion_min_slab_mean_free_paths) {
+        warnings.push_back({s.name, "thin", mfp,
+                            fmt::format("{}: {:.3g} transport mean free paths thick, below {}", s.name, mfp,
+                                        diffusion_min_slab_mean_free_paths)});
+    }
+}
+
+struct Surface {
+    double top_internal_reflectance;
+    double specular;
+};
+
+Surface surface(double n_above, double n_top, const DiffusionOptions& options, double incidence_deg) {
+    if (!(incidence_deg >= 0.0 && incidence_deg < 90.0)) {
+        throw InputError("incidence = " + fmt::format("{:g}", incidence_deg) + " deg is outside [0, 90)");
+    }
+    const double mu = std::cos(incidence_deg * std::numbers::pi / 180.0);
+    if (options.surface_roughness) {
+        // Seed 002 Sec. 2.4: rho_d replaces F_dr (Eq. 24) and rho_dt the Fresnel transmittance (Eq. 25-26).
+        // rho_d depends only on the roughness and the two indices: computed once (seed 002: "once for a given
+        // material"), not per wavelength.
+        thread_local std::optional<RoughSurface> rough;
+        if (!rough || rough->roughness() != *options.surface_roughness || rough->n_outside() != n_above || rough->n_inside() != n_top) {
+            rough.emplace(*options.surface_roughness, n_above, n_top);
+        }
+        return {rough->internal_diffuse_reflectance(), 1.0 - rough->entry_transmittance(mu)};
+    }
+    return {face_reflectance(n_top, n_above), fresnel_reflectance(mu, n_above, n_top)};
+}
+
+DiffusionMaterial build(std::vector<SlabSpec> specs, double n_above, double n_below, DiffusionBottom bottom,
+                        bool semi_infinite, const DiffusionOptions& options, double incidence_deg) {
+    std::vector<TrustWarning> warnings;
+    if (options.mode == DiffusionMode::dipole && specs.size() > 1) {
+        SlabSpec all = specs.front();
+        for (std::size_t i = 1; i < specs.size(); ++i) all = merge(all, specs[i]);
+        specs = {all};
+        semi_infinite = true;
+    }
+    if (!semi_infinite) specs = merge_thin(std::move(specs), warnings);
+    const auto top = surface(n_above, specs.front().n_top, options, incidence_deg);
+    std::vector<Multipole> slabs;
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        const auto& s = specs[i];
+        const bool last = i + 1 == specs.size();
+        const double n_next = last ? (bottom == DiffusionBottom::reflector ? s.n_bottom : n_below) : specs[i + 1].n_top;
+        const double n_prev = i == 0 ? n_above : specs[i - 1].n_bottom;
+        DiffusionSlab slab{s.sigma_s_reduced_per_mm, s.sigma_a_per_mm,
+                           semi_infinite ? std::numeric_limits<double>::infinity() : s.thickness_mm,
+                           i == 0 ? top.top_internal_reflectance : face_reflectance(s.n_top, n_prev),
+                           face_reflectance(s.n_bottom, n_next)};
+        check_trust(s, !semi_infinite, warnings);
+        slabs.emplace_back(slab);
+        names.push_back(s.name);
+    }
+    return {std::move(names), LayeredDiffusion(std::move(slabs), semi_infinite ? DiffusionBottom::open : bottom), top.specular,
+            1.0 - top.specular, std::move(warnings)};
+}
+
+}  // namespace
+
+DiffusionMode parse_diffusion_mode(std::string_view text, std::string_view what) {
+    if (text == "dipole") return DiffusionMode::dipole;
+    if (text == "multipole") return DiffusionMode::multipole;
+    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a diffusion mode (allowed: dipole, multipole)");
+}
+
+std::string_view to_string(DiffusionMode mode) { return mode == DiffusionMode::dipole ? "dipole" : "multipole"; }
+
+RadialProfile DiffusionMaterial::reflectance_profile(std::span<const double> radii_mm) const {
+    auto p = stack.reflectance_profile(radii_mm);
+    for (auto& v : p.values) v *= entry_transmittance;
+    return p;
+}
+
+RadialProfile DiffusionMaterial::transmittance_profile(std::span<const double> radii_mm) const {
+    auto p = stack.transmittance_profile(radii_mm);
+    for (auto& v : p.values) v *= entry_transmittance;
+    return p;
+}
+
+DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_nm, const DiffusionOptions& options, double incidence_deg) {
+    std::vector<SlabSpec> specs;
+    const auto optics = stack.optics(wavelength_nm, OpticsScope{.volumetric = false, .reduced = true});
+    for (std::size_t i = 0; i < optics.size(); ++i) {
+        const auto& o = optics[i];
+        if (!o.mu_s_reduced_per_cm) {
+            throw InputError("layer '" + stack.layers[i].name +
+                             "' has no reduced scattering (set reduced_scattering_table or reduced_scattering_* for the diffusion modes)");
+        }
+        specs.push_back({stack.layers[i].name, o.thickness_cm * 10.0, o.mu_a_per_cm / 10.0, *o.mu_s_reduced_per_cm / 10.0,
+                         o.refractive_index, o.refractive_index});
+    }
+    const auto bottom = stack.bottom == BottomBoundary::diffuse_reflector ? DiffusionBottom::reflector : DiffusionBottom::open;
+    return build(std::move(specs), stack.above_refractive_index, stack.below_refractive_index, bottom, false, options, incidence_deg);
+}
+
+DiffusionMaterial diffusion_material(const HomogeneousMaterial& m, std::size_t band, const DiffusionOptions& options, double incidence_deg) {
+    const double n = m.relative_refractive_index;
+    SlabSpec spec{m.name, std::numeric_limits<double>::infinity(), m.absorption_per_mm.at(band), m.reduced_scattering_per_mm.at(band), n, n};
+    return build({spec}, 1.0, 1.0, DiffusionBottom::open, true, options, incidence_deg);
+}
+
+namespace {
+
+
+WavelengthResult row(const DiffusionMaterial& m, double wavelength_nm, const Quantities& q) {
+    WavelengthResult w;
+    w.wavelength_nm = wavelength_nm;
+    if (q.reflectance) {
+        w.reflectance = {m.total_reflectance(), 0.0};
+        w.specular_reflectance = {m.specular_reflectance, 0.0};
+    }
+    if (q.transmittance) w.transmittance = {m.total_transmittance(), 0.0};
+    return w;
+}
+
+SpectralResult base_result(const std::string& name, const SpectralRequest& request, const DiffusionOptions& options) {
+    SpectralResult r;
+    r.model = std::string(to_string(options.mode));
+    r.material = name;
+    r.quantities = request.quantities;
+    r.has_uncertainty = false;
+    r.settings["incidence_deg"] = request.incidence_deg;
+    r.settings["surface_roughness"] = options.surface_roughness ? *options.surface_roughness : 0.0;
+    return r;
+}
+
+}  // namespace
+
+SpectralResult solve_diffusion_spectrum(const LayerStack& stack, const SpectralRequest& request, const DiffusionOptions& options) {
+    auto result = base_result(stack.name, request, options);
+    for (const double nm : request.wavelengths.nm()) {
+        if (request.cancel && request.cancel->load()) {
+            result.partial = true;
+            break;
+        }
+        const auto m = diffusion_material(stack, nm, options, request.incidence_deg);
+        if (result.layer_names.empty()) result.layer_names = m.slab_names;
+        for (const auto& w : m.warnings) result.warnings.push_back(result_warning(w, fmt::format("{:g} nm", nm)));
+        result.wavelengths.push_back(row(m, nm, request.quantities));
+    }
+    return result;
+}
+
+SpectralResult solve_diffusion_bands(const HomogeneousMaterial& material, const SpectralRequest& request, const DiffusionOptions& options) {
+    auto result = base_result(material.name, request, options);
+    result.bands = material.bands;
+    result.layer_names = {material.name};
+    for (std::size_t b = 0; b < material.bands.size(); ++b) {
+        const auto m = diffusion_material(material, b, options, request.incidence_deg);
+        for (const auto& w : m.warnings) result.warnings.push_back(result_warning(w, "band " + material.bands[b]));
+        result.wavelengths.push_back(row(m, 0.0, request.quantities));
+    }
+    return result;
+}
+
+ResultWarning result_warning(const TrustWarning& w, const std::string& at) {
+    std::string kind;
+    if (w.kind == "albedo") kind = fmt::format("diffusion: reduced albedo below {} (not trustworthy there)", diffusion_min_reduced_albedo);
+    else if (w.kind == "thin") kind = fmt::format("diffusion: slab thinner than {} transport mean free paths (not trustworthy there)", diffusion_min_slab_mean_free_paths);
+    else kind = "diffusion: layer thinner than one transport mean free path, merged with its neighbour";
+    return {kind, w.slab, at, w.value};
+}
+
+}  // namespace skinspec

@@ -1,0 +1,133 @@
+#include "transport/ray_planner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+
+namespace skinspec {
+
+RayPlanner::RayPlanner(const SpectralRequest& request, std::size_t channels, std::vector<std::size_t> target_channels)
+    : request_(request),
+      target_channels_(std::move(target_channels)),
+      rays_per_batch_(std::max<std::uint64_t>(1, request.rays_per_batch)),
+      adaptive_(request.stderr_target.has_value() || static_cast<bool>(request.stderr_targets)) {
+    const std::size_t n = request.wavelengths.size();
+    const std::uint64_t budget = request.max_rays_per_wavelength;
+    state_ = DriverOutcome{std::vector<RayTally>(n, RayTally(channels)), std::vector<bool>(n, false), std::vector<bool>(n, !adaptive_), false};
+    next_batch_.assign(n, 0);
+    // All of the budget without a target, else a first estimate from a few batches.
+    planned_.assign(n, adaptive_ ? std::min<std::uint64_t>(budget, std::max<std::uint64_t>(1, request.initial_batches) * rays_per_batch_)
+                                 : budget);
+    expected_ = planned_;
+}
+
+std::vector<BatchTask> RayPlanner::next_round() const {
+    std::vector<BatchTask> tasks;
+    for (std::size_t w = 0; w < planned_.size(); ++w) {
+        if (state_.finished[w]) continue;
+        std::uint64_t remaining = planned_[w];
+        for (std::uint64_t b = 0; b < batches_for(planned_[w]); ++b) {
+            const std::uint64_t rays = std::min(rays_per_batch_, remaining);
+            tasks.push_back({w, request_.wavelengths[w], next_batch_[w] + b, rays});
+            remaining -= rays;
+        }
+    }
+    return tasks;
+}
+
+void RayPlanner::absorb(const std::vector<BatchTask>& tasks, const RoundOutput& round) {
+    const std::size_t n = planned_.size();
+    const std::uint64_t budget = request_.max_rays_per_wavelength;
+    // A wavelength takes part in this round's decision only if all its batches of the round ran.
+    std::vector<bool> complete(n, true);
+    std::vector<bool> in_round(n, false);
+    for (std::size_t i = 0; i < tasks.size(); ++i) {
+        complete[tasks[i].wavelength] = complete[tasks[i].wavelength] && round.done[i];
+        in_round[tasks[i].wavelength] = true;
+    }
+    for (std::size_t i = 0; i < tasks.size(); ++i) {
+        if (complete[tasks[i].wavelength]) state_.tallies[tasks[i].wavelength].merge(round.tallies[i]);
+    }
+    std::vector<double> targets(n, request_.stderr_target.value_or(0.0));
+    if (request_.stderr_targets && !target_channels_.empty()) {
+        std::vector<Estimate> estimates(n);
+        std::vector<std::uint64_t> rays(n);
+        for (std::size_t w = 0; w < n; ++w) {
+            estimates[w] = state_.tallies[w].estimate(target_channels_.front());
+            rays[w] = state_.tallies[w].rays();
+        }
+        targets = request_.stderr_targets(estimates, rays);
+    }
+    for (std::size_t w = 0; w < n; ++w) {
+        if (state_.finished[w] || !complete[w] || !in_round[w]) continue;
+        next_batch_[w] += batches_for(planned_[w]);
+        const auto& tally = state_.tallies[w];
+        const std::uint64_t used = tally.rays();
+        bool met = true;
+        double worst_ratio = 0.0;
+        if (adaptive_) {
+            for (const auto c : target_channels_) {
+                const double se = tally.estimate(c).stderr;
+                const double ratio = se == 0.0 ? 0.0 : se / targets[w];  // target inf: done; 0: needs se = 0
+                worst_ratio = std::max(worst_ratio, ratio);
+            }
+            met = worst_ratio <= 1.0;
+        }
+        if (met || used >= budget) {
+            state_.finished[w] = true;
+            state_.converged[w] = met;
+            expected_[w] = used;
+            continue;
+        }
+        // stderr ~ 1/sqrt(N): rays needed for the target, with 10 % margin, at most 8x more per round.
+        const double needed = static_cast<double>(used) * worst_ratio * worst_ratio * 1.1;
+        const auto more = static_cast<std::uint64_t>(std::ceil(std::min(needed, 8.0 * static_cast<double>(used)))) - used;
+        planned_[w] = std::clamp<std::uint64_t>(more, rays_per_batch_, budget - used);
+        expected_[w] = static_cast<std::uint64_t>(std::min(std::ceil(needed), static_cast<double>(budget)));
+    }
+}
+
+std::uint64_t RayPlanner::rays_expected() const {
+    std::uint64_t total = 0;
+    for (std::size_t w = 0; w < expected_.size(); ++w) total += std::max(expected_[w], state_.tallies[w].rays());
+    return total;
+}
+
+std::size_t RayPlanner::wavelengths_finished() const {
+    return static_cast<std::size_t>(std::count(state_.finished.begin(), state_.finished.end(), true));
+}
+
+DriverOutcome RayPlanner::outcome(bool cancelled) const {
+    auto out = state_;
+    out.cancelled = cancelled;
+    return out;
+}
+
+DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels, const std::vector<std::size_t>& target_channels,
+                          const BatchTracer& trace, const BatchExecutor& executor) {
+    RayPlanner planner(request, channels, target_channels);
+    const std::size_t n = request.wavelengths.size();
+    std::atomic<std::uint64_t> rays_done{0};
+    std::mutex progress_mutex;
+    const auto report = [&] {
+        if (!request.on_progress) return;
+        std::lock_guard lock(progress_mutex);
+        request.on_progress(Progress{rays_done.load(), planner.rays_expected(), planner.wavelengths_finished(), n});
+    };
+    const auto cancelled = [&] { return request.cancel && request.cancel->load(); };
+    while (true) {
+        const auto tasks = planner.next_round();
+        if (tasks.empty()) break;
+        const auto round = executor.run(tasks, channels, request.seed, trace, [&](std::uint64_t rays) {
+            rays_done += rays;
+            report();
+        }, request.cancel);
+        planner.absorb(tasks, round);
+        report();
+        if (cancelled()) return planner.outcome(true);
+    }
+    return planner.outcome(false);
+}
+
+}  // namespace skinspec

@@ -1,0 +1,50 @@
+#pragma once
+// The convergence planner shared by the Monte Carlo solvers: which batches of rays each wavelength gets in
+// the next round. A wavelength stops once the standard error of its target channels is below the request's
+// target, or when its budget is spent. Because a round's plan depends only on the results of earlier rounds,
+// a seed gives identical numbers for any thread count and any executor.
+#include <cstdint>
+#include <vector>
+
+#include "transport/batch_executor.hpp"
+
+namespace skinspec {
+
+struct DriverOutcome {
+    std::vector<RayTally> tallies;   // per wavelength
+    std::vector<bool> finished;      // target met or budget spent (false only when cancelled)
+    std::vector<bool> converged;     // target met (true when there is no target)
+    bool cancelled = false;
+};
+
+class RayPlanner {
+public:
+    RayPlanner(const SpectralRequest& request, std::size_t channels, std::vector<std::size_t> target_channels);
+
+    // The next round's batches, wavelengths in grid order; empty when every wavelength is finished.
+    std::vector<BatchTask> next_round() const;
+    // Takes a round's results: a wavelength whose batches all ran is merged and re-planned.
+    void absorb(const std::vector<BatchTask>& tasks, const RoundOutput& round);
+    // Rays the whole request is expected to need, from the estimates so far (the budget without a target).
+    std::uint64_t rays_expected() const;
+    std::size_t wavelengths_finished() const;
+    DriverOutcome outcome(bool cancelled) const;
+
+private:
+    std::uint64_t batches_for(std::uint64_t rays) const { return (rays + rays_per_batch_ - 1) / rays_per_batch_; }
+
+    const SpectralRequest& request_;
+    std::vector<std::size_t> target_channels_;
+    std::uint64_t rays_per_batch_;
+    bool adaptive_;
+    DriverOutcome state_;
+    std::vector<std::uint64_t> next_batch_;
+    std::vector<std::uint64_t> planned_;   // rays of the next round, per wavelength
+    std::vector<std::uint64_t> expected_;  // rays each wavelength is expected to need in all
+};
+
+// Plans rounds and runs them on `executor` until every wavelength is finished or the request is cancelled.
+DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels, const std::vector<std::size_t>& target_channels,
+                          const BatchTracer& trace, const BatchExecutor& executor = cpu_batch_executor());
+
+}  // namespace skinspec

@@ -1,0 +1,92 @@
+#pragma once
+// Per-channel sums of per-ray contributions and of their squares: the mean over rays and its standard
+// error sqrt((E[x^2] - E[x]^2) / (N - 1)) for every tallied quantity.
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "transport/spectral_request.hpp"
+
+namespace skinspec {
+
+// One ray's contributions, per channel; only the channels it touched are visited when it is tallied, so
+// large grids (A(r, z), R(r, alpha)) cost per ray what the ray did, not the grid size.
+class RayScore {
+public:
+    explicit RayScore(std::size_t channels) : value_(channels, 0.0), marked_(channels, 0) {}
+    void add(std::size_t channel, double v) {
+        if (!marked_[channel]) {
+            marked_[channel] = 1;
+            touched_.push_back(channel);
+        }
+        value_[channel] += v;
+    }
+
+private:
+    friend class RayTally;
+    std::vector<double> value_;
+    std::vector<unsigned char> marked_;
+    std::vector<std::size_t> touched_;
+};
+
+class RayTally {
+public:
+    explicit RayTally(std::size_t channels = 0) : sum_(channels, 0.0), sum_sq_(channels, 0.0) {}
+
+    // One finished ray: its contributions are added (and squared) and the score is cleared for the next ray.
+    void add_ray(RayScore& score) {
+        for (const auto c : score.touched_) {
+            const double v = score.value_[c];
+            sum_[c] += v;
+            sum_sq_[c] += v * v;
+            score.value_[c] = 0.0;
+            score.marked_[c] = 0;
+        }
+        score.touched_.clear();
+        ++rays_;
+    }
+
+    void merge(const RayTally& other) {
+        for (std::size_t c = 0; c < sum_.size(); ++c) {
+            sum_[c] += other.sum_[c];
+            sum_sq_[c] += other.sum_sq_[c];
+        }
+        rays_ += other.rays_;
+        truncated_ += other.truncated_;
+    }
+
+    // Rays stopped at the event limit (reported, not a channel).
+    void add_truncated(std::uint64_t rays) { truncated_ += rays; }
+    std::uint64_t truncated() const { return truncated_; }
+
+    Estimate estimate(std::size_t channel) const {
+        if (rays_ == 0) return {};
+        const double n = static_cast<double>(rays_);
+        const double mean = sum_[channel] / n;
+        const double variance = rays_ > 1 ? std::max(0.0, sum_sq_[channel] / n - mean * mean) / (n - 1.0) : 0.0;
+        return {mean, std::sqrt(variance)};
+    }
+
+    std::uint64_t rays() const { return rays_; }
+    std::size_t channels() const { return sum_.size(); }
+
+private:
+    std::vector<double> sum_;
+    std::vector<double> sum_sq_;
+    std::uint64_t rays_ = 0;
+    std::uint64_t truncated_ = 0;
+};
+
+// Traces `rays` rays with `trace_one(score, truncated)` into `tally`: one score reused for all of them.
+template <class TraceOne>
+void trace_rays(std::size_t channels, std::uint64_t rays, RayTally& tally, TraceOne&& trace_one) {
+    RayScore score(channels);
+    std::uint64_t truncated = 0;
+    for (std::uint64_t i = 0; i < rays; ++i) {
+        trace_one(score, truncated);
+        tally.add_ray(score);
+    }
+    tally.add_truncated(truncated);
+}
+
+}  // namespace skinspec

@@ -1,0 +1,50 @@
+#include "transport/rte/rte_model.hpp"
+
+#include <cmath>
+
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+
+RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
+    RteStack out;
+    out.above_refractive_index = stack.above_refractive_index;
+    out.below_refractive_index = stack.below_refractive_index;
+    out.bottom_reflector = stack.bottom == BottomBoundary::diffuse_reflector;
+    for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+        const auto o = stack.optics(k, wavelength_nm, OpticsScope{true, false});
+        if (!o.mu_s_per_cm) {
+            throw InputError("layer '" + stack.layers[k].name + "' of '" + stack.name +
+                             "' has no volumetric scattering (set volumetric_mu_s_per_cm_at_500nm and volumetric_g)");
+        }
+        PhaseFunction phase = PhaseFunction::henyey_greenstein(*o.g);
+        if (*o.phase == PhaseFunctionKind::isotropic) phase = PhaseFunction::isotropic();
+        if (*o.phase == PhaseFunctionKind::rayleigh) phase.kind = PhaseFunction::Kind::rayleigh;
+        out.layers.push_back({o.refractive_index, o.mu_a_per_cm, *o.mu_s_per_cm, o.thickness_cm, phase});
+    }
+    return out;
+}
+
+void validate(const RteStack& stack) {
+    const auto check = [](bool ok, const std::string& what, double value, const char* range) {
+        if (!ok) throw InputError(what + " = " + format_number(value) + " is outside " + range);
+    };
+    if (stack.layers.empty()) throw InputError("the volumetric walk needs at least one layer");
+    check(std::isfinite(stack.above_refractive_index) && stack.above_refractive_index > 0.0, "refractive index above",
+          stack.above_refractive_index, "(0, inf)");
+    check(std::isfinite(stack.below_refractive_index) && stack.below_refractive_index > 0.0, "refractive index below",
+          stack.below_refractive_index, "(0, inf)");
+    for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+        const auto& l = stack.layers[k];
+        const std::string name = "layer " + std::to_string(k + 1) + " ";
+        check(std::isfinite(l.refractive_index) && l.refractive_index > 0.0, name + "n", l.refractive_index, "(0, inf)");
+        check(std::isfinite(l.mu_a_per_cm) && l.mu_a_per_cm >= 0.0, name + "mu_a [1/cm]", l.mu_a_per_cm, "[0, inf)");
+        check(std::isfinite(l.mu_s_per_cm) && l.mu_s_per_cm >= 0.0, name + "mu_s [1/cm]", l.mu_s_per_cm, "[0, inf)");
+        check(std::isfinite(l.thickness_cm) && l.thickness_cm > 0.0, name + "thickness [cm]", l.thickness_cm, "(0, inf)");
+        check(std::isfinite(l.phase.g) && l.phase.g >= -1.0 && l.phase.g <= 1.0, name + "g", l.phase.g, "[-1, 1]");
+        check(std::isfinite(l.phase.g2) && l.phase.g2 >= -1.0 && l.phase.g2 <= 1.0, name + "g2", l.phase.g2, "[-1, 1]");
+    }
+}
+
+}  // namespace skinspec

@@ -1,0 +1,85 @@
+#pragma once
+// Plane-parallel layers for the volumetric walk (radiative transfer, MCML-class; transport-models.md Sec. 1).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "transport/phase_function.hpp"
+#include "transport/spectral_request.hpp"
+#include "materials/layer_stack.hpp"
+
+namespace skinspec {
+
+struct RteLayer {
+    double refractive_index = 1.0;
+    double mu_a_per_cm = 0.0;
+    double mu_s_per_cm = 0.0;
+    double thickness_cm = 0.0;
+    PhaseFunction phase;
+};
+
+struct RteStack {
+    double above_refractive_index = 1.0;
+    double below_refractive_index = 1.0;
+    bool bottom_reflector = false;  // ideal Lambertian reflector below the last layer (skin presets)
+    std::vector<RteLayer> layers;
+};
+
+// A material's stack at one wavelength; InputError naming the first layer without volumetric scattering.
+RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm);
+
+// InputError for values the walk cannot run (names the layer, field, value and range).
+void validate(const RteStack& stack);
+
+// Spatial and angular grids as in MCML (dz, dr in cm; angle bins of pi / (2 na)); 0 bins = not tallied.
+struct RteGrid {
+    double dz_cm = 0.01;
+    double dr_cm = 0.01;
+    int nz = 0;
+    int nr = 0;
+    int na = 0;
+};
+
+enum class BoundaryMode {
+    random,  // all-or-none: reflect with probability R (MCML's default)
+    split,   // outer boundaries: the transmitted part w (1 - R) escapes, the ray goes on with w R
+};
+
+struct RteRequest {
+    RteStack stack;
+    std::uint64_t photons = 100'000;          // the budget; exact count without a target
+    std::optional<double> stderr_target;      // stop once R_diffuse's (and T's) standard error is below
+    std::uint64_t seed = 1;
+    double stream_key = 1.0;                  // random streams are keyed by it (the wavelength in spectra)
+    double incidence_deg = 0.0;
+    BoundaryMode boundaries = BoundaryMode::random;
+    RteGrid grid;
+    std::uint64_t max_steps_per_photon = 100'000'000;
+    std::function<void(const Progress&)> on_progress;
+    const CancelFlag* cancel = nullptr;
+};
+
+// Totals are fractions of the incident photons; arrays are in MCML's units (scaled as MCML 1.2 does):
+// A_z 1/cm, A_rz 1/cm^3, R_r and T_r 1/cm^2, R_a and T_a 1/sr, R_ra and T_ra 1/(cm^2 sr). Every value
+// carries its standard error.
+struct RteResult {
+    Estimate specular_reflectance;
+    Estimate diffuse_reflectance;
+    Estimate transmittance;
+    Estimate absorbed;
+    std::vector<Estimate> absorption_layers;
+    std::vector<Estimate> absorption_z, reflectance_r, transmittance_r, reflectance_a, transmittance_a;
+    std::vector<Estimate> absorption_rz, reflectance_ra, transmittance_ra;  // [r][z] and [r][a], row-major
+    std::uint64_t photons = 0;
+    std::uint64_t truncated_photons = 0;
+    bool partial = false;
+};
+
+RteResult solve_rte(const RteRequest& request);
+
+// A material's spectra with the volumetric walk, in the shared result type and schema (model "rte"):
+// R = specular + diffuse, R_specular, T, A per layer; requires volumetric scattering in every layer.
+SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest& request, BoundaryMode boundaries = BoundaryMode::random);
+
+}  // namespace skinspec

@@ -1,0 +1,50 @@
+#include "transport/spectral_request.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace skinspec {
+
+std::vector<double> default_angular_bin_edges_deg() {
+    std::vector<double> edges{0.0};
+    for (double e = 2.5; e < 90.0; e += 5.0) edges.push_back(e);
+    edges.push_back(90.0);
+    return edges;
+}
+
+std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings) {
+    const auto first_seen = [](std::vector<std::string>& list, const std::string& item) {
+        if (std::find(list.begin(), list.end(), item) == list.end()) list.push_back(item);
+    };
+    std::vector<std::string> kinds;
+    for (const auto& w : warnings) first_seen(kinds, w.kind);
+    std::vector<std::string> out;
+    for (const auto& kind : kinds) {
+        std::vector<std::string> subjects;
+        for (const auto& w : warnings) {
+            if (w.kind == kind) first_seen(subjects, w.subject);
+        }
+        std::string line = kind + ": ";
+        for (std::size_t s = 0; s < subjects.size(); ++s) {
+            std::vector<const ResultWarning*> found;
+            for (const auto& w : warnings) {
+                if (w.kind == kind && w.subject == subjects[s]) found.push_back(&w);
+            }
+            double lowest = INFINITY, highest = -INFINITY;
+            for (const auto* w : found) {
+                lowest = std::min(lowest, w->value);
+                highest = std::max(highest, w->value);
+            }
+            line += (s ? "; " : "") + subjects[s] + " at ";
+            line += found.size() == 1 ? fmt::format("{} ({:.3g})", found.front()->at, lowest)
+                                      : fmt::format("{} places, {} to {} (values {:.3g} to {:.3g})", found.size(), found.front()->at,
+                                                    found.back()->at, lowest, highest);
+        }
+        out.push_back(std::move(line));
+    }
+    return out;
+}
+
+}  // namespace skinspec

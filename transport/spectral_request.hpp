@@ -1,0 +1,115 @@
+#pragma once
+// What a caller asks a spectral solver for, and what it gets back. Shared by every solver: solvers compute
+// the requested quantities and nothing more, and say what they did.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "spectral/wavelength_grid.hpp"
+
+namespace skinspec {
+
+struct Quantities {
+    bool reflectance = true;     // R (total) and R_specular (first-surface reflection)
+    bool transmittance = false;  // T
+    bool absorptance = false;    // A per layer (and A_surface)
+    bool angular = false;        // BRDF / BTDF per polar bin (virtual goniometer)
+};
+
+struct Progress {
+    std::uint64_t rays_done = 0;
+    std::uint64_t rays_expected = 0;  // estimate of the rays the whole request needs (0: unknown)
+    std::size_t wavelengths_done = 0;
+    std::size_t wavelengths_total = 0;
+};
+
+struct Estimate {
+    double value = 0.0;
+    double stderr = 0.0;
+};
+
+// Cooperative cancellation: solvers check it between batches of rays.
+using CancelFlag = std::atomic<bool>;
+
+struct SpectralRequest {
+    WavelengthGrid wavelengths = WavelengthGrid::list({550.0});
+    Quantities quantities;
+    double incidence_deg = 0.0;                  // polar angle of the collimated incident beam, [0, 90)
+    std::optional<double> stderr_target;         // stop a wavelength once R's (and T's) standard error is below
+    // Per-wavelength targets recomputed after every round from the current estimates of R (or T) at all
+    // wavelengths; replaces stderr_target when set (e.g. a colour tolerance, layers/color_precision.hpp).
+    std::function<std::vector<double>(const std::vector<Estimate>& estimates, const std::vector<std::uint64_t>& rays)>
+        stderr_targets;
+    std::uint64_t max_rays_per_wavelength = 100'000;  // the budget (exact ray count without a target)
+    std::uint64_t rays_per_batch = 4096;               // each batch has its own random stream
+    std::uint64_t initial_batches = 8;                 // first round with a target
+    std::uint64_t seed = 1;
+    // Polar bin edges (deg) of the virtual goniometer: default 0, 2.5, 7.5, ..., 87.5, 90 (seed 000 Sec. 4).
+    std::vector<double> angular_bin_edges_deg;
+    std::function<void(const Progress&)> on_progress;  // called from worker threads, serialised by the solver
+    const CancelFlag* cancel = nullptr;
+};
+
+std::vector<double> default_angular_bin_edges_deg();
+
+
+
+struct WavelengthResult {
+    double wavelength_nm = 0.0;
+    Estimate reflectance;           // total, specular included
+    Estimate specular_reflectance;  // first-surface reflection only
+    Estimate transmittance;
+    std::vector<Estimate> absorptance_layers;
+    Estimate absorptance_surface;  // rays dropped by the skin-fold compatibility behaviour
+    std::vector<Estimate> brdf_per_sr;  // per polar bin, Eq. 10 of seed 000
+    std::vector<Estimate> btdf_per_sr;
+    std::uint64_t rays = 0;
+    std::uint64_t truncated_rays = 0;  // rays that hit the event limit (their weight counted as absorbed)
+    bool converged = true;             // stderr target met (always true without a target)
+};
+
+// Integers stay integers (seeds, ray counts) in every output.
+using SettingValue = std::variant<bool, std::uint64_t, double, std::string>;
+
+// A finding outside a solver's trusted range. Results keep every finding; commands print one summary per
+// kind (summarise_warnings) and write the full list to JSON.
+struct ResultWarning {
+    std::string kind;   // what was found, e.g. "reduced albedo below 0.9: diffusion is not trustworthy"
+    std::string subject;  // e.g. "epidermis"
+    std::string at;       // e.g. "400 nm" or "band R"
+    double value = 0.0;   // the offending value (albedo, mean free paths, ...)
+};
+// One line per kind, in order of first appearance:
+// "KIND: epidermis at 31 of them (400 nm to 700 nm, values 0.62 to 0.89); papillary_dermis at 400 nm (0.87)".
+std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings);
+
+// What a result was computed from, so that a script can re-run or audit it.
+struct Provenance {
+    std::string solver;
+    std::string material_toml;  // the resolved material, every override applied, as `materials save` writes it
+    std::vector<std::pair<std::string, std::string>> overrides;  // every --set / --vary KEY=VALUE, in order
+    std::string version;
+};
+
+struct SpectralResult {
+    std::string model;
+    std::string material;
+    std::map<std::string, SettingValue> settings;  // every option that affects the numbers, seed included
+    std::vector<std::string> layer_names;
+    std::vector<double> angular_bin_edges_deg;
+    Quantities quantities;
+    std::vector<WavelengthResult> wavelengths;  // finished wavelengths, in grid order
+    bool partial = false;                       // cut short by cancellation
+    bool has_uncertainty = true;                // false for deterministic solvers (diffusion): no stderr, no rays
+    std::vector<std::string> bands;             // band names (e.g. R, G, B) when rows are bands, not wavelengths
+    std::vector<ResultWarning> warnings;        // inputs outside the solver's trusted range
+    Provenance provenance;
+};
+
+}  // namespace skinspec
