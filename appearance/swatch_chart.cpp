@@ -123,6 +123,10 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         patch.xyz = weights.integrate(r);
         patch.lab = xyz_to_lab(patch.xyz, chart.white);
         patch.delta_e_uncertainty = ciede2000_uncertainty(weights, r, se);
+        for (auto w : result.warnings) {
+            w.at = "patch " + std::to_string(i + 1) + ", " + w.at;
+            chart.warnings.push_back(std::move(w));
+        }
         chart.patches.push_back(std::move(patch));
         if (i == 0) chart.settings = result.settings;
         if (request.on_progress) request.on_progress(i + 1, materials.size());

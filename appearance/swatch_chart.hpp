@@ -60,6 +60,7 @@ struct SwatchChart {
     XYZ white;
     WavelengthGrid wavelengths = WavelengthGrid::list({550.0});
     std::map<std::string, SettingValue> settings;
+    std::vector<ResultWarning> warnings;  // every patch's, the patch's parameters in `at`
     bool partial = false;
 };
 

@@ -28,7 +28,8 @@ struct BenchCommandOptions {
     bool quick = false;
     std::uint64_t seed = 1;
     double tolerance_percent = 1.0;
-    std::string output, plot, json;
+    std::string output, plot;
+    bool json = false;
     bool overwrite = false;
 };
 
@@ -225,8 +226,7 @@ void run_bench(const BenchCommandOptions& o) {
     if (!(o.tolerance_percent > 0.0 && o.tolerance_percent < 100.0)) {
         throw InputError("--tolerance = " + format_number(o.tolerance_percent) + " % is outside (0, 100)");
     }
-    if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".csv"});
-    if (!o.json.empty()) check_output_path(o.json, o.overwrite, {".json"});
+    if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".csv", ".json"});
     if (!o.plot.empty()) check_output_path(o.plot, o.overwrite, {".png", ".svg"});
     const InterruptGuard interrupt;
     BenchOptions options;
@@ -235,15 +235,12 @@ void run_bench(const BenchCommandOptions& o) {
     options.cancel = &InterruptGuard::cancel_flag();
     options.on_stage = [](const std::string& stage) { std::cerr << "bench: " << stage << '\n'; };
     const auto report = run_benchmark(options);
-    print_report(report, o);
+    if (o.json) std::cout << to_json(report, o).dump(2) << '\n';
+    else print_report(report, o);
     if (report.points.empty()) return;
     if (!o.output.empty()) {
-        write_text_file(o.output, to_csv(report), o.overwrite);
+        write_text_file(o.output, o.output.ends_with(".json") ? to_json(report, o).dump(2) + "\n" : to_csv(report), o.overwrite);
         std::cerr << "wrote " << o.output << '\n';
-    }
-    if (!o.json.empty()) {
-        write_text_file(o.json, to_json(report, o).dump(2) + "\n", o.overwrite);
-        std::cerr << "wrote " << o.json << '\n';
     }
     if (!o.plot.empty()) {
         write_plot(o.plot, report);
@@ -259,8 +256,8 @@ void add_bench_command(CLI::App& app) {
     cmd->add_flag("--quick", o->quick, "The short form (under a minute): fewer budgets and seeds, shorter references");
     cmd->add_option("--seed", o->seed, "Seed of the swept runs (the references use a different one)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_option("--tolerance", o->tolerance_percent, "Relative error (%) for 'which solver is fastest'")->capture_default_str();
-    cmd->add_option("--output", o->output, "CSV of every point");
-    cmd->add_option("--json", o->json, "The whole report as JSON, FILE.json");
+    cmd->add_option("--output", o->output, "Write every point to FILE.csv, or the whole report to FILE.json");
+    cmd->add_flag("--json", o->json, "Print the whole report as JSON on standard output (instead of the tables)");
     cmd->add_option("--plot", o->plot, "Log-log plot of error against time, FILE.png or FILE.svg");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
     cmd->callback([o] { run_bench(*o); });

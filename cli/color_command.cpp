@@ -21,6 +21,8 @@ struct ColorOptions {
     bool json = false;
     bool allow_over_one = false;
     bool transmittance = false;
+    std::string column;
+    std::string material;
 };
 
 void run_color(const ColorOptions& o) {
@@ -28,6 +30,8 @@ void run_color(const ColorOptions& o) {
     SpectrumFileRules rules;
     rules.quantity = o.transmittance ? "transmittance" : "reflectance";
     rules.allow_over_one = o.allow_over_one;
+    rules.column = o.column;
+    rules.material = o.material;
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
     const auto spectrum = read_spectrum_csv(file, rules);
@@ -56,7 +60,7 @@ void run_color(const ColorOptions& o) {
 
 void add_color_command(CLI::App& app) {
     auto options = std::make_shared<ColorOptions>();
-    auto* cmd = app.add_subcommand("color", "Colour of a reflectance or transmittance spectrum (CSV: wavelength_nm,value)");
+    auto* cmd = app.add_subcommand("color", "Colour of a reflectance or transmittance spectrum (CSV: wavelength_nm,value, or spectrum's own CSV)");
     cmd->add_option("file", options->file,
                     "Spectrum CSV; '#' comments and a header line allowed (default: data/spectra/example_reflectance.csv)");
     cmd->add_option("--illuminant", options->illuminant, "Illuminant: D65, D50, A or E")->capture_default_str();
@@ -65,6 +69,10 @@ void add_color_command(CLI::App& app) {
     cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
     cmd->add_flag("--allow-over-one", options->allow_over_one, "Accept values above 1 (e.g. fluorescent samples)");
     cmd->add_flag("--transmittance", options->transmittance, "The file holds a transmittance (only changes messages)");
+    cmd->add_option("--column", options->column,
+                    "Value column by header name, e.g. R or T of a 'skinspec spectrum --output F.csv' file (default: the second of "
+                    "two columns, else R)");
+    cmd->add_option("--material", options->material, "The rows of this material, in a file with a material column (e.g. spectrum's CSV)");
     cmd->callback([options] { run_color(*options); });
 }
 

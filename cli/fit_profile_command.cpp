@@ -56,7 +56,7 @@ void write_outputs(const FitOptions& o, const std::vector<std::string>& names, c
     if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(o.output_dir + ": exists and is not a folder");
     fs::create_directories(dir);
     const auto& first = reports.front().estimate;
-    std::string csv = fmt::format("# skinspec {} fit-profile: R'(d) estimated per bin (seed 001 Eq. 24) and the fitted dipole; 1/mm^2\nd_mm", version);
+    std::string csv = fmt::format("# skinspec {} fit-profile: R'(d) estimated per bin (Mukaigawa et al. 2009 Eq. 24) and the fitted dipole; 1/mm^2\nd_mm", version);
     for (const auto& n : names) csv += fmt::format(",R_estimate_{0},R_dipole_{0},used_{0}", n);
     csv += '\n';
     for (std::size_t i = 0; i < first.distances_mm.size(); ++i) {
@@ -85,7 +85,7 @@ void write_outputs(const FitOptions& o, const std::vector<std::string>& names, c
         for (std::size_t p = 0; p < static_cast<std::size_t>(geometry->width) * geometry->height; ++p) {
             for (const auto& r : reports) image.values.push_back(static_cast<float>(r.synthesised[p]));
         }
-        write_data_image(exr, image, {{"Software", std::string("skinspec ") + version}, {"ImageDescription", "fit-profile re-synthesis (seed 001 Eq. 10), exitance per mm^2"}});
+        write_data_image(exr, image, {{"Software", std::string("skinspec ") + version}, {"ImageDescription", "fit-profile re-synthesis (Mukaigawa et al. 2009 Eq. 10), exitance per mm^2"}});
     }
 }
 
@@ -202,15 +202,15 @@ void add_fit_profile_command(CLI::App& app) {
     cmd->add_option("--patches", o->patches, "Patch list CSV: x_mm,y_mm,z_mm,nx,ny,nz,c,l,visible");
     cmd->add_option("--profile", o->profile, "Radial profile CSV: r_mm and R (1/mm^2) columns (e.g. skinspec profile output)");
     cmd->add_option("--column", o->column, "With --profile: the column to fit (default the second)");
-    cmd->add_flag("--synthetic", o->synthetic, "Fit the built-in synthetic scene of seed 001 Sec. 4.1 (a demonstration)");
-    cmd->add_option("--step", o->step_mm, "Distance quantisation step in mm (seed 001 Eq. 15-16)")->capture_default_str();
+    cmd->add_flag("--synthetic", o->synthetic, "Fit the built-in synthetic scene of Mukaigawa et al. 2009 Sec. 4.1 (a demonstration)");
+    cmd->add_option("--step", o->step_mm, "Distance quantisation step in mm (Mukaigawa et al. 2009 Eq. 15-16)")->capture_default_str();
     cmd->add_option("--eta", o->eta, "Relative index of refraction")->capture_default_str();
     cmd->add_option("--tikhonov", o->tikhonov, "Tikhonov lambda for r = W+ l (default 0: the paper's pseudo-inverse)")->capture_default_str();
     cmd->add_flag("--non-negative", o->non_negative, "Constrain the estimated profile to R' >= 0");
     cmd->add_option("--grid-scattering", o->grid_scattering, "Grid of sigma_s' (per mm), FIRST:LAST:STEP")->capture_default_str();
     cmd->add_option("--grid-absorption", o->grid_absorption, "Grid of sigma_a (per mm), FIRST:LAST:STEP")->capture_default_str();
     cmd->add_flag("--no-refine", o->no_refine, "Stop at the grid's best (no local optimiser)");
-    cmd->add_option("--total-reflectance", o->total_reflectance, "Measured total diffuse reflectance: constrains sigma_a (seed 004 Sec. 3)");
+    cmd->add_option("--total-reflectance", o->total_reflectance, "Measured total diffuse reflectance: constrains sigma_a (Jensen et al. 2001 Sec. 3)");
     cmd->add_option("--fit-from", o->fit_from_mm, "Leave distances below this (mm) out of the dipole fit")->capture_default_str();
     cmd->add_option("--output-dir", o->output_dir, "Write profile_estimate.csv, profile_fit.png and resynthesised.exr here");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");

@@ -1,6 +1,9 @@
 // skinspec: spectral simulator of human skin appearance. Command-line entry point: parses arguments,
 // dispatches to one command per file in cli/, and turns input errors into one-line messages with exit 2.
+#include <algorithm>
 #include <exception>
+#include <string>
+#include <vector>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -19,6 +22,47 @@
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
+namespace {
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// "did you mean --wavelengths?" for each unexpected --option, from the options of the command it was given to.
+void suggest_options(const CLI::App& app, const std::vector<std::string>& unexpected) {
+    const CLI::App* command = &app;
+    for (const auto* sub : app.get_subcommands()) command = sub;
+    for (const auto& arg : unexpected) {
+        if (!arg.starts_with("--")) continue;
+        const auto given = arg.substr(2, arg.find('=') == std::string::npos ? std::string::npos : arg.find('=') - 2);
+        std::string best;
+        std::size_t best_distance = std::max<std::size_t>(2, given.size() / 3) + 1;
+        for (const auto* option : command->get_options()) {
+            for (const auto& name : option->get_lnames()) {
+                const auto d = edit_distance(given, name);
+                if (d < best_distance || (name.starts_with(given) && given.size() >= 3 && best.empty())) {
+                    best_distance = std::min(d, best_distance);
+                    best = name;
+                }
+            }
+        }
+        if (!best.empty()) std::cerr << "skinspec: '--" << given << "' is not an option of '" << command->get_name() << "'; did you mean --" << best << "?\n";
+    }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     CLI::App app{"skinspec: spectral simulator of human skin appearance"};
     app.set_version_flag("--version", std::string("skinspec ") + skinspec::version);
@@ -36,6 +80,11 @@ int main(int argc, char** argv) {
     skinspec::cli::add_stress_command(app);
     try {
         app.parse(argc, argv);
+    } catch (const CLI::ExtrasError& e) {
+        const int code = app.exit(e);
+        suggest_options(app, app.remaining());
+        for (const auto* sub : app.get_subcommands()) suggest_options(app, sub->remaining());
+        return code;
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const skinspec::InputError& e) {

@@ -104,7 +104,7 @@ void write_files(const PhaseStudy& s, const PhaseStudyOptions& o) {
     }
     for (const auto& f : files) check_output_path(f, o.overwrite, {".csv", ".png"});
 
-    std::string csv = "# skinspec phase-study: virtual goniometer BTDF (seed 000 Eq. 10) per polar bin, 1/sr\n"
+    std::string csv = "# skinspec phase-study: virtual goniometer BTDF (Baranoski et al. 2005 Eq. 10) per polar bin, 1/sr\n"
                       "tissue,wavelength_nm,bin_low_deg,bin_high_deg,measured,table_lookup,hg_rms,hg_van_gemert\n";
     for (const auto& c : s.cases) {
         for (std::size_t b = 0; b + 1 < s.bin_edges_deg.size(); ++b) {

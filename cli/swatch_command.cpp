@@ -189,6 +189,7 @@ void run_swatch(const SwatchOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const auto chart = compute_swatch(request);
     bar.clear();
+    print_warning_summary(request.material, chart.warnings);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::vector<RGB> working;

@@ -1,7 +1,9 @@
 #pragma once
-// Reader for user spectrum files: CSV "wavelength_nm,value" (comma- or blank-separated), an optional
-// header line, '#' comments and blank lines allowed. Every problem is an InputError of one line naming
-// file, line, field, value and the allowed range.
+// Reader for spectrum files: CSV "wavelength_nm,value" (comma- or blank-separated), an optional header line,
+// '#' comments and blank lines allowed; also files with more columns under a header, such as `skinspec
+// spectrum --output F.csv` writes (material,wavelength_nm,R,R_stderr,...): the value column is chosen by name
+// (default R when there is one) and, when a `material` column holds several materials, the rows of one.
+// Every problem is an InputError of one line naming file, line, field, value and the allowed range.
 #include <filesystem>
 
 #include "spectral/tabulated_spectrum.hpp"
@@ -14,6 +16,8 @@ struct SpectrumFileRules {
     double must_cover_from_nm = 400.0;     // the samples must span at least this range
     double must_cover_to_nm = 700.0;
     OutOfRangePolicy outside = OutOfRangePolicy::hold;  // policy of the returned spectrum
+    std::string column;    // value column by header name ("" = the second of two columns, else R)
+    std::string material;  // rows whose `material` column is this ("" = the only material in the file)
 };
 
 TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const SpectrumFileRules& rules = {});

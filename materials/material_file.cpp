@@ -372,16 +372,21 @@ toml::array array_of(const std::vector<double>& values) {
 
 toml::table stack_table(const LayerStack& s) {
     toml::table root{{"kind", "layered"}, {"name", s.name}, {"description", s.description}};
-    root.insert("model", toml::table{
-                             {"variant", s.model.variant},
-                             {"dermal_rayleigh", s.model.dermal_rayleigh},
-                             {"ln10_molar_tables", s.model.molar_tables == DecadicConversion::multiply_ln10},
-                             {"ln10_melanin_tables", s.model.melanin_tables == DecadicConversion::multiply_ln10},
-                             {"baseline_absorption", s.model.baseline_absorption},
-                             {"hemoglobin_molar_mass_g_per_mol", s.model.hemoglobin_molar_mass_g_per_mol},
-                             {"bilirubin_molar_mass_g_per_mol", s.model.bilirubin_molar_mass_g_per_mol},
-                             {"carotene_molar_mass_g_per_mol", s.model.carotene_molar_mass_g_per_mol},
-                         });
+    // The variant and only the switches that differ from it, so that a later --variant still takes effect.
+    const auto defaults = model_variant(s.model.variant, "model.variant");
+    toml::table model{{"variant", s.model.variant}};
+    const auto differs = [&](const char* key, auto value, auto preset) {
+        if (value != preset) model.insert(key, value);
+    };
+    const auto ln10 = [](DecadicConversion c) { return c == DecadicConversion::multiply_ln10; };
+    differs("dermal_rayleigh", s.model.dermal_rayleigh, defaults.dermal_rayleigh);
+    differs("ln10_molar_tables", ln10(s.model.molar_tables), ln10(defaults.molar_tables));
+    differs("ln10_melanin_tables", ln10(s.model.melanin_tables), ln10(defaults.melanin_tables));
+    differs("baseline_absorption", s.model.baseline_absorption, defaults.baseline_absorption);
+    differs("hemoglobin_molar_mass_g_per_mol", s.model.hemoglobin_molar_mass_g_per_mol, defaults.hemoglobin_molar_mass_g_per_mol);
+    differs("bilirubin_molar_mass_g_per_mol", s.model.bilirubin_molar_mass_g_per_mol, defaults.bilirubin_molar_mass_g_per_mol);
+    differs("carotene_molar_mass_g_per_mol", s.model.carotene_molar_mass_g_per_mol, defaults.carotene_molar_mass_g_per_mol);
+    root.insert("model", std::move(model));
     root.insert("surface", toml::table{{"above_refractive_index", s.above_refractive_index},
                                        {"fold_aspect_ratio", s.fold_aspect_ratio}});
     root.insert("bottom", toml::table{{"boundary", std::string(to_string(s.bottom))},

@@ -77,6 +77,19 @@ TEST_CASE("every preset survives load -> save -> load unchanged", "[material_fil
     CHECK(std::get<LayerStack>(read_material(temp_path("roundtrip2.toml"))) == stack);
 }
 
+TEST_CASE("a saved material still follows a later --variant; switches set by hand stay pinned", "[material_file]") {
+    const auto saved = temp_path("variant.toml");
+    write_material(load_material("biospec-lightly"), saved, true);
+    const auto later = std::get<LayerStack>(read_material(saved, {{"model.variant", "biospec-2004"}}));
+    CHECK(later.model == model_variant("biospec-2004", "t"));
+    auto pinned = std::get<LayerStack>(load_material("biospec-lightly"));
+    pinned.model.dermal_rayleigh = false;
+    write_material(pinned, saved, true);
+    const auto reread = std::get<LayerStack>(read_material(saved, {{"model.variant", "biospec-2004"}}));
+    CHECK_FALSE(reread.model.dermal_rayleigh);
+    CHECK(reread.model.variant == "biospec-2004");
+}
+
 TEST_CASE("saving never replaces a file unless asked", "[material_file]") {
     const auto path = write_temp("existing.toml", "user data\n");
     const auto material = load_material("biospec-lightly");

@@ -45,3 +45,19 @@ TEST_CASE("values over one pass when allowed", "[spectrum_csv]") {
     CHECK(read_spectrum_csv(input("over_one.csv"), rules)(550) == Approx(1.2));
     CHECK_THROWS_WITH(read_spectrum_csv(input("negative.csv"), rules), Catch::Contains("outside [0, inf)"));
 }
+
+TEST_CASE("spectrum's own CSV reads by column and material", "[spectrum_csv]") {
+    SpectrumFileRules rules;
+    rules.material = "skin_b";
+    CHECK(read_spectrum_csv(input("spectrum_result.csv"), rules)(400) == Approx(0.20));  // R by default
+    rules.column = "T";
+    CHECK(read_spectrum_csv(input("spectrum_result.csv"), rules)(700) == Approx(0.04));
+    rules.material = "skin_c";
+    CHECK_THROWS_WITH(read_spectrum_csv(input("spectrum_result.csv"), rules), Catch::Contains("--material skin_c has no rows (materials: skin_a, skin_b)"));
+    CHECK_THROWS_WITH(read_spectrum_csv(input("spectrum_result.csv")), Catch::Contains("the file holds several materials (skin_a, skin_b); choose one with --material"));
+    rules.material = "skin_a";
+    rules.column = "Q";
+    CHECK_THROWS_WITH(read_spectrum_csv(input("spectrum_result.csv"), rules), Catch::Contains("--column Q is not a value column of the file (columns: material, wavelength_nm, R,"));
+    rules.column = "R";
+    CHECK_THROWS_WITH(read_spectrum_csv(input("grey18.csv"), rules), Catch::Contains("--material skin_a: the file has no material column"));
+}

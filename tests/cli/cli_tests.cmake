@@ -35,3 +35,6 @@ skinspec_cli_test("fit-profile planar images" 0 "Y +2\\.20[0-9]* .* 4[0-9]\\.[0-
 set_tests_properties("cli: fit-profile planar images" PROPERTIES FIXTURES_REQUIRED fit_images)
 skinspec_cli_test("fit-profile radial" 0 "R +2\\.19000 +0\\.002000" fit-profile --profile dipole_profile.csv)
 skinspec_cli_test("fit-profile patches" 0 "l +2\\.1[89][0-9]* .* 6[0-9]\\.[0-9][0-9]" fit-profile --patches patches.csv --step 0.05)
+skinspec_cli_test("spectrum provenance" 0 "\"provenance\": \\{[^}]*\"solver\": \"biospec\"[^]]*\"key\": \"epidermis.melanosome_fraction\",[^}]*\"value\": 0.03" spectrum --preset biospec-lightly --set epidermis.melanosome_fraction=0.03 --wavelengths 550 --rays 100 --json)
+skinspec_cli_test("swatch in a diffusion mode" 0 "2 patches, 0 rays" swatch --mode multipole --vary epidermis.melanosome_fraction=0.01:0.2:2)
+skinspec_cli_test("color of spectrum's CSV" 0 "XYZ" color spectrum_result.csv --material skin_b --column T)
