@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include "cli/material_options.hpp"
 #include "studies/phase_study/phase_comparison.hpp"
 #include "studies/phase_study/phase_study.hpp"
 #include "materials/material_file.hpp"
@@ -144,7 +145,7 @@ void add_compare_phase_command(CLI::App& app) {
     auto o = std::make_shared<ComparePhaseOptions>();
     auto* cmd = app.add_subcommand("compare-phase", "Measured vs Henyey-Greenstein scattering in the thin layers of the BioSpec skin model");
     cmd->add_option("--preset", o->presets, "Preset (repeatable; default lightly, moderately and heavily pigmented)");
-    cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
+    cmd->add_option("--set", o->overrides, set_option_help);
     cmd->add_option("--hg-source", o->hg_source, "g for HG: rms (fitted, Eq. 9), van-gemert, or a number in [-1, 1]")->capture_default_str();
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--stderr", o->stderr_target, "Standard error target per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/material_options.hpp"
+#include "materials/material_fields.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/wavelength_grid.hpp"
 
@@ -20,6 +22,7 @@ struct MaterialsOptions {
     std::vector<std::string> overrides;
     std::string output;
     bool json = false;
+    bool markdown = false;
     bool force = false;
 };
 
@@ -162,6 +165,28 @@ void run_save(const MaterialsOptions& o) {
     std::cout << "wrote " << o.output << '\n';
 }
 
+// Every field of a material file from the descriptor tables (materials/material_fields.hpp).
+void run_keys(bool json, bool markdown) {
+    const auto rows = material_field_rows();
+    if (json) {
+        auto j = nlohmann::ordered_json::array();
+        for (const auto& r : rows) j.push_back({{"key", r.key}, {"unit", r.unit}, {"allowed", r.allowed}, {"doc", r.doc}});
+        std::cout << j.dump(2) << '\n';
+        return;
+    }
+    if (markdown) {
+        std::cout << "| key | unit | allowed | meaning |\n|---|---|---|---|\n";
+        for (const auto& r : rows) std::cout << fmt::format("| `{}` | {} | {} | {} |\n", r.key, r.unit, r.allowed, r.doc);
+        return;
+    }
+    std::size_t width = 0;
+    for (const auto& r : rows) width = std::max(width, r.key.size());
+    for (const auto& r : rows) {
+        std::cout << fmt::format("{:<{}}  {:<6}  {:<24}  {}\n", r.key, width, r.unit, r.allowed, r.doc);
+    }
+    std::cout << "\nLAYER: a layer name, or a suffix shared by several layers ('dermis' sets every *_dermis layer), for --set.\n";
+}
+
 }  // namespace
 
 void add_materials_command(CLI::App& app) {
@@ -175,15 +200,18 @@ void add_materials_command(CLI::App& app) {
 
     const auto add_material_options = [&](CLI::App* sub) {
         sub->add_option("material", options->material, "Preset name (see 'materials list') or a .toml file")->required();
-        sub->add_option("--set", options->overrides,
-                        "Override a field, KEY=VALUE (repeatable), e.g. epidermis.melanosome_fraction=0.1, dermis.blood_fraction=0.02, "
-                        "model.variant=biospec-2004");
+        sub->add_option("--set", options->overrides, set_option_help);
     };
     auto* show = cmd->add_subcommand("show", "Show a material: layers and per-layer mu_a and scattering with units");
     add_material_options(show);
     show->add_option("--wavelengths", options->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     show->add_flag("--json", options->json, "Print JSON");
     show->callback([options] { run_show(*options); });
+
+    auto* keys = cmd->add_subcommand("keys", "Every field of a material file: key, unit, allowed values, meaning (what --set takes)");
+    keys->add_flag("--json", options->json, "Print JSON");
+    keys->add_flag("--markdown", options->markdown, "Print a Markdown table (as in docs/MATERIALS.md)");
+    keys->callback([options] { run_keys(options->json, options->markdown); });
 
     auto* save = cmd->add_subcommand("save", "Write a material (with --set overrides applied) as a TOML file");
     add_material_options(save);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/material_options.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
 #include "materials/material_file.hpp"
@@ -124,7 +125,7 @@ void add_profile_command(CLI::App& app) {
     auto* cmd = app.add_subcommand("profile", "Radial diffuse reflectance R(r) and transmittance T(r) of a solver that computes them (CSV, plot)");
     cmd->add_option("--preset", o->preset, "Preset name (default biospec-moderately)");
     cmd->add_option("--material", o->material_file, "Material TOML file");
-    cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
+    cmd->add_option("--set", o->overrides, set_option_help);
     add_solver_options(*cmd, o->solver, "multipole");
     cmd->add_option("--wavelengths", o->wavelengths, "Wavelengths (nm) for layered materials; homogeneous ones use their bands")->capture_default_str();
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm")->capture_default_str();

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "cli/material_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
@@ -158,7 +159,7 @@ void add_spectrum_command(CLI::App& app) {
                                    "and heavily pigmented presets, 400-700 nm)");
     cmd->add_option("--preset", o->presets, "Preset name (repeatable; see 'skinspec materials list')");
     cmd->add_option("--material", o->materials, "Material TOML file (repeatable)");
-    cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable), e.g. epidermis.melanosome_fraction=0.1");
+    cmd->add_option("--set", o->overrides, set_option_help);
     cmd->add_option("--layers", o->layers, "Simulate only these layers (comma list), e.g. stratum_corneum,epidermis")->delimiter(',');
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include "cli/material_options.hpp"
 #include "cli/color_output.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
@@ -277,7 +278,7 @@ void add_swatch_command(CLI::App& app) {
     auto* cmd = app.add_subcommand("swatch", "Chart image of simulated skin colours over one or two stack fields");
     cmd->add_option("--preset", o->preset, "Base preset (default biospec-moderately)");
     cmd->add_option("--material", o->material_file, "Base material TOML file");
-    cmd->add_option("--set", o->overrides, "Override a material field, KEY=VALUE (repeatable)");
+    cmd->add_option("--set", o->overrides, set_option_help);
     cmd->add_option("--vary", o->vary,
                     "FIELD=FIRST:LAST:STEPS, columns then rows (default epidermis.melanosome_fraction=0.01:0.42:8 and "
                     "dermis.blood_fraction=0.002:0.05:5 for skin stacks; one patch otherwise)");

@@ -9,6 +9,7 @@
 
 #include <toml++/toml.h>
 
+#include "materials/material_fields.hpp"
 #include "spectral/data_paths.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
@@ -17,29 +18,9 @@
 namespace skinspec {
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
-
-struct Range {
-    double lo;
-    double hi;
-    bool lo_open;
-    bool hi_open;
-    bool contains(double v) const {
-        return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-    }
-    std::string text() const {
-        const auto bound = [](double b) { return std::isinf(b) ? std::string("inf") : format_number(b); };
-        return std::string(lo_open ? "(" : "[") + bound(lo) + ", " + bound(hi) + (hi_open ? ")" : "]");
-    }
-};
-
+using Range = FieldRange;
 constexpr Range fraction{0.0, 1.0, false, false};
-constexpr Range positive{0.0, inf, true, true};
-constexpr Range non_negative{0.0, inf, false, true};
-constexpr Range refractive_index{1.0, 4.0, false, false};
-constexpr Range anisotropy{-1.0, 1.0, false, false};
-constexpr Range fold_ratio{0.0, 1.0, true, false};
-constexpr Range power_law_exponent{-10.0, 10.0, false, false};
+constexpr Range non_negative{0.0, std::numeric_limits<double>::infinity(), false, true};
 
 // Reads typed, range-checked values out of a toml table and reports where a bad one came from.
 class Reader {
@@ -54,7 +35,7 @@ public:
         return file_ + ": ";
     }
 
-    void reject_unknown(const toml::table& table, const std::string& prefix, std::initializer_list<std::string_view> known) const {
+    void reject_unknown(const toml::table& table, const std::string& prefix, const std::vector<std::string_view>& known) const {
         for (const auto& [key, node] : table) {
             if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
             std::string allowed;
@@ -134,30 +115,44 @@ bool valid_layer_name(const std::string& name) {
     });
 }
 
+template <class Owner>
+std::vector<std::string_view> keys_of(const std::vector<NumberField<Owner>>& fields) {
+    std::vector<std::string_view> keys;
+    for (const auto& f : fields) keys.push_back(f.key);
+    return keys;
+}
+
+// Reads every number field of `fields` into `owner` (defaults: the member's current value).
+template <class Owner>
+void read_numbers(const Reader& r, const toml::table& t, const std::string& prefix, const std::vector<NumberField<Owner>>& fields, Owner& owner) {
+    for (const auto& f : fields) {
+        owner.*f.member = r.number(t, f.key, prefix + std::string(f.key), f.range,
+                                   f.required ? std::nullopt : std::optional<double>(owner.*f.member));
+    }
+}
+
+template <class Owner>
+void write_numbers(toml::table& t, const std::vector<NumberField<Owner>>& fields, const Owner& owner) {
+    for (const auto& f : fields) t.insert(f.key, owner.*f.member);
+}
+
 ModelOptions read_model(const Reader& r, const toml::table* model) {
     if (!model) return ModelOptions{};
-    r.reject_unknown(*model, "model.",
-                     {"variant", "dermal_rayleigh", "ln10_molar_tables", "ln10_melanin_tables", "baseline_absorption",
-                      "hemoglobin_molar_mass_g_per_mol", "bilirubin_molar_mass_g_per_mol",
-                      "carotene_molar_mass_g_per_mol"});
+    std::vector<std::string_view> known{"variant"};
+    for (const auto& f : model_fields()) known.push_back(f.key);
+    r.reject_unknown(*model, "model.", known);
     const auto variant_name = r.string(*model, "variant", "model.variant", std::string("biospec"));
     ModelOptions o = model_variant(variant_name, r.where(model->get("variant"), "model.variant") + "key 'model.variant'");
     const auto ln10 = [](bool on) { return on ? DecadicConversion::multiply_ln10 : DecadicConversion::omit_ln10; };
-    o.dermal_rayleigh = r.boolean(*model, "dermal_rayleigh", "model.dermal_rayleigh", o.dermal_rayleigh);
-    o.molar_tables = ln10(r.boolean(*model, "ln10_molar_tables", "model.ln10_molar_tables",
-                                    o.molar_tables == DecadicConversion::multiply_ln10));
-    o.melanin_tables = ln10(r.boolean(*model, "ln10_melanin_tables", "model.ln10_melanin_tables",
-                                      o.melanin_tables == DecadicConversion::multiply_ln10));
-    o.baseline_absorption = r.boolean(*model, "baseline_absorption", "model.baseline_absorption", o.baseline_absorption);
-    o.hemoglobin_molar_mass_g_per_mol = r.number(*model, "hemoglobin_molar_mass_g_per_mol",
-                                                 "model.hemoglobin_molar_mass_g_per_mol", positive,
-                                                 o.hemoglobin_molar_mass_g_per_mol);
-    o.bilirubin_molar_mass_g_per_mol = r.number(*model, "bilirubin_molar_mass_g_per_mol",
-                                                "model.bilirubin_molar_mass_g_per_mol", positive,
-                                                o.bilirubin_molar_mass_g_per_mol);
-    o.carotene_molar_mass_g_per_mol = r.number(*model, "carotene_molar_mass_g_per_mol",
-                                               "model.carotene_molar_mass_g_per_mol", positive,
-                                               o.carotene_molar_mass_g_per_mol);
+    for (const auto& f : model_fields()) {
+        const std::string path = "model." + std::string(f.key);
+        std::visit([&](auto member) {
+            using T = std::remove_cvref_t<decltype(o.*member)>;
+            if constexpr (std::is_same_v<T, bool>) o.*member = r.boolean(*model, f.key, path, o.*member);
+            else if constexpr (std::is_same_v<T, DecadicConversion>) o.*member = ln10(r.boolean(*model, f.key, path, o.*member == DecadicConversion::multiply_ln10));
+            else o.*member = r.number(*model, f.key, path, f.range, o.*member);
+        }, f.member);
+    }
     return o;
 }
 
@@ -170,26 +165,13 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
                          "' is not allowed (allowed: lower-case letters, digits and _)");
     }
     const std::string p = layer.name + ".";
-    r.reject_unknown(t, p,
-                     {"name", "thickness_cm", "refractive_index", "melanosome_fraction", "eumelanin_mg_per_ml",
-                      "pheomelanin_mg_per_ml", "blood_fraction", "oxygen_saturation", "hemoglobin_g_per_l",
-                      "bilirubin_g_per_l", "carotene_g_per_l", "scattering", "hg_g", "collagen_fibre_fraction",
-                      "collagen_fibre_radius_nm", "collagen_fibre_index", "volumetric_mu_s_per_cm_at_500nm",
-                      "volumetric_mu_s_power", "volumetric_phase", "volumetric_g", "reduced_scattering_table",
-                      "reduced_scattering_per_cm_at_500nm", "reduced_scattering_power"});
-    const auto num = [&](std::string_view key, Range range, std::optional<double> fallback) {
-        return r.number(t, key, p + std::string(key), range, fallback);
-    };
-    layer.thickness_cm = num("thickness_cm", positive, std::nullopt);
-    layer.refractive_index = num("refractive_index", refractive_index, std::nullopt);
-    layer.melanosome_fraction = num("melanosome_fraction", fraction, layer.melanosome_fraction);
-    layer.eumelanin_mg_per_ml = num("eumelanin_mg_per_ml", non_negative, layer.eumelanin_mg_per_ml);
-    layer.pheomelanin_mg_per_ml = num("pheomelanin_mg_per_ml", non_negative, layer.pheomelanin_mg_per_ml);
-    layer.blood_fraction = num("blood_fraction", fraction, layer.blood_fraction);
-    layer.oxygen_saturation = num("oxygen_saturation", fraction, layer.oxygen_saturation);
-    layer.hemoglobin_g_per_l = num("hemoglobin_g_per_l", non_negative, layer.hemoglobin_g_per_l);
-    layer.bilirubin_g_per_l = num("bilirubin_g_per_l", non_negative, layer.bilirubin_g_per_l);
-    layer.carotene_g_per_l = num("carotene_g_per_l", non_negative, layer.carotene_g_per_l);
+    std::vector<std::string_view> known{"name"};
+    for (const auto& keys : {keys_of(layer_number_fields()), std::vector<std::string_view>{"scattering"}, keys_of(volumetric_fields()),
+                             std::vector<std::string_view>{"volumetric_phase", "reduced_scattering_table"}, keys_of(reduced_power_law_fields())}) {
+        known.insert(known.end(), keys.begin(), keys.end());
+    }
+    r.reject_unknown(t, p, known);
+    read_numbers(r, t, p, layer_number_fields(), layer);
     if (layer.melanosome_fraction + layer.blood_fraction > 1.0) {
         throw InputError(r.where(t.get("blood_fraction"), p + "blood_fraction") + "layer '" + layer.name +
                          "': melanosome_fraction + blood_fraction = " +
@@ -197,24 +179,18 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
     }
     layer.crossing = parse_crossing_scattering(r.string(t, "scattering", p + "scattering", std::nullopt),
                                                r.where(t.get("scattering"), p + "scattering") + "key '" + p + "scattering'");
-    layer.hg_g = num("hg_g", anisotropy, layer.hg_g);
-    layer.collagen_fibre_fraction = num("collagen_fibre_fraction", fraction, layer.collagen_fibre_fraction);
-    layer.collagen_fibre_radius_nm = num("collagen_fibre_radius_nm", positive, layer.collagen_fibre_radius_nm);
-    layer.collagen_fibre_index = num("collagen_fibre_index", refractive_index, layer.collagen_fibre_index);
-
-    if (t.contains("volumetric_mu_s_per_cm_at_500nm") || t.contains("volumetric_g") || t.contains("volumetric_phase") ||
-        t.contains("volumetric_mu_s_power")) {
+    if (std::any_of(volumetric_fields().begin(), volumetric_fields().end(), [&](const auto& f) { return t.contains(f.key); }) ||
+        t.contains("volumetric_phase")) {
         VolumetricScattering v;
-        v.mu_s_per_cm_at_500nm = num("volumetric_mu_s_per_cm_at_500nm", non_negative, std::nullopt);
-        v.power = num("volumetric_mu_s_power", power_law_exponent, 0.0);
+        read_numbers(r, t, p, volumetric_fields(), v);
         v.phase = parse_phase_function(r.string(t, "volumetric_phase", p + "volumetric_phase", "henyey_greenstein"),
                                        r.where(t.get("volumetric_phase"), p + "volumetric_phase") + "key '" + p +
                                            "volumetric_phase'");
-        v.g = num("volumetric_g", anisotropy, 0.0);
         layer.volumetric = v;
     }
     const bool has_table = t.contains("reduced_scattering_table");
-    const bool has_law = t.contains("reduced_scattering_per_cm_at_500nm") || t.contains("reduced_scattering_power");
+    const bool has_law = std::any_of(reduced_power_law_fields().begin(), reduced_power_law_fields().end(),
+                                     [&](const auto& f) { return t.contains(f.key); });
     if (has_table && has_law) {
         throw InputError(r.where(t.get("reduced_scattering_table"), p + "reduced_scattering_table") + "layer '" +
                          layer.name + "': give reduced_scattering_table or the power law, not both");
@@ -231,8 +207,7 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
         layer.reduced = reduced;
     } else if (has_law) {
         ReducedScattering reduced;
-        reduced.per_cm_at_500nm = num("reduced_scattering_per_cm_at_500nm", non_negative, std::nullopt);
-        reduced.power = num("reduced_scattering_power", power_law_exponent, 0.0);
+        read_numbers(r, t, p, reduced_power_law_fields(), reduced);
         layer.reduced = reduced;
     }
     return layer;
@@ -245,18 +220,16 @@ LayerStack read_stack(const Reader& r, const toml::table& root) {
     stack.description = r.string(root, "description", "description", std::string());
     stack.model = read_model(r, r.section(root, "model", "model"));
     if (const auto* surface = r.section(root, "surface", "surface")) {
-        r.reject_unknown(*surface, "surface.", {"above_refractive_index", "fold_aspect_ratio"});
-        stack.above_refractive_index = r.number(*surface, "above_refractive_index", "surface.above_refractive_index",
-                                                refractive_index, stack.above_refractive_index);
-        stack.fold_aspect_ratio = r.number(*surface, "fold_aspect_ratio", "surface.fold_aspect_ratio", fold_ratio,
-                                           stack.fold_aspect_ratio);
+        r.reject_unknown(*surface, "surface.", keys_of(surface_fields()));
+        read_numbers(r, *surface, "surface.", surface_fields(), stack);
     }
     if (const auto* bottom = r.section(root, "bottom", "bottom")) {
-        r.reject_unknown(*bottom, "bottom.", {"boundary", "below_refractive_index"});
+        auto known = keys_of(bottom_fields());
+        known.push_back("boundary");
+        r.reject_unknown(*bottom, "bottom.", known);
         stack.bottom = parse_bottom_boundary(r.string(*bottom, "boundary", "bottom.boundary", "diffuse_reflector"),
                                              r.where(bottom->get("boundary"), "bottom.boundary") + "key 'bottom.boundary'");
-        stack.below_refractive_index = r.number(*bottom, "below_refractive_index", "bottom.below_refractive_index",
-                                                refractive_index, stack.below_refractive_index);
+        read_numbers(r, *bottom, "bottom.", bottom_fields(), stack);
     }
     const auto* layers = root.get("layers");
     if (!layers || !layers->as_array() || layers->as_array()->empty()) {
@@ -375,51 +348,30 @@ toml::table stack_table(const LayerStack& s) {
     // The variant and only the switches that differ from it, so that a later --variant still takes effect.
     const auto defaults = model_variant(s.model.variant, "model.variant");
     toml::table model{{"variant", s.model.variant}};
-    const auto differs = [&](const char* key, auto value, auto preset) {
-        if (value != preset) model.insert(key, value);
-    };
-    const auto ln10 = [](DecadicConversion c) { return c == DecadicConversion::multiply_ln10; };
-    differs("dermal_rayleigh", s.model.dermal_rayleigh, defaults.dermal_rayleigh);
-    differs("ln10_molar_tables", ln10(s.model.molar_tables), ln10(defaults.molar_tables));
-    differs("ln10_melanin_tables", ln10(s.model.melanin_tables), ln10(defaults.melanin_tables));
-    differs("baseline_absorption", s.model.baseline_absorption, defaults.baseline_absorption);
-    differs("hemoglobin_molar_mass_g_per_mol", s.model.hemoglobin_molar_mass_g_per_mol, defaults.hemoglobin_molar_mass_g_per_mol);
-    differs("bilirubin_molar_mass_g_per_mol", s.model.bilirubin_molar_mass_g_per_mol, defaults.bilirubin_molar_mass_g_per_mol);
-    differs("carotene_molar_mass_g_per_mol", s.model.carotene_molar_mass_g_per_mol, defaults.carotene_molar_mass_g_per_mol);
+    for (const auto& f : model_fields()) {
+        std::visit([&](auto member) {
+            using T = std::remove_cvref_t<decltype(s.model.*member)>;
+            if (s.model.*member == defaults.*member) return;
+            if constexpr (std::is_same_v<T, DecadicConversion>) model.insert(f.key, s.model.*member == DecadicConversion::multiply_ln10);
+            else model.insert(f.key, s.model.*member);
+        }, f.member);
+    }
     root.insert("model", std::move(model));
-    root.insert("surface", toml::table{{"above_refractive_index", s.above_refractive_index},
-                                       {"fold_aspect_ratio", s.fold_aspect_ratio}});
-    root.insert("bottom", toml::table{{"boundary", std::string(to_string(s.bottom))},
-                                      {"below_refractive_index", s.below_refractive_index}});
+    toml::table surface, bottom{{"boundary", std::string(to_string(s.bottom))}};
+    write_numbers(surface, surface_fields(), s);
+    write_numbers(bottom, bottom_fields(), s);
+    root.insert("surface", std::move(surface));
+    root.insert("bottom", std::move(bottom));
     toml::array layers;
     for (const auto& l : s.layers) {
-        toml::table t{{"name", l.name},
-                      {"thickness_cm", l.thickness_cm},
-                      {"refractive_index", l.refractive_index},
-                      {"melanosome_fraction", l.melanosome_fraction},
-                      {"eumelanin_mg_per_ml", l.eumelanin_mg_per_ml},
-                      {"pheomelanin_mg_per_ml", l.pheomelanin_mg_per_ml},
-                      {"blood_fraction", l.blood_fraction},
-                      {"oxygen_saturation", l.oxygen_saturation},
-                      {"hemoglobin_g_per_l", l.hemoglobin_g_per_l},
-                      {"bilirubin_g_per_l", l.bilirubin_g_per_l},
-                      {"carotene_g_per_l", l.carotene_g_per_l},
-                      {"scattering", std::string(to_string(l.crossing))},
-                      {"hg_g", l.hg_g},
-                      {"collagen_fibre_fraction", l.collagen_fibre_fraction},
-                      {"collagen_fibre_radius_nm", l.collagen_fibre_radius_nm},
-                      {"collagen_fibre_index", l.collagen_fibre_index}};
+        toml::table t{{"name", l.name}, {"scattering", std::string(to_string(l.crossing))}};
+        write_numbers(t, layer_number_fields(), l);
         if (l.volumetric) {
-            t.insert("volumetric_mu_s_per_cm_at_500nm", l.volumetric->mu_s_per_cm_at_500nm);
-            t.insert("volumetric_mu_s_power", l.volumetric->power);
+            write_numbers(t, volumetric_fields(), *l.volumetric);
             t.insert("volumetric_phase", std::string(to_string(l.volumetric->phase)));
-            t.insert("volumetric_g", l.volumetric->g);
         }
         if (l.reduced && !l.reduced->table.empty()) t.insert("reduced_scattering_table", l.reduced->table);
-        if (l.reduced && l.reduced->table.empty()) {
-            t.insert("reduced_scattering_per_cm_at_500nm", l.reduced->per_cm_at_500nm);
-            t.insert("reduced_scattering_power", l.reduced->power);
-        }
+        if (l.reduced && l.reduced->table.empty()) write_numbers(t, reduced_power_law_fields(), *l.reduced);
         layers.push_back(std::move(t));
     }
     root.insert("layers", std::move(layers));

@@ -21,7 +21,6 @@ Kind parse_named(std::string_view text, std::string_view what, const std::array<
                      " (allowed: " + allowed + ")");
 }
 
-double value(ChromophoreKind kind, double wavelength_nm) { return chromophore(kind).table(wavelength_nm); }
 
 }  // namespace
 
@@ -65,44 +64,81 @@ const std::vector<std::string_view>& reduced_scattering_tables() {
     return names;
 }
 
-double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const ModelOptions& model) {
+namespace {
+
+enum class Compartment { melanosomes, blood, background };
+
+// One chromophore's share of mu_a inside its compartment (shared spec "Absorption coefficients"). Adding a
+// chromophore is one row here, its data file (materials/chromophore.cpp) and its concentration field
+// (materials/material_fields.cpp).
+struct AbsorptionTerm {
+    Compartment compartment;
+    ChromophoreKind chromophore;
+    double (*concentration)(const TissueLayer&);           // mg/mL (mass tables), g/L (molar), 1 (absorption)
+    double (*molar_mass_g_per_mol)(const ModelOptions&);   // molar tables
+    DecadicConversion (*conversion)(const ModelOptions&);  // decadic tables
+    bool (*enabled)(const ModelOptions&);
+};
+
+// Melanosomes: Sarna & Swartz mass extinction of eu- and pheomelanin; whole blood: haemoglobin split by the
+// oxygen saturation S (Prahl) and bilirubin (PhotochemCAD); background: beta-carotene (PhotochemCAD) and
+// Jacques' bloodless-tissue baseline.
+const std::vector<AbsorptionTerm>& absorption_terms() {
+    using L = TissueLayer;
+    using M = ModelOptions;
+    const auto melanin = [](const M& m) { return m.melanin_tables; };
+    const auto molar = [](const M& m) { return m.molar_tables; };
+    const auto always = [](const M&) { return true; };
+    const auto hemoglobin = [](const M& m) { return m.hemoglobin_molar_mass_g_per_mol; };
+    const auto none = [](const M&) { return 1.0; };
+    static const std::vector<AbsorptionTerm> terms{
+        {Compartment::melanosomes, ChromophoreKind::eumelanin, [](const L& l) { return l.eumelanin_mg_per_ml; }, none, melanin, always},
+        {Compartment::melanosomes, ChromophoreKind::pheomelanin, [](const L& l) { return l.pheomelanin_mg_per_ml; }, none, melanin, always},
+        {Compartment::blood, ChromophoreKind::oxyhemoglobin, [](const L& l) { return l.oxygen_saturation * l.hemoglobin_g_per_l; },
+         hemoglobin, molar, always},
+        {Compartment::blood, ChromophoreKind::deoxyhemoglobin, [](const L& l) { return (1.0 - l.oxygen_saturation) * l.hemoglobin_g_per_l; },
+         hemoglobin, molar, always},
+        {Compartment::blood, ChromophoreKind::bilirubin, [](const L& l) { return l.bilirubin_g_per_l; },
+         [](const M& m) { return m.bilirubin_molar_mass_g_per_mol; }, molar, always},
+        {Compartment::background, ChromophoreKind::beta_carotene, [](const L& l) { return l.carotene_g_per_l; },
+         [](const M& m) { return m.carotene_molar_mass_g_per_mol; }, molar, always},
+        {Compartment::background, ChromophoreKind::baseline_tissue, [](const L&) { return 1.0; }, none, molar,
+         [](const M& m) { return m.baseline_absorption; }},
+    };
+    return terms;
+}
+
+// Sum of the compartment's terms [1/cm], as if the compartment filled the volume.
+double compartment_absorption_per_cm(Compartment compartment, const TissueLayer& layer, double wavelength_nm, const ModelOptions& model) {
     double mu_a = 0.0;
-    const double v_m = layer.melanosome_fraction;
-    if (v_m > 0.0) {
-        // Melanosomes: Sarna & Swartz mass extinction, eumelanin and pheomelanin concentrations inside them.
-        mu_a += v_m * (mu_a_from_mass_extinction_per_cm(value(ChromophoreKind::eumelanin, wavelength_nm),
-                                                        layer.eumelanin_mg_per_ml, model.melanin_tables) +
-                       mu_a_from_mass_extinction_per_cm(value(ChromophoreKind::pheomelanin, wavelength_nm),
-                                                        layer.pheomelanin_mg_per_ml, model.melanin_tables));
-    }
-    const double v_b = layer.blood_fraction;
-    if (v_b > 0.0) {
-        // Whole blood: haemoglobin split by oxygen saturation S, plus bilirubin (Prahl; PhotochemCAD).
-        const double s = layer.oxygen_saturation;
-        const double hb = layer.hemoglobin_g_per_l;
-        const double m_hb = model.hemoglobin_molar_mass_g_per_mol;
-        const double blood =
-            mu_a_from_molar_extinction_per_cm(value(ChromophoreKind::oxyhemoglobin, wavelength_nm), s * hb, m_hb,
-                                              model.molar_tables) +
-            mu_a_from_molar_extinction_per_cm(value(ChromophoreKind::deoxyhemoglobin, wavelength_nm), (1.0 - s) * hb,
-                                              m_hb, model.molar_tables) +
-            (layer.bilirubin_g_per_l > 0.0
-                 ? mu_a_from_molar_extinction_per_cm(value(ChromophoreKind::bilirubin, wavelength_nm),
-                                                     layer.bilirubin_g_per_l, model.bilirubin_molar_mass_g_per_mol,
-                                                     model.molar_tables)
-                 : 0.0);
-        mu_a += v_b * blood;
-    }
-    const double background_fraction = 1.0 - v_m - v_b;
-    if (background_fraction > 0.0) {
-        double background = 0.0;
-        if (layer.carotene_g_per_l > 0.0) {
-            background += mu_a_from_molar_extinction_per_cm(value(ChromophoreKind::beta_carotene, wavelength_nm),
-                                                            layer.carotene_g_per_l,
-                                                            model.carotene_molar_mass_g_per_mol, model.molar_tables);
+    for (const auto& term : absorption_terms()) {
+        if (term.compartment != compartment || !term.enabled(model)) continue;
+        const double c = term.concentration(layer);
+        if (c <= 0.0) continue;
+        const auto& table = chromophore(term.chromophore);
+        const double e = table.table(wavelength_nm);
+        switch (table.units) {
+            case ExtinctionUnits::mass_per_cm_per_mg_per_ml: mu_a += mu_a_from_mass_extinction_per_cm(e, c, term.conversion(model)); break;
+            case ExtinctionUnits::molar_decadic_per_cm_per_molar:
+                mu_a += mu_a_from_molar_extinction_per_cm(e, c, term.molar_mass_g_per_mol(model), term.conversion(model));
+                break;
+            case ExtinctionUnits::absorption_per_cm: mu_a += e * c; break;
         }
-        if (model.baseline_absorption) background += value(ChromophoreKind::baseline_tissue, wavelength_nm);
-        mu_a += background_fraction * background;
+    }
+    return mu_a;
+}
+
+}  // namespace
+
+double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const ModelOptions& model) {
+    const double v_m = layer.melanosome_fraction;
+    const double v_b = layer.blood_fraction;
+    const double background_fraction = 1.0 - v_m - v_b;
+    double mu_a = 0.0;
+    if (v_m > 0.0) mu_a += v_m * compartment_absorption_per_cm(Compartment::melanosomes, layer, wavelength_nm, model);
+    if (v_b > 0.0) mu_a += v_b * compartment_absorption_per_cm(Compartment::blood, layer, wavelength_nm, model);
+    if (background_fraction > 0.0) {
+        mu_a += background_fraction * compartment_absorption_per_cm(Compartment::background, layer, wavelength_nm, model);
     }
     return mu_a;
 }

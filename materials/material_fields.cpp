@@ -1,0 +1,147 @@
+#include "materials/material_fields.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr FieldRange fraction{0.0, 1.0, false, false};
+constexpr FieldRange positive{0.0, inf, true, true};
+constexpr FieldRange non_negative{0.0, inf, false, true};
+constexpr FieldRange refractive_index{1.0, 4.0, false, false};
+constexpr FieldRange anisotropy{-1.0, 1.0, false, false};
+constexpr FieldRange fold_ratio{0.0, 1.0, true, false};
+constexpr FieldRange power_law_exponent{-10.0, 10.0, false, false};
+
+template <class Owner>
+void add_rows(std::vector<FieldRow>& rows, const std::string& prefix, const std::vector<NumberField<Owner>>& fields) {
+    for (const auto& f : fields) {
+        rows.push_back({prefix + std::string(f.key), std::string(f.unit), f.range.text() + (f.required ? ", required" : ""), std::string(f.doc)});
+    }
+}
+
+}  // namespace
+
+bool FieldRange::contains(double v) const {
+    return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+}
+
+std::string FieldRange::text() const {
+    const auto bound = [](double b) { return std::isinf(b) ? std::string("inf") : format_number(b); };
+    return std::string(lo_open ? "(" : "[") + bound(lo) + ", " + bound(hi) + (hi_open ? ")" : "]");
+}
+
+const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
+    using L = TissueLayer;
+    static const std::vector<NumberField<L>> fields{
+        {"thickness_cm", "cm", positive, &L::thickness_cm, true, "layer thickness"},
+        {"refractive_index", "1", refractive_index, &L::refractive_index, true, "refractive index of the layer"},
+        {"melanosome_fraction", "1", fraction, &L::melanosome_fraction, false, "volume fraction of melanosomes (v_m)"},
+        {"eumelanin_mg_per_ml", "mg/mL", non_negative, &L::eumelanin_mg_per_ml, false, "eumelanin inside the melanosomes"},
+        {"pheomelanin_mg_per_ml", "mg/mL", non_negative, &L::pheomelanin_mg_per_ml, false, "pheomelanin inside the melanosomes"},
+        {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b); v_m + v_b <= 1"},
+        {"oxygen_saturation", "1", fraction, &L::oxygen_saturation, false, "haemoglobin oxygen saturation S"},
+        {"hemoglobin_g_per_l", "g/L", non_negative, &L::hemoglobin_g_per_l, false, "haemoglobin in whole blood"},
+        {"bilirubin_g_per_l", "g/L", non_negative, &L::bilirubin_g_per_l, false, "bilirubin in whole blood"},
+        {"carotene_g_per_l", "g/L", non_negative, &L::carotene_g_per_l, false, "beta-carotene in the background tissue"},
+        {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein"},
+        {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)"},
+        {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius"},
+        {"collagen_fibre_index", "1", refractive_index, &L::collagen_fibre_index, false, "collagen fibre refractive index"},
+    };
+    return fields;
+}
+
+const std::vector<NumberField<VolumetricScattering>>& volumetric_fields() {
+    using V = VolumetricScattering;
+    static const std::vector<NumberField<V>> fields{
+        {"volumetric_mu_s_per_cm_at_500nm", "1/cm", non_negative, &V::mu_s_per_cm_at_500nm, true,
+         "volumetric walk: scattering coefficient at 500 nm, mu_s(l) = mu_s(500) (l / 500 nm)^-power"},
+        {"volumetric_mu_s_power", "1", power_law_exponent, &V::power, false, "volumetric walk: power-law exponent of mu_s"},
+        {"volumetric_g", "1", anisotropy, &V::g, false, "volumetric walk: HG asymmetry"},
+    };
+    return fields;
+}
+
+const std::vector<NumberField<ReducedScattering>>& reduced_power_law_fields() {
+    using R = ReducedScattering;
+    static const std::vector<NumberField<R>> fields{
+        {"reduced_scattering_per_cm_at_500nm", "1/cm", non_negative, &R::per_cm_at_500nm, true,
+         "diffusion: reduced scattering at 500 nm, mu_s'(l) = a (l / 500 nm)^-b"},
+        {"reduced_scattering_power", "1", power_law_exponent, &R::power, false, "diffusion: power-law exponent b"},
+    };
+    return fields;
+}
+
+const std::vector<NumberField<LayerStack>>& surface_fields() {
+    static const std::vector<NumberField<LayerStack>> fields{
+        {"above_refractive_index", "1", refractive_index, &LayerStack::above_refractive_index, false, "medium above the skin"},
+        {"fold_aspect_ratio", "1", fold_ratio, &LayerStack::fold_aspect_ratio, false, "skin-fold perturbation of surface reflection (sigma)"},
+    };
+    return fields;
+}
+
+const std::vector<NumberField<LayerStack>>& bottom_fields() {
+    static const std::vector<NumberField<LayerStack>> fields{
+        {"below_refractive_index", "1", refractive_index, &LayerStack::below_refractive_index, false, "medium below, for boundary = exit"},
+    };
+    return fields;
+}
+
+const std::vector<ModelField>& model_fields() {
+    using M = ModelOptions;
+    static const std::vector<ModelField> fields{
+        {"dermal_rayleigh", "", &M::dermal_rayleigh, {}, "Rayleigh scattering by collagen in dermal layers"},
+        {"ln10_molar_tables", "", &M::molar_tables, {}, "multiply decadic molar tables (haemoglobin, bilirubin, carotene) by ln 10"},
+        {"ln10_melanin_tables", "", &M::melanin_tables, {}, "multiply the melanin tables by ln 10"},
+        {"baseline_absorption", "", &M::baseline_absorption, {}, "Jacques' bloodless-tissue absorption in the background"},
+        {"hemoglobin_molar_mass_g_per_mol", "g/mol", &M::hemoglobin_molar_mass_g_per_mol, positive, "haemoglobin molar mass"},
+        {"bilirubin_molar_mass_g_per_mol", "g/mol", &M::bilirubin_molar_mass_g_per_mol, positive, "bilirubin molar mass"},
+        {"carotene_molar_mass_g_per_mol", "g/mol", &M::carotene_molar_mass_g_per_mol, positive, "beta-carotene molar mass"},
+    };
+    return fields;
+}
+
+const std::vector<NamedField>& named_fields() {
+    static const std::vector<NamedField> fields{
+        {"", "kind", "layered, homogeneous", "what the file describes (default layered)"},
+        {"model", "variant", "biospec, biospec-2004", "model variant; sets every [model] switch not given"},
+        {"bottom", "boundary", "diffuse_reflector, exit", "hypodermis reflector or an open bottom"},
+        {"layers", "name", "lower-case letters, digits, _", "layer name, unique in the stack"},
+        {"layers", "scattering", "measured_stratum_corneum, measured_epidermis, rayleigh_cosine, cosine, henyey_greenstein",
+         "BioSpec walk: what a crossing does to a ray's direction"},
+        {"layers", "volumetric_phase", "henyey_greenstein, isotropic, rayleigh", "volumetric walk: phase function"},
+        {"layers", "reduced_scattering_table", "salomatina_epidermis, salomatina_dermis, salomatina_hypodermis",
+         "diffusion: measured reduced scattering (or the power law, not both)"},
+    };
+    return fields;
+}
+
+std::vector<FieldRow> material_field_rows() {
+    std::vector<FieldRow> rows;
+    const auto named = [&](std::string_view section, const std::string& prefix) {
+        for (const auto& f : named_fields()) {
+            if (f.section == section) rows.push_back({prefix + std::string(f.key), "", std::string(f.allowed), std::string(f.doc)});
+        }
+    };
+    named("", "");
+    named("model", "model.");
+    for (const auto& f : model_fields()) {
+        const bool number = std::holds_alternative<double ModelOptions::*>(f.member);
+        rows.push_back({"model." + std::string(f.key), std::string(f.unit), number ? f.range.text() : "true, false", std::string(f.doc)});
+    }
+    add_rows(rows, "surface.", surface_fields());
+    named("bottom", "bottom.");
+    add_rows(rows, "bottom.", bottom_fields());
+    named("layers", "LAYER.");
+    add_rows(rows, "LAYER.", layer_number_fields());
+    add_rows(rows, "LAYER.", volumetric_fields());
+    add_rows(rows, "LAYER.", reduced_power_law_fields());
+    return rows;
+}
+
+}  // namespace skinspec

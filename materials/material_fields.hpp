@@ -1,0 +1,70 @@
+#pragma once
+// The descriptor tables of every field a material file holds (key, unit, range, member, documentation): the
+// one place that says what a field is. The TOML reader and writer (materials/material_file.cpp), the range
+// checks, `skinspec materials keys`, the --set help and docs/MATERIALS.md (kept in step by a test) all use
+// them, so a new chromophore concentration or layer property is one entry here (and, for a chromophore, one
+// absorption term in materials/tissue_layer.cpp with its data file).
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "materials/layer_stack.hpp"
+
+namespace skinspec {
+
+struct FieldRange {
+    double lo;
+    double hi;
+    bool lo_open;
+    bool hi_open;
+    bool contains(double v) const;
+    std::string text() const;  // "[0, 1]", "(0, inf)"
+};
+
+// A number field of `Owner` (a layer, its optional scattering groups, or the stack).
+template <class Owner>
+struct NumberField {
+    std::string_view key;   // as written in the file, units in the name
+    std::string_view unit;
+    FieldRange range;
+    double Owner::*member;
+    bool required;          // must be in the file; otherwise the member's default stands
+    std::string_view doc;
+};
+
+// A [model] switch: a boolean, a decadic-conversion switch (written as true = multiply by ln 10) or a number.
+struct ModelField {
+    std::string_view key;
+    std::string_view unit;
+    std::variant<bool ModelOptions::*, DecadicConversion ModelOptions::*, double ModelOptions::*> member;
+    FieldRange range;  // numbers only
+    std::string_view doc;
+};
+
+// A field whose value is one of a set of names (parsed by its own enum parser).
+struct NamedField {
+    std::string_view section;  // "", "model", "bottom" or "layers"
+    std::string_view key;
+    std::string_view allowed;
+    std::string_view doc;
+};
+
+const std::vector<NumberField<TissueLayer>>& layer_number_fields();
+const std::vector<NumberField<VolumetricScattering>>& volumetric_fields();  // present together, mu_s required
+const std::vector<NumberField<ReducedScattering>>& reduced_power_law_fields();
+const std::vector<NumberField<LayerStack>>& surface_fields();
+const std::vector<NumberField<LayerStack>>& bottom_fields();
+const std::vector<ModelField>& model_fields();
+const std::vector<NamedField>& named_fields();
+
+// Every key with its section, unit, range or allowed names and documentation, one row each, in file order.
+struct FieldRow {
+    std::string key;  // "LAYER.melanosome_fraction", "model.dermal_rayleigh", "surface.fold_aspect_ratio", ...
+    std::string unit;
+    std::string allowed;
+    std::string doc;
+};
+std::vector<FieldRow> material_field_rows();
+
+}  // namespace skinspec
