@@ -26,7 +26,8 @@ std::vector<MaterialOverride> patch_overrides(const SwatchRequest& request, cons
 std::vector<double> ParameterSweep::values() const {
     std::vector<double> v(steps);
     for (std::size_t i = 0; i < steps; ++i) {
-        v[i] = steps == 1 ? first : first + (last - first) * static_cast<double>(i) / static_cast<double>(steps - 1);
+        const double t = steps == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(steps - 1);
+        v[i] = log ? first * std::pow(last / first, t) : first + (last - first) * t;
     }
     return v;
 }
@@ -34,13 +35,17 @@ std::vector<double> ParameterSweep::values() const {
 ParameterSweep parse_sweep(std::string_view text) {
     const std::string what = "--vary '" + std::string(text) + "'";
     const auto eq = text.find('=');
-    if (eq == std::string_view::npos || eq == 0) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS");
+    if (eq == std::string_view::npos || eq == 0) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS[:log]");
     ParameterSweep sweep;
     sweep.field = std::string(trim(text.substr(0, eq)));
-    const auto range = text.substr(eq + 1);
+    auto range = text.substr(eq + 1);
+    if (range.ends_with(":log")) {
+        sweep.log = true;
+        range.remove_suffix(4);
+    }
     const auto c1 = range.find(':');
     const auto c2 = c1 == std::string_view::npos ? c1 : range.find(':', c1 + 1);
-    if (c2 == std::string_view::npos) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS");
+    if (c2 == std::string_view::npos) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS[:log]");
     const auto first = parse_double(range.substr(0, c1));
     const auto last = parse_double(range.substr(c1 + 1, c2 - c1 - 1));
     const auto steps = parse_double(range.substr(c2 + 1));
@@ -53,6 +58,10 @@ ParameterSweep parse_sweep(std::string_view text) {
     sweep.first = *first;
     sweep.last = *last;
     sweep.steps = static_cast<std::size_t>(*steps);
+    if (sweep.log && !(sweep.first > 0.0 && sweep.last > 0.0)) {
+        throw InputError(what + ": a log range needs FIRST and LAST > 0 (got " + format_number(sweep.first) + " and " +
+                         format_number(sweep.last) + ")");
+    }
     if (sweep.steps > 1 && sweep.first == sweep.last) {
         throw InputError(what + ": empty range (FIRST = LAST with " + std::to_string(sweep.steps) + " steps)");
     }

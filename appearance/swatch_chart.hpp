@@ -13,13 +13,15 @@
 
 namespace skinspec {
 
-// "FIELD=FIRST:LAST:STEPS", e.g. "epidermis.melanosome_fraction=0.01:0.42:8": STEPS values evenly spaced
-// from FIRST to LAST inclusive (STEPS = 1: FIRST alone).
+// "FIELD=FIRST:LAST:STEPS[:log]", e.g. "epidermis.melanosome_fraction=0.01:0.42:8:log": STEPS values from
+// FIRST to LAST inclusive, evenly spaced or, with ":log", evenly spaced in the logarithm (FIRST, LAST > 0);
+// STEPS = 1: FIRST alone.
 struct ParameterSweep {
     std::string field;
     double first = 0.0;
     double last = 0.0;
     std::size_t steps = 1;
+    bool log = false;
     std::vector<double> values() const;
 };
 ParameterSweep parse_sweep(std::string_view text);

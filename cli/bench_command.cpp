@@ -203,7 +203,9 @@ void write_plot(const std::string& file, const BenchReport& report) {
     for (std::size_t c = 0; c < report.cases.size(); ++c) {
         const auto colour = palette[c % palette.size()];
         for (const auto solver : {BenchSolver::biospec_walk, BenchSolver::volumetric_walk, BenchSolver::multipole, BenchSolver::dipole}) {
-            PlotCurve curve{fmt::format("{}: {}", report.cases[c].name, to_string(solver)), {}, {}, {}, colour, !is_walk(solver)};
+            // Colour: the case; marker: the solver; dashed: a deterministic level.
+            PlotCurve curve{fmt::format("{}: {}", report.cases[c].name, to_string(solver)), {}, {}, {}, colour, !is_walk(solver),
+                            1 + static_cast<int>(solver)};
             for (const auto i : points_of(report, c)) {
                 const auto& p = report.points[i];
                 if (p.solver != solver) continue;
@@ -218,8 +220,8 @@ void write_plot(const std::string& file, const BenchReport& report) {
             if (!curve.x.empty()) curves.push_back(std::move(curve));
         }
     }
-    write_line_plot(file, "Error against run time", "Run time (s); walks solid, diffusion dashed", "Relative error (%)", curves,
-                    {.log_x = true, .log_y = true, .legend_outside = true});
+    write_line_plot(file, "Error against run time", "Run time (s); walks solid, diffusion dashed; marker per solver", "Relative error (%)",
+                    curves, {.log_x = true, .log_y = true});
 }
 
 void run_bench(const BenchCommandOptions& o) {

@@ -15,6 +15,7 @@
 #include "cli/spectral_output.hpp"
 #include "appearance/lit_patch.hpp"
 #include "appearance/swatch_chart.hpp"
+#include "materials/material_fields.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
@@ -53,14 +54,23 @@ struct SwatchOptions {
     double spot_radius_mm = 2.0;
 };
 
-const std::vector<std::string> default_sweeps{"epidermis.melanosome_fraction=0.01:0.42:8", "dermis.blood_fraction=0.002:0.05:5"};
+// Melanin on a log axis: evenly spaced fractions put five of eight columns in near-identical dark browns.
+const std::vector<std::string> default_sweeps{"epidermis.melanosome_fraction=0.01:0.42:8:log", "dermis.blood_fraction=0.002:0.05:5"};
 
-// "epidermis.melanosome_fraction" -> "melano": the first word of the field, at most 6 letters.
-std::string short_label(const std::string& field) {
-    auto name = field.substr(field.find('.') == std::string::npos ? 0 : field.find('.') + 1);
-    name = name.substr(0, name.find('_'));
-    return name.substr(0, 6);
+// "epidermis.melanosome_fraction: volume fraction of melanosomes (v_m), unit 1, log spacing".
+std::string axis_title(const ParameterSweep& sweep) {
+    const auto row = describe_field(sweep.field);
+    std::string title = sweep.field;
+    if (row) title += ": " + row->doc + (row->unit.empty() || row->unit == "1" ? std::string(" (unitless)") : " (" + row->unit + ")");
+    return title + (sweep.log ? ", log spacing" : "");
 }
+
+std::vector<std::string> axis_values(const ParameterSweep& sweep) {
+    std::vector<std::string> out;
+    for (const double v : sweep.values()) out.push_back(fmt::format("{:.3g}", v));
+    return out;
+}
+
 
 // `swatch --lit spot|edge|pattern FILE`: one planar patch under structured light in a diffusion mode.
 void run_lit_swatch(const SwatchOptions& o) {
@@ -200,11 +210,7 @@ void run_swatch(const SwatchOptions& o) {
     for (const auto& p : chart.patches) {
         working.push_back(cm.from_xyz(p.xyz, chart.white, space));
         colours.push_back(summarize_color(p.xyz, weights, request.illuminant, request.observer, {}));
-        std::string label;
-        for (std::size_t s = 0; s < p.parameters.size(); ++s) {
-            label += (s ? "\n" : "") + fmt::format("{} {:.3g}", short_label(request.sweeps[s].field), p.parameters[s]);
-        }
-        labels.push_back(label);
+        labels.push_back(colours.back().srgb_hex);  // the parameters are on the chart's axes
     }
 
     ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
@@ -222,9 +228,18 @@ void run_swatch(const SwatchOptions& o) {
     metadata.push_back({"ImageDescription", "skinspec swatch: " + request.material + ", " + parameters});
 
     const ChartLayout layout{chart.columns, chart.rows, o.patch_px, 8};
+    ChartAxes axes;
+    if (!request.sweeps.empty()) {
+        axes.column_title = axis_title(request.sweeps[0]);
+        axes.column_values = axis_values(request.sweeps[0]);
+    }
+    if (request.sweeps.size() > 1) {
+        axes.row_title = axis_title(request.sweeps[1]);
+        axes.row_values = axis_values(request.sweeps[1]);
+    }
     for (const auto& out : o.outputs) {
         if (out.ends_with(".exr")) write_linear_chart(out, layout, working, space, o.half, metadata, cm);
-        else write_display_chart(out, layout, working, labels, space, o.display, o.view, metadata, cm);
+        else write_display_chart(out, layout, working, labels, space, o.display, o.view, metadata, cm, axes);
         std::cerr << "wrote " << out << '\n';
     }
 
@@ -280,8 +295,9 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--material", o->material_file, "Base material TOML file");
     cmd->add_option("--set", o->overrides, set_option_help);
     cmd->add_option("--vary", o->vary,
-                    "FIELD=FIRST:LAST:STEPS, columns then rows (default epidermis.melanosome_fraction=0.01:0.42:8 and "
-                    "dermis.blood_fraction=0.002:0.05:5 for skin stacks; one patch otherwise)");
+                    "FIELD=FIRST:LAST:STEPS[:log], columns then rows (default epidermis.melanosome_fraction=0.01:0.42:8:log and "
+                    "dermis.blood_fraction=0.002:0.05:5 for skin stacks; one patch otherwise); ':log' spaces the values evenly in "
+                    "their logarithm");
     cmd->add_option("--illuminant", o->illuminant, "D65, D50, A or E")->capture_default_str();
     cmd->add_option("--observer", o->observer, "2 or 10")->capture_default_str();
     cmd->add_option("--delta-e", o->delta_e, "Colour tolerance: each patch stops once its CIEDE2000 uncertainty is below")->capture_default_str();

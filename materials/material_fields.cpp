@@ -43,7 +43,7 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
         {"melanosome_fraction", "1", fraction, &L::melanosome_fraction, false, "volume fraction of melanosomes (v_m)"},
         {"eumelanin_mg_per_ml", "mg/mL", non_negative, &L::eumelanin_mg_per_ml, false, "eumelanin inside the melanosomes"},
         {"pheomelanin_mg_per_ml", "mg/mL", non_negative, &L::pheomelanin_mg_per_ml, false, "pheomelanin inside the melanosomes"},
-        {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b); v_m + v_b <= 1"},
+        {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b)"},
         {"oxygen_saturation", "1", fraction, &L::oxygen_saturation, false, "haemoglobin oxygen saturation S"},
         {"hemoglobin_g_per_l", "g/L", non_negative, &L::hemoglobin_g_per_l, false, "haemoglobin in whole blood"},
         {"bilirubin_g_per_l", "g/L", non_negative, &L::bilirubin_g_per_l, false, "bilirubin in whole blood"},
@@ -142,6 +142,19 @@ std::vector<FieldRow> material_field_rows() {
     add_rows(rows, "LAYER.", volumetric_fields());
     add_rows(rows, "LAYER.", reduced_power_law_fields());
     return rows;
+}
+
+std::optional<FieldRow> describe_field(std::string_view key) {
+    const auto dot = key.find('.');
+    std::string wanted(key);
+    if (dot != std::string_view::npos) {
+        const auto section = key.substr(0, dot);
+        if (section != "model" && section != "surface" && section != "bottom") wanted = "LAYER." + std::string(key.substr(dot + 1));
+    }
+    for (auto& row : material_field_rows()) {
+        if (row.key == wanted) return row;
+    }
+    return std::nullopt;
 }
 
 }  // namespace skinspec

@@ -4,6 +4,7 @@
 // checks, `skinspec materials keys`, the --set help and docs/MATERIALS.md (kept in step by a test) all use
 // them, so a new chromophore concentration or layer property is one entry here (and, for a chromophore, one
 // absorption term in materials/tissue_layer.cpp with its data file).
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -66,5 +67,7 @@ struct FieldRow {
     std::string doc;
 };
 std::vector<FieldRow> material_field_rows();
+// The row of a --set key ("epidermis.melanosome_fraction" -> LAYER.melanosome_fraction); nullopt if none.
+std::optional<FieldRow> describe_field(std::string_view key);
 
 }  // namespace skinspec

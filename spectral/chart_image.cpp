@@ -19,16 +19,16 @@ constexpr float background_linear = 0.18f;  // neutral mid grey between patches
 constexpr const char* label_font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 OIIO::ImageSpec chart_spec(const ChartLayout& layout, OIIO::TypeDesc format) {
-    const int width = static_cast<int>(layout.columns) * (layout.patch_px + layout.gap_px) + layout.gap_px;
-    const int height = static_cast<int>(layout.rows) * (layout.patch_px + layout.gap_px) + layout.gap_px;
+    const int width = layout.left_px + static_cast<int>(layout.columns) * (layout.patch_px + layout.gap_px) + layout.gap_px;
+    const int height = layout.top_px + static_cast<int>(layout.rows) * (layout.patch_px + layout.gap_px) + layout.gap_px;
     return OIIO::ImageSpec(width, height, 3, format);
 }
 
 OIIO::ROI patch_roi(const ChartLayout& layout, std::size_t index) {
     const int column = static_cast<int>(index % layout.columns);
     const int row = static_cast<int>(index / layout.columns);
-    const int x = layout.gap_px + column * (layout.patch_px + layout.gap_px);
-    const int y = layout.gap_px + row * (layout.patch_px + layout.gap_px);
+    const int x = layout.left_px + layout.gap_px + column * (layout.patch_px + layout.gap_px);
+    const int y = layout.top_px + layout.gap_px + row * (layout.patch_px + layout.gap_px);
     return OIIO::ROI(x, x + layout.patch_px, y, y + layout.patch_px, 0, 1, 0, 3);
 }
 
@@ -127,7 +127,7 @@ void write_linear_image(const std::filesystem::path& file, const LinearImage& im
 
 void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
                          const std::vector<std::string>& labels, std::string_view working_space, std::string_view display,
-                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm) {
+                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm, const ChartAxes& axes) {
     const std::string space = cm.canonical_space(working_space, "--space");
     std::vector<RGB> encoded;
     for (const auto& p : patches) {
@@ -137,11 +137,34 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
     }
     const auto grey = cm.display_view({background_linear, background_linear, background_linear}, space, display, view);
     const float background[3] = {static_cast<float>(grey[0]), static_cast<float>(grey[1]), static_cast<float>(grey[2])};
-    auto buf = filled_chart(layout, encoded, background);
+    // Margins for the axes: the titles and the column values on top, the row values on the left.
+    auto framed = layout;
+    const int axis_px = std::max(12, layout.patch_px / 8);
+    const auto title_lines = static_cast<int>(!axes.column_title.empty()) + static_cast<int>(!axes.row_title.empty());
+    if (title_lines > 0 || !axes.column_values.empty()) framed.top_px = axis_px * (title_lines + (axes.column_values.empty() ? 0 : 1)) + axis_px / 2;
+    std::size_t widest = 0;
+    for (const auto& v : axes.row_values) widest = std::max(widest, v.size());
+    if (widest > 0) framed.left_px = static_cast<int>(std::ceil(0.62 * axis_px * static_cast<double>(widest))) + layout.gap_px;
+    auto buf = filled_chart(framed, encoded, background);
+    const double background_luma = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
+    std::string titles;
+    if (!axes.column_title.empty()) titles += "columns: " + axes.column_title;
+    if (!axes.row_title.empty()) titles += (titles.empty() ? "" : "\n") + std::string("rows: ") + axes.row_title;
+    if (!titles.empty()) draw_label(buf, OIIO::ROI(0, buf.spec().width, 0, framed.top_px), titles, axis_px, background_luma);
+    for (std::size_t c = 0; c < axes.column_values.size() && c < layout.columns; ++c) {
+        const auto roi = patch_roi(framed, c);
+        draw_label(buf, OIIO::ROI(roi.xbegin - 4, roi.xend, framed.top_px - axis_px - axis_px / 3, framed.top_px), axes.column_values[c],
+                   axis_px, background_luma);
+    }
+    for (std::size_t r = 0; r < axes.row_values.size() && r < layout.rows; ++r) {
+        const auto roi = patch_roi(framed, r * layout.columns);
+        draw_label(buf, OIIO::ROI(0, framed.left_px, roi.ybegin + layout.patch_px / 2 - axis_px, roi.yend), axes.row_values[r], axis_px,
+                   background_luma);
+    }
     const int font_px = std::max(9, layout.patch_px / 9);
     for (std::size_t i = 0; i < labels.size() && i < encoded.size(); ++i) {
         const double luma = 0.2126 * encoded[i][0] + 0.7152 * encoded[i][1] + 0.0722 * encoded[i][2];
-        draw_label(buf, patch_roi(layout, i), labels[i], font_px, luma);
+        draw_label(buf, patch_roi(framed, i), labels[i], font_px, luma);
     }
     buf.specmod().attribute("oiio:ColorSpace", std::string(display));
     set_metadata(buf, metadata);

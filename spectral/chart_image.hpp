@@ -21,6 +21,17 @@ struct ChartLayout {
     std::size_t rows = 1;
     int patch_px = 112;
     int gap_px = 8;
+    int left_px = 0;  // margins for axis labels (display charts)
+    int top_px = 0;
+};
+
+// Axis labels of a display chart: titles (with units) above the grid, a value per column above it and a
+// value per row to its left. Empty: no margins.
+struct ChartAxes {
+    std::string column_title;
+    std::vector<std::string> column_values;
+    std::string row_title;
+    std::vector<std::string> row_values;
 };
 
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
@@ -72,6 +83,6 @@ void write_linear_chart(const std::filesystem::path& file, const ChartLayout& la
                         const ColorManagement& cm);
 void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
                          const std::vector<std::string>& labels, std::string_view working_space, std::string_view display,
-                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm);
+                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm, const ChartAxes& axes = {});
 
 }  // namespace skinspec

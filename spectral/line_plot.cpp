@@ -14,6 +14,25 @@ namespace {
 
 int channel(double c) { return static_cast<int>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0)); }
 
+// Unicode glyphs (DejaVu has them) for PlotCurve::marker 1-8.
+const char* marker_glyph(int marker) {
+    static const char* glyphs[] = {"", "\u25CF", "\u25A0", "\u25B2", "\u25C6", "\u25CB", "\u25A1", "\u25B3", "\u25C7"};
+    return glyphs[std::clamp(marker, 0, 8)];
+}
+
+// Index runs [first, last) of the points a curve draws: all of them, or on a log y axis the runs above the floor.
+std::vector<std::pair<std::size_t, std::size_t>> visible_runs(const std::vector<double>& y, bool log_y, double floor) {
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= y.size(); ++i) {
+        const bool visible = i < y.size() && (!log_y || (y[i] > 0.0 && std::log10(y[i]) >= floor));
+        if (visible) continue;
+        if (i > start) runs.emplace_back(start, i);
+        start = i + 1;
+    }
+    return runs;
+}
+
 }  // namespace
 
 void write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
@@ -59,25 +78,22 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         auto pls = std::make_unique<plstream>();
         pls->sdev(ext == ".png" ? "pngcairo" : "svgcairo");
         pls->sfnam(temporary.string().c_str());
-        pls->spage(0.0, 0.0, style.legend_outside ? 1500 : 1000, style.legend_outside ? 900 : 650, 0, 0);
+        pls->spage(0.0, 0.0, 1400, 800, 0, 0);
         pls->scmap0n(std::max<PLINT>(16, 2 + 2 * static_cast<PLINT>(curves.size())));  // a band and a line colour per curve
         pls->scol0a(0, 255, 255, 255, 1.0);  // background
         pls->scol0a(1, 0, 0, 0, 1.0);        // axes and text
         pls->init();
         pls->col0(1);
-        if (style.legend_outside) {
-            pls->adv(0);
-            pls->vpor(0.09, 0.55, 0.1, 0.92);
-            pls->wind(x_min, x_max, y_min, y_max);
-            pls->box(log_x ? "bcnstlg" : "bcnstg", 0.0, 0, log_y ? "bcnstvlg" : "bcnstvg", 0.0, 0);
-        } else {
-            pls->env(x_min, x_max, y_min, y_max, 0, (log_x ? 10 : 0) + (log_y ? 20 : 0) + (log_x || log_y ? 0 : 1));  // 10/20: log x/y axes
-        }
+        // Axes on the left, the legend to their right: margins wide enough for the tick and axis labels.
+        pls->adv(0);
+        pls->vpor(0.09, 0.6, 0.12, 0.9);
+        pls->wind(x_min, x_max, y_min, y_max);
+        pls->box(log_x ? "bcnstlg" : "bcnstg", 0.0, 0, log_y ? "bcnstvlg" : "bcnstvg", 0.0, 0);
         pls->lab(x_label.c_str(), y_label.c_str(), title.c_str());
 
         std::vector<PLINT> opts, colours, styles;
         std::vector<PLFLT> widths;
-        std::vector<const char*> labels;
+        std::vector<const char*> labels, symbols;
         for (std::size_t k = 0; k < curves.size(); ++k) {
             const auto& c = curves[k];
             const int band_colour = 2 + 2 * static_cast<int>(k);
@@ -88,28 +104,39 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
             const int r = channel(c.colour[0] * scale), g = channel(c.colour[1] * scale), b = channel(c.colour[2] * scale);
             pls->scol0a(band_colour, r, g, b, 0.25);
             pls->scol0a(line_colour, r, g, b, 1.0);
-            std::vector<std::size_t> shown;
+            std::vector<double> xs, ys, ss;
             for (std::size_t i = 0; i < c.value.size(); ++i) {
-                if (!log_x || c.x[i] > 0.0) shown.push_back(i);
+                if (log_x && !(c.x[i] > 0.0)) continue;
+                xs.push_back(c.x[i]);
+                ys.push_back(c.value[i]);
+                ss.push_back(c.stderr[i]);
             }
-            std::vector<PLFLT> bx, by, lx, ly;
-            for (const auto i : shown) {
-                bx.push_back(x_of(c.x[i]));
-                by.push_back(y_of(c.value[i] + 2.0 * c.stderr[i]));
-                lx.push_back(x_of(c.x[i]));
-                ly.push_back(y_of(c.value[i]));
+            for (const auto& [first, last] : visible_runs(ys, log_y, y_min)) {
+                std::vector<PLFLT> bx, by, lx, ly;
+                for (std::size_t i = first; i < last; ++i) {
+                    bx.push_back(x_of(xs[i]));
+                    by.push_back(y_of(ys[i] + 2.0 * ss[i]));
+                    lx.push_back(x_of(xs[i]));
+                    ly.push_back(y_of(ys[i]));
+                }
+                for (std::size_t i = last; i-- > first;) {
+                    bx.push_back(x_of(xs[i]));
+                    by.push_back(y_of(ys[i] - 2.0 * ss[i]));
+                }
+                pls->col0(band_colour);
+                if (bx.size() >= 3) pls->fill(static_cast<PLINT>(bx.size()), bx.data(), by.data());
+                pls->col0(line_colour);
+                pls->lsty(c.dashed ? 2 : 1);
+                pls->width(2.0);
+                pls->line(static_cast<PLINT>(lx.size()), lx.data(), ly.data());
+                if (c.marker > 0) {
+                    pls->schr(0.0, 0.55);
+                    pls->string(static_cast<PLINT>(lx.size()), lx.data(), ly.data(), marker_glyph(c.marker));
+                    pls->schr(0.0, 1.0);
+                }
             }
-            for (auto i = shown.rbegin(); i != shown.rend(); ++i) {
-                bx.push_back(x_of(c.x[*i]));
-                by.push_back(y_of(c.value[*i] - 2.0 * c.stderr[*i]));
-            }
-            pls->col0(band_colour);
-            pls->fill(static_cast<PLINT>(bx.size()), bx.data(), by.data());
-            pls->col0(line_colour);
-            pls->lsty(c.dashed ? 2 : 1);
-            pls->width(2.0);
-            pls->line(static_cast<PLINT>(lx.size()), lx.data(), ly.data());
-            opts.push_back(PL_LEGEND_LINE);
+            opts.push_back(PL_LEGEND_LINE | (c.marker > 0 ? PL_LEGEND_SYMBOL : 0));
+            symbols.push_back(marker_glyph(c.marker));
             colours.push_back(line_colour);
             styles.push_back(c.dashed ? 2 : 1);
             widths.push_back(2.0);
@@ -119,12 +146,13 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         pls->col0(1);
         PLFLT legend_width = 0.0, legend_height = 0.0;
         const std::vector<PLINT> text_colours(curves.size(), 1);
-        const bool two_columns = curves.size() > 6 && !style.legend_outside;
-        pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
-                    style.legend_outside ? PL_POSITION_OUTSIDE | PL_POSITION_RIGHT : PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT,
-                    0.02, 0.02, 0.08, 0, 1, 1, two_columns ? static_cast<PLINT>((curves.size() + 1) / 2) : 0, two_columns ? 2 : 0,
-                    static_cast<PLINT>(curves.size()), opts.data(), 1.0, style.legend_outside ? 0.55 : (curves.size() > 6 ? 0.65 : 0.9), style.legend_outside ? 1.5 : 2.0, 0.0, text_colours.data(), labels.data(), nullptr,
-                    nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), nullptr, nullptr, nullptr, nullptr);
+        const std::vector<PLFLT> symbol_scales(curves.size(), 0.55);
+        const std::vector<PLINT> symbol_numbers(curves.size(), 1);
+        pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, PL_POSITION_OUTSIDE | PL_POSITION_RIGHT,
+                    0.05, 0.0, 0.06, 0, 1, 1, 0, 0, static_cast<PLINT>(curves.size()), opts.data(), 1.0,
+                    curves.size() > 12 ? 0.55 : 0.7, 1.5, 0.0, text_colours.data(), labels.data(), nullptr, nullptr, nullptr, nullptr,
+                    colours.data(), styles.data(), widths.data(), colours.data(), symbol_scales.data(), symbol_numbers.data(),
+                    symbols.data());
         pls.reset();  // the destructor finishes and closes the file
         if (!std::filesystem::exists(temporary)) throw InputError(file.string() + ": the plot could not be written");
     });

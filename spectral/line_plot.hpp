@@ -16,15 +16,15 @@ struct PlotCurve {
     std::vector<double> stderr;  // band: value +- 2 stderr
     RGB colour;                  // display-encoded sRGB, 0-1
     bool dashed = false;
+    int marker = 0;              // 0: none; 1-8: a distinct symbol at every point (and in the legend)
 };
 
-// Logarithmic axes: a log y axis spans at most eight decades below the largest value (smaller values sit on
-// the floor); a log x axis spans the positive x values (points at x <= 0 are left out). Many curves: the
-// legend goes to the right of the plot instead of inside it (a wider page).
+// Logarithmic axes: a log y axis spans at most eight decades below the largest value, and a curve is broken
+// (not drawn along the floor) where it falls below; a log x axis spans the positive x values (points at
+// x <= 0 are left out). The legend always stands beside the axes, so it never hides data.
 struct PlotStyle {
     bool log_x = false;
     bool log_y = false;
-    bool legend_outside = false;
 };
 
 // .png or .svg by extension; InputError otherwise or when the file cannot be written.
