@@ -82,20 +82,22 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     const TristimulusWeights weights(chart.wavelengths.nm(), request.illuminant, request.observer, OutOfRangePolicy::hold);
     chart.white = weights.white();
 
-    // Every patch's stack first: a bad field or value fails before any ray is traced.
+    // The parameters of every patch, row-major.
     const auto& solver = find_solver(request.solver);
     std::vector<std::vector<double>> parameters;
-    std::vector<Material> materials;
     for (std::size_t row = 0; row < chart.rows; ++row) {
         for (std::size_t column = 0; column < chart.columns; ++column) {
             std::vector<double> p;
             if (!request.sweeps.empty()) p.push_back(request.sweeps[0].values()[column]);
             if (request.sweeps.size() > 1) p.push_back(request.sweeps[1].values()[row]);
-            materials.push_back(load_material(request.material, patch_overrides(request, p)));
             parameters.push_back(std::move(p));
         }
     }
-
+    // A bad field or value fails before any ray is traced: every range the material file checks is an interval
+    // (and v_m + v_b <= 1 a linear bound) and each sweep is monotonic, so the corner patches are the extremes.
+    // The other patches are loaded as they are solved.
+    std::vector<std::size_t> corners{0, chart.columns - 1, (chart.rows - 1) * chart.columns, chart.rows * chart.columns - 1};
+    const auto material_of = [&](std::size_t i) { return load_material(request.material, patch_overrides(request, parameters[i])); };
     SolverRequest base;
     base.switches = request.switches;
     auto& spectral = base.spectral;
@@ -107,15 +109,18 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     spectral.initial_batches = 2;
     if (solver.capabilities().uncertainty) spectral.stderr_targets = color_stderr_targets(weights, request.delta_e);
     spectral.cancel = request.cancel;
-    if (std::holds_alternative<HomogeneousMaterial>(materials.front())) {
-        throw InputError("material '" + request.material + "' is given per band; a swatch needs reflectance spectra (a layered material)");
+    for (const auto i : corners) {
+        const auto m = material_of(i);
+        if (std::holds_alternative<HomogeneousMaterial>(m)) {
+            throw InputError("material '" + request.material + "' is given per band; a swatch needs reflectance spectra (a layered material)");
+        }
+        check_request(solver, m, base);
     }
-    for (const auto& m : materials) check_request(solver, m, base);
 
-    for (std::size_t i = 0; i < materials.size(); ++i) {
+    for (std::size_t i = 0; i < parameters.size(); ++i) {
         auto patch_request = base;
         patch_request.overrides = patch_overrides(request, parameters[i]);
-        const auto result = solve_spectrum(solver, materials[i], patch_request);
+        const auto result = solve_spectrum(solver, material_of(i), patch_request);
         if (result.partial) {
             chart.partial = true;
             break;
@@ -138,7 +143,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         }
         chart.patches.push_back(std::move(patch));
         if (i == 0) chart.settings = result.settings;
-        if (request.on_progress) request.on_progress(i + 1, materials.size());
+        if (request.on_progress) request.on_progress(i + 1, parameters.size());
     }
     chart.settings["material"] = request.material;
     chart.settings["solver"] = request.solver;

@@ -179,6 +179,9 @@ void run_swatch(const SwatchOptions& o) {
     request.solver = std::string(chosen_solver(o.solver).name());
     request.switches = solver_switches(o.solver);
     if (o.patch_px < 32 || o.patch_px > 2048) throw InputError("--patch-size " + std::to_string(o.patch_px) + " is outside [32, 2048]");
+    if (!o.outputs.empty()) {
+        check_chart_size({request.sweeps.empty() ? 1 : request.sweeps[0].steps, request.sweeps.size() < 2 ? 1 : request.sweeps[1].steps, o.patch_px, 8});
+    }
 
     // Every output is checked before any work: nothing is written for a bad request.
     const auto& cm = ColorManagement::builtin();

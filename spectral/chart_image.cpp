@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "spectral/data_paths.hpp"
@@ -83,6 +84,17 @@ std::array<float, 8> space_chromaticities(std::string_view space) {
     std::array<float, 8> out{};
     for (std::size_t i = 0; i < 8; ++i) out[i] = static_cast<float>(values->get(i)->value<double>().value_or(0.0));
     return out;
+}
+
+void check_chart_size(const ChartLayout& layout) {
+    const auto spec = chart_spec(layout, OIIO::TypeDesc::FLOAT);
+    const double pixels = static_cast<double>(layout.columns) * (layout.patch_px + layout.gap_px) *
+                          static_cast<double>(layout.rows) * (layout.patch_px + layout.gap_px);
+    if (pixels > max_chart_pixels || spec.width <= 0 || spec.height <= 0) {
+        throw InputError(fmt::format("a chart of {} x {} patches at {} px is {:.3g} pixels, more than the {:.3g} an image may have "
+                                     "(use a smaller --patch-size or fewer steps)", layout.columns, layout.rows, layout.patch_px, pixels,
+                                     max_chart_pixels));
+    }
 }
 
 void check_output_path(const std::filesystem::path& file, bool overwrite, const std::vector<std::string>& extensions) {

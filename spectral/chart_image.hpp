@@ -36,6 +36,11 @@ struct ChartAxes {
 
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
+// Largest chart written (pixels, margins excluded): 1e8 pixels is 1.2 GB as float RGB in memory.
+inline constexpr double max_chart_pixels = 1e8;
+// InputError naming the chart's size when it exceeds max_chart_pixels (checked before any work).
+void check_chart_size(const ChartLayout& layout);
+
 // Published xy of red, green, blue and white for `space` (data/ocio/chromaticities.toml); InputError for a
 // space without RGB primaries.
 std::array<float, 8> space_chromaticities(std::string_view space);

@@ -107,3 +107,5 @@ skinspec_malformed_input("bench output extension" 2 "b.txt: extension '.txt' is 
 skinspec_malformed_input("unknown option suggests" 109 "did you mean --wavelengths\\?" - spectrum --wavelenghts 500)
 skinspec_malformed_input("color column unknown" 2 "--column Q is not a value column" - color spectrum_result.csv --material skin_a --column Q)
 skinspec_malformed_input("color several materials" 2 "choose one with --material" - color spectrum_result.csv)
+skinspec_malformed_input("swatch chart too large" 2 "a chart of 1000 x 1000 patches at 112 px is 1.44e\\+10 pixels, more than the 1e\\+08" "${out}/huge.png" swatch --vary epidermis.melanosome_fraction=0.01:0.4:1000 --vary dermis.blood_fraction=0.001:0.05:1000 -o ${out}/huge.png)
+skinspec_malformed_input("swatch log through zero" 2 "a log range needs FIRST and LAST > 0" "${out}/log0.png" swatch --vary epidermis.melanosome_fraction=0:0.4:8:log -o ${out}/log0.png)
