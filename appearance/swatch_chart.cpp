@@ -11,62 +11,14 @@
 namespace skinspec {
 namespace {
 
-constexpr std::size_t max_steps = 1000;
-
 std::vector<MaterialOverride> patch_overrides(const SwatchRequest& request, const std::vector<double>& parameters) {
     auto overrides = request.overrides;
-    for (std::size_t s = 0; s < request.sweeps.size(); ++s) {
-        overrides.push_back({request.sweeps[s].field, format_number(parameters[s])});
-    }
+    const auto varied = sweep_overrides(request.sweeps, parameters);
+    overrides.insert(overrides.end(), varied.begin(), varied.end());
     return overrides;
 }
 
 }  // namespace
-
-std::vector<double> ParameterSweep::values() const {
-    std::vector<double> v(steps);
-    for (std::size_t i = 0; i < steps; ++i) {
-        const double t = steps == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(steps - 1);
-        v[i] = log ? first * std::pow(last / first, t) : first + (last - first) * t;
-    }
-    return v;
-}
-
-ParameterSweep parse_sweep(std::string_view text) {
-    const std::string what = "--vary '" + std::string(text) + "'";
-    const auto eq = text.find('=');
-    if (eq == std::string_view::npos || eq == 0) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS[:log]");
-    ParameterSweep sweep;
-    sweep.field = std::string(trim(text.substr(0, eq)));
-    auto range = text.substr(eq + 1);
-    if (range.ends_with(":log")) {
-        sweep.log = true;
-        range.remove_suffix(4);
-    }
-    const auto c1 = range.find(':');
-    const auto c2 = c1 == std::string_view::npos ? c1 : range.find(':', c1 + 1);
-    if (c2 == std::string_view::npos) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS[:log]");
-    const auto first = parse_double(range.substr(0, c1));
-    const auto last = parse_double(range.substr(c1 + 1, c2 - c1 - 1));
-    const auto steps = parse_double(range.substr(c2 + 1));
-    if (!first || !last || !std::isfinite(*first) || !std::isfinite(*last)) {
-        throw InputError(what + ": FIRST and LAST must be finite numbers");
-    }
-    if (!steps || *steps != std::floor(*steps) || *steps < 1 || *steps > static_cast<double>(max_steps)) {
-        throw InputError(what + ": STEPS must be a whole number in [1, " + std::to_string(max_steps) + "]");
-    }
-    sweep.first = *first;
-    sweep.last = *last;
-    sweep.steps = static_cast<std::size_t>(*steps);
-    if (sweep.log && !(sweep.first > 0.0 && sweep.last > 0.0)) {
-        throw InputError(what + ": a log range needs FIRST and LAST > 0 (got " + format_number(sweep.first) + " and " +
-                         format_number(sweep.last) + ")");
-    }
-    if (sweep.steps > 1 && sweep.first == sweep.last) {
-        throw InputError(what + ": empty range (FIRST = LAST with " + std::to_string(sweep.steps) + " steps)");
-    }
-    return sweep;
-}
 
 WavelengthGrid swatch_wavelengths(double delta_e) { return WavelengthGrid::range(380.0, 780.0, delta_e < 1.0 ? 5.0 : 10.0); }
 
@@ -100,6 +52,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     const auto material_of = [&](std::size_t i) { return load_material(request.material, patch_overrides(request, parameters[i])); };
     SolverRequest base;
     base.switches = request.switches;
+    base.overrides = request.overrides;
     auto& spectral = base.spectral;
     spectral.wavelengths = chart.wavelengths;
     spectral.quantities = Quantities{true, false, false, false};
@@ -117,33 +70,46 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         check_request(solver, m, base);
     }
 
-    for (std::size_t i = 0; i < parameters.size(); ++i) {
-        auto patch_request = base;
-        patch_request.overrides = patch_overrides(request, parameters[i]);
-        const auto result = solve_spectrum(solver, material_of(i), patch_request);
-        if (result.partial) {
+    // Patches are solved in chunks through the solver's sweep (the BioSpec walk traces a chunk's paths once and
+    // re-weights them per patch); progress and Ctrl-C act per chunk.
+    const std::size_t chunk = std::max<std::size_t>(1, request.patches_per_sweep);
+    for (std::size_t begin = 0; begin < parameters.size(); begin += chunk) {
+        const std::size_t end = std::min(parameters.size(), begin + chunk);
+        std::vector<SweepMember> members;
+        for (std::size_t i = begin; i < end; ++i) {
+            std::vector<std::pair<std::string, double>> varied;
+            for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
+            members.push_back({material_of(i), sweep_overrides(request.sweeps, parameters[i]), std::move(varied)});
+        }
+        const auto results = solve_sweep(solver, members, base);
+        for (std::size_t j = 0; j < results.size(); ++j) {
+            const auto& result = results[j];
+            if (result.partial) break;
+            const std::size_t i = begin + j;
+            std::vector<double> r, se;
+            SwatchPatch patch;
+            patch.parameters = parameters[i];
+            for (const auto& w : result.wavelengths) {
+                r.push_back(w.reflectance.value);
+                se.push_back(w.reflectance.stderr);
+                patch.rays += w.rays;
+                patch.converged = patch.converged && w.converged;
+            }
+            patch.xyz = weights.integrate(r);
+            patch.lab = xyz_to_lab(patch.xyz, chart.white);
+            patch.delta_e_uncertainty = ciede2000_uncertainty(weights, r, se);
+            for (auto w : result.warnings) {
+                w.at = "patch " + std::to_string(i + 1) + ", " + w.at;
+                chart.warnings.push_back(std::move(w));
+            }
+            chart.patches.push_back(std::move(patch));
+            if (i == 0) chart.settings = result.settings;
+        }
+        if (chart.patches.size() < end) {
             chart.partial = true;
             break;
         }
-        std::vector<double> r, se;
-        SwatchPatch patch;
-        patch.parameters = parameters[i];
-        for (const auto& w : result.wavelengths) {
-            r.push_back(w.reflectance.value);
-            se.push_back(w.reflectance.stderr);
-            patch.rays += w.rays;
-            patch.converged = patch.converged && w.converged;
-        }
-        patch.xyz = weights.integrate(r);
-        patch.lab = xyz_to_lab(patch.xyz, chart.white);
-        patch.delta_e_uncertainty = ciede2000_uncertainty(weights, r, se);
-        for (auto w : result.warnings) {
-            w.at = "patch " + std::to_string(i + 1) + ", " + w.at;
-            chart.warnings.push_back(std::move(w));
-        }
-        chart.patches.push_back(std::move(patch));
-        if (i == 0) chart.settings = result.settings;
-        if (request.on_progress) request.on_progress(i + 1, parameters.size());
+        if (request.on_progress) request.on_progress(end, parameters.size());
     }
     chart.settings["material"] = request.material;
     chart.settings["solver"] = request.solver;

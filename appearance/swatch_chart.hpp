@@ -7,24 +7,13 @@
 #include <string_view>
 #include <vector>
 
+#include "materials/parameter_sweep.hpp"
 #include "solvers/spectral_solver.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/colorimetry.hpp"
 
 namespace skinspec {
 
-// "FIELD=FIRST:LAST:STEPS[:log]", e.g. "epidermis.melanosome_fraction=0.01:0.42:8:log": STEPS values from
-// FIRST to LAST inclusive, evenly spaced or, with ":log", evenly spaced in the logarithm (FIRST, LAST > 0);
-// STEPS = 1: FIRST alone.
-struct ParameterSweep {
-    std::string field;
-    double first = 0.0;
-    double last = 0.0;
-    std::size_t steps = 1;
-    bool log = false;
-    std::vector<double> values() const;
-};
-ParameterSweep parse_sweep(std::string_view text);
 
 // The wavelengths a colour needs: 380-780 nm (where the CIE observers reach 1e-4 of their peak) at 5 nm
 // below a tolerance of 1 (CIE 015:2018 Sec. 7.1 asks for 5 nm or finer; the haemoglobin bands of skin are
@@ -41,6 +30,7 @@ struct SwatchRequest {
     std::uint64_t seed = 1;
     std::uint64_t max_rays_per_wavelength = 1'000'000;
     std::string solver = "biospec";  // a registry name (solvers/spectral_solver.hpp)
+    std::size_t patches_per_sweep = 64;  // patches solved together (replayed); 1: each patch traced on its own
     SolverSwitches switches;
     std::function<void(std::size_t patches_done, std::size_t patches_total)> on_progress;
     const CancelFlag* cancel = nullptr;

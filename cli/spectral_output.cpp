@@ -1,5 +1,6 @@
 #include "cli/spectral_output.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -64,7 +65,10 @@ Json override_value(const std::string& text) {
 Json provenance_json(const Provenance& p) {
     Json overrides = Json::array();
     for (const auto& [key, value] : p.overrides) overrides.push_back(Json{{"key", key}, {"value", override_value(value)}});
-    return Json{{"solver", p.solver}, {"skinspec_version", p.version}, {"overrides", overrides}, {"material_toml", p.material_toml}};
+    Json varied = Json::object();
+    for (const auto& [field, value] : p.varied) varied[field] = value;
+    return Json{{"solver", p.solver},     {"skinspec_version", p.version}, {"overrides", overrides},
+                {"varied", varied},       {"material_toml", p.material_toml}};
 }
 
 Json result_json(const ReportedSpectrum& s) {
@@ -197,14 +201,17 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
     const auto& first = spectra.front().result;
     const auto columns = scalar_columns(first);
     const bool uncertain = first.has_uncertainty;
-    out += first.bands.empty() ? "material,wavelength_nm" : "material,band";
+    out += "material";
+    for (const auto& [field, value] : first.provenance.varied) out += "," + field;
+    out += first.bands.empty() ? ",wavelength_nm" : ",band";
     for (const auto& c : columns) out += "," + c.name + (uncertain ? "," + c.name + "_stderr" : "");
     out += uncertain ? ",rays,converged\n" : "\n";
     for (const auto& s : spectra) {
         for (std::size_t i = 0; i < s.result.wavelengths.size(); ++i) {
             const auto& w = s.result.wavelengths[i];
-            out += s.result.bands.empty() ? fmt::format("{},{:g}", s.result.material, w.wavelength_nm)
-                                          : fmt::format("{},{}", s.result.material, s.result.bands[i]);
+            out += s.result.material;
+            for (const auto& [field, value] : s.result.provenance.varied) out += fmt::format(",{:.9g}", value);
+            out += s.result.bands.empty() ? fmt::format(",{:g}", w.wavelength_nm) : fmt::format(",{}", s.result.bands[i]);
             for (const auto& c : columns) {
                 out += uncertain ? fmt::format(",{:.9g},{:.3g}", c.get(w).value, c.get(w).stderr) : fmt::format(",{:.9g}", c.get(w).value);
             }
@@ -279,6 +286,31 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
                                s.color->srgb_hex, s.color->srgb_in_gamut ? "" : " (clipped: outside sRGB)");
         }
     }
+    return out;
+}
+
+std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
+    std::string out;
+    if (spectra.empty()) return out;
+    const auto& first = spectra.front().result;
+    out += fmt::format("{:<22}", "material");
+    for (const auto& [field, value] : first.provenance.varied) out += fmt::format("  {:>30}", field.substr(0, 30));
+    out += fmt::format("  {:>9}  {:<22}  {:>12}  {:>10}\n", "sRGB", "Lab", "worst stderr", "rays");
+    for (const auto& s : spectra) {
+        out += fmt::format("{:<22}", s.result.material.substr(0, 22));
+        for (const auto& [field, value] : s.result.provenance.varied) out += fmt::format("  {:>30.6g}", value);
+        double worst = 0.0;
+        std::uint64_t rays = 0;
+        for (const auto& w : s.result.wavelengths) {
+            worst = std::max({worst, w.reflectance.stderr, w.transmittance.stderr});
+            rays += w.rays;
+        }
+        const auto lab = s.color ? fmt::format("{:.2f} {:.2f} {:.2f}", s.color->lab.L, s.color->lab.a, s.color->lab.b) : std::string("-");
+        out += fmt::format("  {:>9}  {:<22}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab,
+                           s.result.has_uncertainty ? fmt::format("{:.4f}", worst) : std::string("-"), s.result.has_uncertainty ? rays : 0);
+    }
+    const bool partial = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.partial; });
+    out += fmt::format("{} results (rays per result: traced once and shared where replayed){}\n", spectra.size(), partial ? "; PARTIAL (interrupted)" : "");
     return out;
 }
 

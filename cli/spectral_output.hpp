@@ -28,6 +28,8 @@ std::optional<ColorSummary> reflectance_color(const SpectralResult& result, Illu
 nlohmann::ordered_json to_json(const std::vector<ReportedSpectrum>& spectra);
 std::string to_csv(const std::vector<ReportedSpectrum>& spectra);
 std::string to_table(const std::vector<ReportedSpectrum>& spectra);
+// A sweep (--vary): one line per result with its field values, colour, worst standard error and rays.
+std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra);
 
 // R (solid) and T (dashed, when computed) of every material with +-2 standard-error bands, drawn in the
 // material's simulated sRGB colour, as PNG or SVG.

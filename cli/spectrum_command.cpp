@@ -11,7 +11,9 @@
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
+#include "materials/material_fields.hpp"
 #include "materials/material_file.hpp"
+#include "materials/parameter_sweep.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
@@ -23,6 +25,7 @@ struct SpectrumOptions {
     std::vector<std::string> presets;
     std::vector<std::string> materials;
     std::vector<std::string> overrides;
+    std::vector<std::string> vary;
     std::vector<std::string> layers;
     std::string wavelengths = "400:700:10";
     double incidence_deg = 0.0;
@@ -63,10 +66,10 @@ Quantities parse_quantities(const std::string& text) {
 
 std::vector<MaterialOverride> overrides_for(const SpectrumOptions& o) {
     std::vector<MaterialOverride> out;
-    if (!o.variant.empty()) out.push_back({"model.variant", o.variant});
+    if (!o.variant.empty()) out.push_back({"model.variant", o.variant, "--variant"});
     for (const auto& t : o.overrides) out.push_back(parse_override(t));
-    if (o.reflector == "on") out.push_back({"bottom.boundary", "diffuse_reflector"});
-    else if (o.reflector == "off") out.push_back({"bottom.boundary", "exit"});
+    if (o.reflector == "on") out.push_back({"bottom.boundary", "diffuse_reflector", "--reflector"});
+    else if (o.reflector == "off") out.push_back({"bottom.boundary", "exit", "--reflector"});
     else if (!o.reflector.empty()) throw InputError("--reflector: '" + o.reflector + "' is not allowed (allowed: on, off)");
     return out;
 }
@@ -99,42 +102,60 @@ void run_spectrum(const SpectrumOptions& o) {
     const InterruptGuard interrupt;
     spectral.cancel = &InterruptGuard::cancel_flag();
 
-    // Every material is loaded and checked against the solver before any ray is traced.
-    std::vector<Material> materials;
-    for (const auto& name : names) {
-        auto material = load_material(name, request.overrides);
+    std::vector<ParameterSweep> sweeps;
+    for (const auto& v : o.vary) sweeps.push_back(parse_sweep(v));
+    if (sweeps.size() > 2) throw InputError("--vary: at most two fields (they form a grid); got " + std::to_string(sweeps.size()));
+    const auto grid = sweep_grid(sweeps);
+
+    // Every material (and every combination of the sweeps) is loaded and checked against the solver before
+    // any ray is traced.
+    std::vector<std::vector<SweepMember>> members_per_name;
+    const auto load = [&](const std::string& name, const std::vector<MaterialOverride>& extra) {
+        auto overrides = request.overrides;
+        overrides.insert(overrides.end(), extra.begin(), extra.end());
+        auto material = load_material(name, overrides);
         if (!o.layers.empty()) {
             if (const auto* stack = std::get_if<LayerStack>(&material)) material = stack->sub_stack(o.layers);
             else throw InputError("--layers: material '" + name + "' is homogeneous and has no layers");
         }
         check_request(solver, material, request);
-        if (!materials.empty() && std::holds_alternative<HomogeneousMaterial>(material) != std::holds_alternative<HomogeneousMaterial>(materials.front())) {
-            throw InputError("material '" + name + "' has " + (std::holds_alternative<HomogeneousMaterial>(material) ? "bands" : "wavelengths") +
-                             ", the materials before it " + (std::holds_alternative<HomogeneousMaterial>(material) ? "wavelengths" : "bands") +
-                             ": run them separately");
+        return material;
+    };
+    for (const auto& name : names) {
+        std::vector<SweepMember> members;
+        for (const auto& values : grid) {
+            const auto extra = sweep_overrides(sweeps, values);
+            std::vector<std::pair<std::string, double>> varied;
+            for (std::size_t s = 0; s < sweeps.size(); ++s) varied.emplace_back(sweeps[s].field, values[s]);
+            members.push_back({load(name, extra), extra, std::move(varied)});
         }
-        if (!o.plot.empty() && std::holds_alternative<HomogeneousMaterial>(material)) {
-            throw InputError("--plot: " + name + " has bands, not wavelengths, to plot against");
+        const bool bands = std::holds_alternative<HomogeneousMaterial>(members.front().material);
+        if (!members_per_name.empty() && bands != std::holds_alternative<HomogeneousMaterial>(members_per_name.front().front().material)) {
+            throw InputError("material '" + name + "' has " + (bands ? "bands" : "wavelengths") + ", the materials before it " +
+                             (bands ? "wavelengths" : "bands") + ": run them separately");
         }
-        materials.push_back(std::move(material));
+        if (!o.plot.empty() && bands) throw InputError("--plot: " + name + " has bands, not wavelengths, to plot against");
+        members_per_name.push_back(std::move(members));
     }
 
     std::vector<ReportedSpectrum> spectra;
-    for (const auto& material : materials) {
+    for (std::size_t m = 0; m < names.size(); ++m) {
         if (InterruptGuard::interrupted()) break;
-        ProgressBar bar(material_name(material));
+        ProgressBar bar(material_name(members_per_name[m].front().material));
         spectral.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
-        auto result = solve_spectrum(solver, material, request);
+        auto results = solve_sweep(solver, members_per_name[m], request);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         bar.clear();
-        auto color = result.bands.empty() ? reflectance_color(result, illuminant, observer) : std::nullopt;
-        spectra.push_back({std::move(result), std::move(color), seconds});
+        for (auto& result : results) {
+            auto color = result.bands.empty() ? reflectance_color(result, illuminant, observer) : std::nullopt;
+            spectra.push_back({std::move(result), std::move(color), seconds / static_cast<double>(grid.size())});
+        }
     }
 
     for (const auto& s : spectra) print_warning_summary(s.result.material, s.result.warnings);
     if (o.json) std::cout << to_json(spectra).dump(2) << '\n';
-    else std::cout << to_table(spectra);
+    else std::cout << (sweeps.empty() ? to_table(spectra) : to_sweep_table(spectra));
     if (!o.output.empty()) {
         const bool json_file = o.output.ends_with(".json");
         write_text_file(o.output, json_file ? to_json(spectra).dump(2) + "\n" : to_csv(spectra), true);
@@ -160,6 +181,15 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--preset", o->presets, "Preset name (repeatable; see 'skinspec materials list')");
     cmd->add_option("--material", o->materials, "Material TOML file (repeatable)");
     cmd->add_option("--set", o->overrides, set_option_help);
+    cmd->add_option("--vary", o->vary,
+                    "FIELD=FIRST:LAST:STEPS[:log] (at most two: a grid), one result per combination. Fields that change only "
+                    "absorption are replayed from one set of traced paths by the solvers that can (biospec: " +
+                        [] {
+                            std::string keys;
+                            for (const auto& k : absorption_only_fields()) keys += (keys.empty() ? "" : ", ") + k;
+                            return keys;
+                        }() +
+                        "); any other field is traced anew per value");
     cmd->add_option("--layers", o->layers, "Simulate only these layers (comma list), e.g. stratum_corneum,epidermis")->delimiter(',');
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();

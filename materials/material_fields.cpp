@@ -40,14 +40,14 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
     static const std::vector<NumberField<L>> fields{
         {"thickness_cm", "cm", positive, &L::thickness_cm, true, "layer thickness"},
         {"refractive_index", "1", refractive_index, &L::refractive_index, true, "refractive index of the layer"},
-        {"melanosome_fraction", "1", fraction, &L::melanosome_fraction, false, "volume fraction of melanosomes (v_m)"},
-        {"eumelanin_mg_per_ml", "mg/mL", non_negative, &L::eumelanin_mg_per_ml, false, "eumelanin inside the melanosomes"},
-        {"pheomelanin_mg_per_ml", "mg/mL", non_negative, &L::pheomelanin_mg_per_ml, false, "pheomelanin inside the melanosomes"},
-        {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b)"},
-        {"oxygen_saturation", "1", fraction, &L::oxygen_saturation, false, "haemoglobin oxygen saturation S"},
-        {"hemoglobin_g_per_l", "g/L", non_negative, &L::hemoglobin_g_per_l, false, "haemoglobin in whole blood"},
-        {"bilirubin_g_per_l", "g/L", non_negative, &L::bilirubin_g_per_l, false, "bilirubin in whole blood"},
-        {"carotene_g_per_l", "g/L", non_negative, &L::carotene_g_per_l, false, "beta-carotene in the background tissue"},
+        {"melanosome_fraction", "1", fraction, &L::melanosome_fraction, false, "volume fraction of melanosomes (v_m)", true},
+        {"eumelanin_mg_per_ml", "mg/mL", non_negative, &L::eumelanin_mg_per_ml, false, "eumelanin inside the melanosomes", true},
+        {"pheomelanin_mg_per_ml", "mg/mL", non_negative, &L::pheomelanin_mg_per_ml, false, "pheomelanin inside the melanosomes", true},
+        {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b)", true},
+        {"oxygen_saturation", "1", fraction, &L::oxygen_saturation, false, "haemoglobin oxygen saturation S", true},
+        {"hemoglobin_g_per_l", "g/L", non_negative, &L::hemoglobin_g_per_l, false, "haemoglobin in whole blood", true},
+        {"bilirubin_g_per_l", "g/L", non_negative, &L::bilirubin_g_per_l, false, "bilirubin in whole blood", true},
+        {"carotene_g_per_l", "g/L", non_negative, &L::carotene_g_per_l, false, "beta-carotene in the background tissue", true},
         {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein"},
         {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)"},
         {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius"},
@@ -96,12 +96,12 @@ const std::vector<ModelField>& model_fields() {
     using M = ModelOptions;
     static const std::vector<ModelField> fields{
         {"dermal_rayleigh", "", &M::dermal_rayleigh, {}, "Rayleigh scattering by collagen in dermal layers"},
-        {"ln10_molar_tables", "", &M::molar_tables, {}, "multiply decadic molar tables (haemoglobin, bilirubin, carotene) by ln 10"},
-        {"ln10_melanin_tables", "", &M::melanin_tables, {}, "multiply the melanin tables by ln 10"},
-        {"baseline_absorption", "", &M::baseline_absorption, {}, "Jacques' bloodless-tissue absorption in the background"},
-        {"hemoglobin_molar_mass_g_per_mol", "g/mol", &M::hemoglobin_molar_mass_g_per_mol, positive, "haemoglobin molar mass"},
-        {"bilirubin_molar_mass_g_per_mol", "g/mol", &M::bilirubin_molar_mass_g_per_mol, positive, "bilirubin molar mass"},
-        {"carotene_molar_mass_g_per_mol", "g/mol", &M::carotene_molar_mass_g_per_mol, positive, "beta-carotene molar mass"},
+        {"ln10_molar_tables", "", &M::molar_tables, {}, "multiply decadic molar tables (haemoglobin, bilirubin, carotene) by ln 10", true},
+        {"ln10_melanin_tables", "", &M::melanin_tables, {}, "multiply the melanin tables by ln 10", true},
+        {"baseline_absorption", "", &M::baseline_absorption, {}, "Jacques' bloodless-tissue absorption in the background", true},
+        {"hemoglobin_molar_mass_g_per_mol", "g/mol", &M::hemoglobin_molar_mass_g_per_mol, positive, "haemoglobin molar mass", true},
+        {"bilirubin_molar_mass_g_per_mol", "g/mol", &M::bilirubin_molar_mass_g_per_mol, positive, "bilirubin molar mass", true},
+        {"carotene_molar_mass_g_per_mol", "g/mol", &M::carotene_molar_mass_g_per_mol, positive, "beta-carotene molar mass", true},
     };
     return fields;
 }
@@ -142,6 +142,17 @@ std::vector<FieldRow> material_field_rows() {
     add_rows(rows, "LAYER.", volumetric_fields());
     add_rows(rows, "LAYER.", reduced_power_law_fields());
     return rows;
+}
+
+std::vector<std::string> absorption_only_fields() {
+    std::vector<std::string> keys;
+    for (const auto& f : layer_number_fields()) {
+        if (f.absorption_only) keys.push_back("LAYER." + std::string(f.key));
+    }
+    for (const auto& f : model_fields()) {
+        if (f.absorption_only) keys.push_back("model." + std::string(f.key));
+    }
+    return keys;
 }
 
 std::optional<FieldRow> describe_field(std::string_view key) {

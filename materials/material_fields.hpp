@@ -32,6 +32,7 @@ struct NumberField {
     double Owner::*member;
     bool required;          // must be in the file; otherwise the member's default stands
     std::string_view doc;
+    bool absorption_only = false;  // changes mu_a only, never a ray's path (replayable)
 };
 
 // A [model] switch: a boolean, a decadic-conversion switch (written as true = multiply by ln 10) or a number.
@@ -41,6 +42,7 @@ struct ModelField {
     std::variant<bool ModelOptions::*, DecadicConversion ModelOptions::*, double ModelOptions::*> member;
     FieldRange range;  // numbers only
     std::string_view doc;
+    bool absorption_only = false;
 };
 
 // A field whose value is one of a set of names (parsed by its own enum parser).
@@ -67,6 +69,8 @@ struct FieldRow {
     std::string doc;
 };
 std::vector<FieldRow> material_field_rows();
+// The keys that change absorption only ("LAYER.melanosome_fraction", "model.baseline_absorption", ...).
+std::vector<std::string> absorption_only_fields();
 // The row of a --set key ("epidermis.melanosome_fraction" -> LAYER.melanosome_fraction); nullopt if none.
 std::optional<FieldRow> describe_field(std::string_view key);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -25,10 +26,10 @@ constexpr Range non_negative{0.0, std::numeric_limits<double>::infinity(), false
 // Reads typed, range-checked values out of a toml table and reports where a bad one came from.
 class Reader {
 public:
-    Reader(std::string file, std::set<std::string> overridden) : file_(std::move(file)), overridden_(std::move(overridden)) {}
+    Reader(std::string file, std::map<std::string, std::string> overridden) : file_(std::move(file)), overridden_(std::move(overridden)) {}
 
     std::string where(const toml::node* node, const std::string& path) const {
-        if (overridden_.count(path)) return file_ + " (--set " + path + "): ";
+        if (const auto it = overridden_.find(path); it != overridden_.end()) return file_ + " (" + it->second + " " + path + "): ";
         if (node && node->source().begin.line > 0) {
             return file_ + ":" + std::to_string(node->source().begin.line) + ": ";
         }
@@ -106,7 +107,7 @@ public:
 
 private:
     std::string file_;
-    std::set<std::string> overridden_;
+    std::map<std::string, std::string> overridden_;  // key path -> the option that set it
 };
 
 bool valid_layer_name(const std::string& name) {
@@ -288,14 +289,14 @@ toml::table override_value(const std::string& text) {
 }
 
 // Applies overrides to the parsed document; returns the set of overridden key paths (for messages).
-std::set<std::string> apply_overrides(toml::table& root, const std::vector<MaterialOverride>& overrides) {
-    std::set<std::string> paths;
+std::map<std::string, std::string> apply_overrides(toml::table& root, const std::vector<MaterialOverride>& overrides) {
+    std::map<std::string, std::string> paths;
     for (const auto& o : overrides) {
         const auto dot = o.key.find('.');
         auto set = [&](toml::table& table, const std::string& key, const std::string& path) {
             auto value = override_value(o.value);
             table.insert_or_assign(key, std::move(*value.get("v")));
-            paths.insert(path);
+            paths[path] = o.origin;
         };
         if (dot == std::string::npos) {
             set(root, o.key, o.key);
@@ -304,7 +305,7 @@ std::set<std::string> apply_overrides(toml::table& root, const std::vector<Mater
         const std::string head = o.key.substr(0, dot);
         const std::string key = o.key.substr(dot + 1);
         if (key.empty() || key.find('.') != std::string::npos) {
-            throw InputError("--set " + o.key + ": key must be NAME or SECTION.NAME (e.g. epidermis.melanosome_fraction)");
+            throw InputError(o.origin + " " + o.key + ": key must be NAME or SECTION.NAME (e.g. epidermis.melanosome_fraction)");
         }
         if (head == "model" || head == "surface" || head == "bottom") {
             if (!root.contains(head)) root.insert(head, toml::table{});
@@ -331,7 +332,7 @@ std::set<std::string> apply_overrides(toml::table& root, const std::vector<Mater
         if (!matched) {
             std::string allowed = "model, surface, bottom";
             for (const auto& n : names) allowed += ", " + n;
-            throw InputError("--set " + o.key + ": no layer or section '" + head + "' (allowed: " + allowed + ")");
+            throw InputError(o.origin + " " + o.key + ": no layer or section '" + head + "' (allowed: " + allowed + ")");
         }
     }
     return paths;

@@ -32,6 +32,7 @@ using Material = std::variant<LayerStack, HomogeneousMaterial>;
 struct MaterialOverride {
     std::string key;
     std::string value;
+    std::string origin = "--set";  // the option it came from, named in messages ("--set", "--vary")
 };
 MaterialOverride parse_override(std::string_view text);
 

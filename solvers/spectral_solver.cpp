@@ -86,6 +86,16 @@ std::vector<SolverSwitch> SolverSwitches::set() const {
     return out;
 }
 
+std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const {
+    std::vector<SpectralResult> results;
+    for (const auto* m : materials) {
+        if (request.spectral.cancel && request.spectral.cancel->load()) break;
+        results.push_back(solve(*m, request));
+        if (results.back().partial) break;
+    }
+    return results;
+}
+
 SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&) const {
     throw InputError("solver '" + std::string(name()) + "' does not compute radial profiles");
 }
@@ -146,23 +156,50 @@ void check_request(const SpectralSolver& solver, const Material& material, const
     check_switches(solver, request.switches);
 }
 
-SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
-    check_request(solver, material, request);
-    const SolverRequest* effective = &request;
-    SolverRequest fixed;
+namespace {
+
+// A fixed ray count replaces the budget and clears the targets.
+SolverRequest effective_request(const SolverRequest& request) {
+    auto out = request;
     if (request.fixed_rays_per_wavelength) {
-        fixed = request;
-        fixed.spectral.max_rays_per_wavelength = *request.fixed_rays_per_wavelength;
-        fixed.spectral.stderr_target.reset();
-        fixed.spectral.stderr_targets = nullptr;
-        effective = &fixed;
+        out.spectral.max_rays_per_wavelength = *request.fixed_rays_per_wavelength;
+        out.spectral.stderr_target.reset();
+        out.spectral.stderr_targets = nullptr;
     }
-    auto result = solver.solve(material, *effective);
+    return out;
+}
+
+void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material,
+                       const std::vector<MaterialOverride>& overrides, std::vector<std::pair<std::string, double>> varied) {
     result.provenance.solver = std::string(solver.name());
     result.provenance.material_toml = to_toml(material);
-    for (const auto& o : request.overrides) result.provenance.overrides.emplace_back(o.key, o.value);
+    for (const auto& o : overrides) result.provenance.overrides.emplace_back(o.key, o.value);
+    result.provenance.varied = std::move(varied);
     result.provenance.version = version;
+}
+
+}  // namespace
+
+SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
+    check_request(solver, material, request);
+    auto result = solver.solve(material, effective_request(request));
+    record_provenance(result, solver, material, request.overrides, {});
     return result;
+}
+
+std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request) {
+    std::vector<const Material*> materials;
+    for (const auto& m : members) {
+        check_request(solver, m.material, request);
+        materials.push_back(&m.material);
+    }
+    auto results = solver.solve_many(materials, effective_request(request));
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        auto overrides = request.overrides;
+        overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());
+        record_provenance(results[i], solver, members[i].material, overrides, members[i].varied);
+    }
+    return results;
 }
 
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {

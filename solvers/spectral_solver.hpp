@@ -40,7 +40,7 @@ struct SolverCapabilities {
     bool uncertainty = true;         // Monte Carlo: standard errors, ray budgets and stderr targets
     bool radial_profiles = false;    // R(r), T(r) per wavelength or band (profile command, lit swatches)
     std::vector<SolverSwitch> switches;
-    std::vector<std::string> replay_fields;  // material fields re-weighted from traced paths (none yet)
+    std::vector<std::string> replay_fields;  // material fields re-weighted from traced paths (absorption replay)
     std::string material_needs;      // what a layered material must describe for this solver, "" when nothing
 };
 
@@ -67,8 +67,12 @@ public:
     virtual std::string_view description() const = 0;
     virtual const SolverCapabilities& capabilities() const = 0;
 
-    // Only called through solve_spectrum() / solve_profiles(), i.e. with a request check_request() accepted.
+    // Only called through solve_spectrum() / solve_sweep() / solve_profiles(), i.e. with requests
+    // check_request() accepted.
     virtual SpectralResult solve(const Material& material, const SolverRequest& request) const = 0;
+    // Several materials under one request, one result each in order. Default: solve() each. A solver that
+    // declares replay_fields traces each group of materials differing only in those fields once.
+    virtual std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const;
     virtual SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const;
 };
 
@@ -86,6 +90,16 @@ void check_request(const SpectralSolver& solver, const Material& material, const
 
 // check_request, solve, and the provenance (material TOML, overrides, switches, seed, version) filled in.
 SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request);
+
+// One member of a sweep: a material, the overrides that made it (after the request's own) and the swept
+// field values, recorded in its result's provenance.
+struct SweepMember {
+    Material material;
+    std::vector<MaterialOverride> overrides;
+    std::vector<std::pair<std::string, double>> varied;
+};
+// Every member checked first, then solved together (solve_many: replayed where the solver can).
+std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request);
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 
 }  // namespace skinspec

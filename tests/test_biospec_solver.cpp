@@ -237,3 +237,86 @@ TEST_CASE("bad requests are input errors naming the value and range", "[biospec_
     request.wavelengths = WavelengthGrid::list({900.0});
     CHECK_THROWS_WITH(solve_biospec(stack, request), Catch::Contains("eumelanin: wavelength 900 nm is outside"));
 }
+
+namespace {
+
+std::vector<LayerStack> melanin_levels(const std::vector<double>& fractions) {
+    std::vector<LayerStack> stacks;
+    for (const double f : fractions) {
+        auto s = std::get<LayerStack>(load_material("biospec-moderately", {{"epidermis.melanosome_fraction", std::to_string(f)}}));
+        s.name = "v_m " + std::to_string(f);
+        stacks.push_back(std::move(s));
+    }
+    return stacks;
+}
+
+}  // namespace
+
+TEST_CASE("absorption replay: each replayed level equals its own run with the same rays and seed", "[biospec_solver][replay]") {
+    auto stacks = melanin_levels({0.005, 0.05, 0.25});
+    stacks[1].layers[2].blood_fraction = 0.03;          // blood and oxygenation replay too
+    stacks[2].layers[3].oxygen_saturation = 0.4;
+    std::vector<const LayerStack*> sets;
+    for (const auto& s : stacks) sets.push_back(&s);
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list({420.0, 550.0, 650.0});
+    request.quantities = {true, true, true, true};
+    request.max_rays_per_wavelength = 3000;
+    request.seed = 11;
+    const auto replayed = solve_biospec_sets(sets, request);
+    REQUIRE(replayed.size() == 3);
+    for (std::size_t s = 0; s < stacks.size(); ++s) {
+        const auto direct = solve_biospec(stacks[s], request);
+        for (std::size_t w = 0; w < direct.wavelengths.size(); ++w) {
+            const auto& a = replayed[s].wavelengths[w];
+            const auto& b = direct.wavelengths[w];
+            CHECK(a.reflectance.value == Approx(b.reflectance.value).margin(1e-12));
+            CHECK(a.reflectance.stderr == Approx(b.reflectance.stderr).margin(1e-12));
+            CHECK(a.transmittance.value == Approx(b.transmittance.value).margin(1e-12));
+            for (std::size_t k = 0; k < a.absorptance_layers.size(); ++k) {
+                CHECK(a.absorptance_layers[k].value == Approx(b.absorptance_layers[k].value).margin(1e-12));
+            }
+            for (std::size_t i = 0; i < a.brdf_per_sr.size(); ++i) CHECK(a.brdf_per_sr[i].value == Approx(b.brdf_per_sr[i].value).margin(1e-12));
+            CHECK(a.truncated_rays == b.truncated_rays);
+            // Energy per set: R + T + A (every layer and the surface) = 1 (conservation).
+            double sum = a.reflectance.value + a.transmittance.value + a.absorptance_surface.value;
+            for (const auto& x : a.absorptance_layers) sum += x.value;
+            CHECK(sum == Approx(1.0).margin(1e-9));
+        }
+    }
+}
+
+TEST_CASE("absorption replay agrees with independent runs (another seed) within 4 combined sigma", "[biospec_solver][replay]") {
+    const auto stacks = melanin_levels({0.01, 0.08, 0.3});
+    std::vector<const LayerStack*> sets;
+    for (const auto& s : stacks) sets.push_back(&s);
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list({450.0, 600.0});
+    request.stderr_target = 0.003;
+    request.max_rays_per_wavelength = 2'000'000;
+    const auto replayed = solve_biospec_sets(sets, request);
+    auto other = request;
+    other.seed = 777;
+    for (std::size_t s = 0; s < stacks.size(); ++s) {
+        const auto direct = solve_biospec(stacks[s], other);
+        for (std::size_t w = 0; w < direct.wavelengths.size(); ++w) {
+            const auto& a = replayed[s].wavelengths[w].reflectance;
+            const auto& b = direct.wavelengths[w].reflectance;
+            CHECK(a.stderr <= 0.003);  // every set meets the target
+            CHECK(std::abs(a.value - b.value) <= 4.0 * std::hypot(a.stderr, b.stderr));
+        }
+    }
+}
+
+TEST_CASE("absorption replay refuses sets whose paths differ and the random estimator", "[biospec_solver][replay]") {
+    auto stacks = melanin_levels({0.01, 0.05});
+    stacks[1].layers[1].thickness_cm *= 2.0;
+    const std::vector<const LayerStack*> sets{&stacks[0], &stacks[1]};
+    SpectralRequest request;
+    request.max_rays_per_wavelength = 100;
+    CHECK_THROWS_WITH(solve_biospec_sets(sets, request), Catch::Contains("differ in layer 'epidermis' geometry or scattering, which changes paths"));
+    stacks[1].layers[1].thickness_cm = stacks[0].layers[1].thickness_cm;
+    BiospecOptions random;
+    random.estimator = AbsorptionEstimator::random_test;
+    CHECK_THROWS_WITH(solve_biospec_sets(sets, request, random), Catch::Contains("absorption replay needs the weighted estimator"));
+}

@@ -93,3 +93,29 @@ TEST_CASE("a result records its provenance: resolved material, overrides, solver
     CHECK(std::get<std::uint64_t>(result.settings.at("seed")) == 42);
     CHECK(std::get<std::uint64_t>(result.settings.at("max_rays_per_wavelength")) == 300);
 }
+
+TEST_CASE("a sweep replays what only absorbs and traces anew what changes paths, results in order", "[solver]") {
+    const auto& walk = find_solver("biospec");
+    std::vector<SweepMember> members;
+    for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{{"epidermis.melanosome_fraction", "0.02"},
+                                                                                     {"epidermis.thickness_cm", "0.02"},
+                                                                                     {"epidermis.melanosome_fraction", "0.1"}}) {
+        const std::vector<MaterialOverride> o{{key, value, "--vary"}};
+        members.push_back({load_material("biospec-moderately", o), o, {{key, std::stod(value)}}});
+    }
+    auto request = one_wavelength(2000);
+    const auto results = solve_sweep(walk, members, request);
+    REQUIRE(results.size() == 3);
+    for (std::size_t i = 0; i < 3; ++i) {
+        // Each equals its own run (replayed or not), and records its varied field.
+        const auto alone = solve_spectrum(walk, members[i].material, request);
+        CHECK(results[i].wavelengths.front().reflectance.value == Approx(alone.wavelengths.front().reflectance.value).margin(1e-12));
+        REQUIRE(results[i].provenance.varied.size() == 1);
+        CHECK(results[i].provenance.varied.front() == members[i].varied.front());
+    }
+    CHECK(std::get<std::uint64_t>(results[0].settings.at("absorption_sets_traced_together")) == 2);
+    CHECK(std::get<std::uint64_t>(results[1].settings.at("absorption_sets_traced_together")) == 1);
+    const auto& replay = walk.capabilities().replay_fields;
+    CHECK(std::find(replay.begin(), replay.end(), "LAYER.melanosome_fraction") != replay.end());
+    CHECK(std::find(replay.begin(), replay.end(), "LAYER.thickness_cm") == replay.end());
+}

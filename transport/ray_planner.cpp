@@ -7,11 +7,13 @@
 
 namespace skinspec {
 
-RayPlanner::RayPlanner(const SpectralRequest& request, std::size_t channels, std::vector<std::size_t> target_channels)
+RayPlanner::RayPlanner(const SpectralRequest& request, std::size_t channels, std::vector<std::size_t> target_channels, std::size_t sets)
     : request_(request),
       target_channels_(std::move(target_channels)),
       rays_per_batch_(std::max<std::uint64_t>(1, request.rays_per_batch)),
-      adaptive_(request.stderr_target.has_value() || static_cast<bool>(request.stderr_targets)) {
+      adaptive_(request.stderr_target.has_value() || static_cast<bool>(request.stderr_targets)),
+      sets_(std::max<std::size_t>(1, sets)),
+      stride_(channels / std::max<std::size_t>(1, sets)) {
     const std::size_t n = request.wavelengths.size();
     const std::uint64_t budget = request.max_rays_per_wavelength;
     state_ = DriverOutcome{std::vector<RayTally>(n, RayTally(channels)), std::vector<bool>(n, false), std::vector<bool>(n, !adaptive_), false};
@@ -49,15 +51,18 @@ void RayPlanner::absorb(const std::vector<BatchTask>& tasks, const RoundOutput& 
     for (std::size_t i = 0; i < tasks.size(); ++i) {
         if (complete[tasks[i].wavelength]) state_.tallies[tasks[i].wavelength].merge(round.tallies[i]);
     }
-    std::vector<double> targets(n, request_.stderr_target.value_or(0.0));
+    // Targets per set and wavelength: the fixed target, or the colour-driven ones from that set's estimates.
+    std::vector<std::vector<double>> targets(sets_, std::vector<double>(n, request_.stderr_target.value_or(0.0)));
     if (request_.stderr_targets && !target_channels_.empty()) {
-        std::vector<Estimate> estimates(n);
-        std::vector<std::uint64_t> rays(n);
-        for (std::size_t w = 0; w < n; ++w) {
-            estimates[w] = state_.tallies[w].estimate(target_channels_.front());
-            rays[w] = state_.tallies[w].rays();
+        for (std::size_t s = 0; s < sets_; ++s) {
+            std::vector<Estimate> estimates(n);
+            std::vector<std::uint64_t> rays(n);
+            for (std::size_t w = 0; w < n; ++w) {
+                estimates[w] = state_.tallies[w].estimate(s * stride_ + target_channels_.front());
+                rays[w] = state_.tallies[w].rays();
+            }
+            targets[s] = request_.stderr_targets(estimates, rays);
         }
-        targets = request_.stderr_targets(estimates, rays);
     }
     for (std::size_t w = 0; w < n; ++w) {
         if (state_.finished[w] || !complete[w] || !in_round[w]) continue;
@@ -67,10 +72,12 @@ void RayPlanner::absorb(const std::vector<BatchTask>& tasks, const RoundOutput& 
         bool met = true;
         double worst_ratio = 0.0;
         if (adaptive_) {
-            for (const auto c : target_channels_) {
-                const double se = tally.estimate(c).stderr;
-                const double ratio = se == 0.0 ? 0.0 : se / targets[w];  // target inf: done; 0: needs se = 0
-                worst_ratio = std::max(worst_ratio, ratio);
+            for (std::size_t s = 0; s < sets_; ++s) {
+                for (const auto c : target_channels_) {
+                    const double se = tally.estimate(s * stride_ + c).stderr;
+                    const double ratio = se == 0.0 ? 0.0 : se / targets[s][w];  // target inf: done; 0: needs se = 0
+                    worst_ratio = std::max(worst_ratio, ratio);
+                }
             }
             met = worst_ratio <= 1.0;
         }
@@ -105,8 +112,8 @@ DriverOutcome RayPlanner::outcome(bool cancelled) const {
 }
 
 DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels, const std::vector<std::size_t>& target_channels,
-                          const BatchTracer& trace, const BatchExecutor& executor) {
-    RayPlanner planner(request, channels, target_channels);
+                          const BatchTracer& trace, std::size_t sets, const BatchExecutor& executor) {
+    RayPlanner planner(request, channels, target_channels, sets);
     const std::size_t n = request.wavelengths.size();
     std::atomic<std::uint64_t> rays_done{0};
     std::mutex progress_mutex;

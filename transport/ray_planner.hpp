@@ -17,9 +17,12 @@ struct DriverOutcome {
     bool cancelled = false;
 };
 
+// Absorption replay (several sets in one tally): `sets` blocks of channels/sets channels each; the target
+// channels name set 0's, and a wavelength is finished once every set meets its target (the worst set decides
+// how many rays it gets; colour targets are computed per set).
 class RayPlanner {
 public:
-    RayPlanner(const SpectralRequest& request, std::size_t channels, std::vector<std::size_t> target_channels);
+    RayPlanner(const SpectralRequest& request, std::size_t channels, std::vector<std::size_t> target_channels, std::size_t sets = 1);
 
     // The next round's batches, wavelengths in grid order; empty when every wavelength is finished.
     std::vector<BatchTask> next_round() const;
@@ -37,6 +40,8 @@ private:
     std::vector<std::size_t> target_channels_;
     std::uint64_t rays_per_batch_;
     bool adaptive_;
+    std::size_t sets_;
+    std::size_t stride_;
     DriverOutcome state_;
     std::vector<std::uint64_t> next_batch_;
     std::vector<std::uint64_t> planned_;   // rays of the next round, per wavelength
@@ -45,6 +50,6 @@ private:
 
 // Plans rounds and runs them on `executor` until every wavelength is finished or the request is cancelled.
 DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels, const std::vector<std::size_t>& target_channels,
-                          const BatchTracer& trace, const BatchExecutor& executor = cpu_batch_executor());
+                          const BatchTracer& trace, std::size_t sets = 1, const BatchExecutor& executor = cpu_batch_executor());
 
 }  // namespace skinspec

@@ -68,6 +68,7 @@ public:
     }
 
     std::uint64_t rays() const { return rays_; }
+    double sum(std::size_t channel) const { return sum_[channel]; }
     std::size_t channels() const { return sum_.size(); }
 
 private:

@@ -94,6 +94,7 @@ struct Provenance {
     std::string solver;
     std::string material_toml;  // the resolved material, every override applied, as `materials save` writes it
     std::vector<std::pair<std::string, std::string>> overrides;  // every --set / --vary KEY=VALUE, in order
+    std::vector<std::pair<std::string, double>> varied;         // the swept fields' values (--vary)
     std::string version;
 };
 

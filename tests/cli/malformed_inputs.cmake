@@ -109,3 +109,9 @@ skinspec_malformed_input("color column unknown" 2 "--column Q is not a value col
 skinspec_malformed_input("color several materials" 2 "choose one with --material" - color spectrum_result.csv)
 skinspec_malformed_input("swatch chart too large" 2 "a chart of 1000 x 1000 patches at 112 px is 1.44e\\+10 pixels, more than the 1e\\+08" "${out}/huge.png" swatch --vary epidermis.melanosome_fraction=0.01:0.4:1000 --vary dermis.blood_fraction=0.001:0.05:1000 -o ${out}/huge.png)
 skinspec_malformed_input("swatch log through zero" 2 "a log range needs FIRST and LAST > 0" "${out}/log0.png" swatch --vary epidermis.melanosome_fraction=0:0.4:8:log -o ${out}/log0.png)
+# spectrum --vary: one clear error each, nothing written.
+skinspec_malformed_input("vary unknown field" 2 "\\(--vary epidermis.melanin\\): unknown key 'epidermis.melanin'" "${out}/vary1.json" spectrum --vary epidermis.melanin=0.1:0.2:3 --output ${out}/vary1.json)
+skinspec_malformed_input("vary empty range" 2 "empty range \\(FIRST = LAST with 3 steps\\)" "${out}/vary2.json" spectrum --vary epidermis.melanosome_fraction=0.1:0.1:3 --output ${out}/vary2.json)
+skinspec_malformed_input("vary log through zero" 2 "a log range needs FIRST and LAST > 0 \\(got 0 and 0.1\\)" "${out}/vary3.json" spectrum --vary epidermis.melanosome_fraction=0:0.1:3:log --output ${out}/vary3.json)
+skinspec_malformed_input("vary three fields" 2 "--vary: at most two fields \\(they form a grid\\); got 3" "${out}/vary4.json" spectrum --vary epidermis.melanosome_fraction=0.1:0.2:2 --vary dermis.blood_fraction=0.01:0.02:2 --vary epidermis.oxygen_saturation=0.5:0.7:2 --output ${out}/vary4.json)
+skinspec_malformed_input("vary out of range" 2 "\\(--vary epidermis.melanosome_fraction\\): key 'epidermis.melanosome_fraction' = 1.5 is outside \\[0, 1\\]" "${out}/vary5.json" spectrum --vary epidermis.melanosome_fraction=0.5:1.5:3 --output ${out}/vary5.json)

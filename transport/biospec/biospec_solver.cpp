@@ -70,69 +70,85 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
 }  // namespace
 
 SpectralResult solve_biospec(const LayerStack& stack, const SpectralRequest& request, const BiospecOptions& options) {
-    validate(stack, request, options);
+    return solve_biospec_sets({&stack}, request, options).front();
+}
+
+std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStack*>& stacks, const SpectralRequest& request,
+                                               const BiospecOptions& options) {
+    if (stacks.empty()) throw InputError("absorption replay: no stacks to simulate");
+    for (const auto* stack : stacks) validate(*stack, request, options);
+    const auto& first = *stacks.front();
     const auto edges = request.quantities.angular
                            ? (request.angular_bin_edges_deg.empty() ? default_angular_bin_edges_deg() : request.angular_bin_edges_deg)
                            : std::vector<double>{};
     const std::size_t bins = edges.empty() ? 0 : edges.size() - 1;
-    const BiospecChannels channels(request.quantities, stack.layers.size(), bins);
+    const BiospecChannels channels(request.quantities, first.layers.size(), bins);
+    const std::size_t sets = stacks.size();
 
     std::vector<std::unique_ptr<BiospecWavelength>> setups;
     for (const double nm : request.wavelengths.nm()) {
-        setups.push_back(std::make_unique<BiospecWavelength>(stack, nm, request.incidence_deg, options, channels, edges));
+        setups.push_back(std::make_unique<BiospecWavelength>(stacks, nm, request.incidence_deg, options, channels, edges));
     }
     std::vector<std::size_t> targets;
     if (channels.reflectance >= 0) targets.push_back(static_cast<std::size_t>(channels.reflectance));
     if (channels.transmittance >= 0) targets.push_back(static_cast<std::size_t>(channels.transmittance));
 
-    const auto outcome = run_batches(request, channels.count, targets,
+    const auto outcome = run_batches(request, channels.count * sets, targets,
                                      [&](std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
                                          setups[w]->trace(random, rays, tally);
-                                     });
+                                     },
+                                     sets);
 
-    SpectralResult result;
-    result.model = "biospec";
-    result.material = stack.name;
-    result.settings = settings(stack, request, options);
-    for (const auto& layer : stack.layers) result.layer_names.push_back(layer.name);
-    result.angular_bin_edges_deg = edges;
-    result.quantities = request.quantities;
-    result.partial = outcome.cancelled;
-    for (std::size_t w = 0; w < request.wavelengths.size(); ++w) {
-        if (!outcome.finished[w]) continue;
-        const auto& t = outcome.tallies[w];
-        WavelengthResult r;
-        r.wavelength_nm = request.wavelengths[w];
-        const auto channel = [&](int c) { return c >= 0 ? t.estimate(static_cast<std::size_t>(c)) : Estimate{}; };
-        r.reflectance = channel(channels.reflectance);
-        r.specular_reflectance = channel(channels.specular);
-        r.transmittance = channel(channels.transmittance);
-        r.absorptance_surface = channel(channels.absorptance_surface);
-        if (channels.absorptance_first_layer >= 0) {
-            for (std::size_t k = 0; k < stack.layers.size(); ++k) {
-                r.absorptance_layers.push_back(channel(channels.absorptance_first_layer + static_cast<int>(k)));
+    std::vector<SpectralResult> results;
+    for (std::size_t s = 0; s < sets; ++s) {
+        const auto& stack = *stacks[s];
+        SpectralResult result;
+        result.model = "biospec";
+        result.material = stack.name;
+        result.settings = settings(stack, request, options);
+        result.settings["absorption_sets_traced_together"] = std::uint64_t{sets};
+        for (const auto& layer : stack.layers) result.layer_names.push_back(layer.name);
+        result.angular_bin_edges_deg = edges;
+        result.quantities = request.quantities;
+        result.partial = outcome.cancelled;
+        const int offset = static_cast<int>(s * channels.count);
+        for (std::size_t w = 0; w < request.wavelengths.size(); ++w) {
+            if (!outcome.finished[w]) continue;
+            const auto& t = outcome.tallies[w];
+            WavelengthResult r;
+            r.wavelength_nm = request.wavelengths[w];
+            const auto channel = [&](int c) { return c >= 0 ? t.estimate(static_cast<std::size_t>(offset + c)) : Estimate{}; };
+            r.reflectance = channel(channels.reflectance);
+            r.specular_reflectance = channel(channels.specular);
+            r.transmittance = channel(channels.transmittance);
+            r.absorptance_surface = channel(channels.absorptance_surface);
+            if (channels.absorptance_first_layer >= 0) {
+                for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+                    r.absorptance_layers.push_back(channel(channels.absorptance_first_layer + static_cast<int>(k)));
+                }
             }
+            // Virtual goniometer (Baranoski et al. 2005 Eq. 10): f = F_i / (delta omega_i cos theta_i), the fraction
+            // F_i of the incident flux leaving through polar bin i, delta omega_i its solid angle, theta_i its centre.
+            for (std::size_t b = 0; b < bins; ++b) {
+                constexpr double deg = std::numbers::pi / 180.0;
+                const double solid_angle = 2.0 * std::numbers::pi * (std::cos(edges[b] * deg) - std::cos(edges[b + 1] * deg));
+                const double cos_centre = std::cos(0.5 * (edges[b] + edges[b + 1]) * deg);
+                const double scale = 1.0 / (solid_angle * cos_centre);
+                const auto f = [&](int first_bin) {
+                    const auto e = channel(first_bin + static_cast<int>(b));
+                    return Estimate{e.value * scale, e.stderr * scale};
+                };
+                r.brdf_per_sr.push_back(f(channels.brdf_first_bin));
+                r.btdf_per_sr.push_back(f(channels.btdf_first_bin));
+            }
+            r.rays = t.rays();
+            r.truncated_rays = static_cast<std::uint64_t>(std::llround(t.sum(static_cast<std::size_t>(offset + channels.truncated))));
+            r.converged = outcome.converged[w];
+            result.wavelengths.push_back(std::move(r));
         }
-        // Virtual goniometer (seed 000 Eq. 10): f = F_i / (delta omega_i cos theta_i), the fraction F_i of the
-        // incident flux leaving through polar bin i, delta omega_i its solid angle, theta_i its centre.
-        for (std::size_t b = 0; b < bins; ++b) {
-            constexpr double deg = std::numbers::pi / 180.0;
-            const double solid_angle = 2.0 * std::numbers::pi * (std::cos(edges[b] * deg) - std::cos(edges[b + 1] * deg));
-            const double cos_centre = std::cos(0.5 * (edges[b] + edges[b + 1]) * deg);
-            const double scale = 1.0 / (solid_angle * cos_centre);
-            const auto f = [&](int first) {
-                const auto e = channel(first + static_cast<int>(b));
-                return Estimate{e.value * scale, e.stderr * scale};
-            };
-            r.brdf_per_sr.push_back(f(channels.brdf_first_bin));
-            r.btdf_per_sr.push_back(f(channels.btdf_first_bin));
-        }
-        r.rays = t.rays();
-        r.truncated_rays = t.truncated();
-        r.converged = outcome.converged[w];
-        result.wavelengths.push_back(std::move(r));
+        results.push_back(std::move(result));
     }
-    return result;
+    return results;
 }
 
 }  // namespace skinspec

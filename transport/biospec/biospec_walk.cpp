@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "transport/cosine_hemisphere.hpp"
@@ -9,6 +10,7 @@
 #include "transport/henyey_greenstein.hpp"
 #include "transport/rayleigh_phase.hpp"
 #include "transport/skin_fold.hpp"
+#include "spectral/input_error.hpp"
 
 namespace skinspec {
 namespace {
@@ -17,8 +19,31 @@ constexpr double deg = std::numbers::pi / 180.0;
 constexpr int max_redraws = 1000;          // same-hemisphere re-draws before keeping the unperturbed direction
 constexpr double roulette_weight = 1e-4;   // weighted estimator: Russian roulette below this weight
 constexpr double roulette_survival = 0.1;
+const double roulette_depth = -std::log(roulette_weight);     // tau - ln(boost) beyond which a set plays roulette
+const double boost_log = -std::log(roulette_survival);
+constexpr double dead_limit = std::numeric_limits<double>::infinity();  // the limit of a set that lost the roulette
+constexpr double due_margin = 1.0 - 1e-9;  // the look-ahead bound a little early, so rounding never skips a crossing
 
 }  // namespace
+
+std::string biospec_path_difference(const LayerStack& a, const LayerStack& b) {
+    if (a.layers.size() != b.layers.size()) return "the number of layers";
+    if (a.above_refractive_index != b.above_refractive_index || a.below_refractive_index != b.below_refractive_index) return "the surrounding indices";
+    if (a.bottom != b.bottom) return "the bottom boundary";
+    if (a.fold_aspect_ratio != b.fold_aspect_ratio) return "the fold aspect ratio";
+    if (a.model.dermal_rayleigh != b.model.dermal_rayleigh) return "model.dermal_rayleigh";
+    for (std::size_t k = 0; k < a.layers.size(); ++k) {
+        const auto& x = a.layers[k];
+        const auto& y = b.layers[k];
+        if (x.thickness_cm != y.thickness_cm || x.refractive_index != y.refractive_index || x.crossing != y.crossing || x.hg_g != y.hg_g ||
+            x.collagen_fibre_fraction != y.collagen_fibre_fraction || x.collagen_fibre_radius_nm != y.collagen_fibre_radius_nm ||
+            x.collagen_fibre_index != y.collagen_fibre_index) {
+            return "layer '" + x.name + "' geometry or scattering";
+        }
+    }
+    return {};
+}
+
 
 BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::size_t bins) {
     int next = 0;
@@ -38,7 +63,54 @@ BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::s
         btdf_first_bin = next;
         next += static_cast<int>(bins);
     }
+    truncated = next++;
     count = static_cast<std::size_t>(next);
+}
+
+// Per-ray state of the absorption sets, reused from ray to ray.
+// Per-ray state of the absorption sets, reused from ray to ray, in dense arrays so that the per-crossing update
+// of every set vectorises: optical depth tau, log of the roulette boosts, and the depth beyond which the set
+// plays roulette (+inf once it has lost: its weight exp(boost - tau) is then 0 and it is skipped).
+struct BiospecWavelength::RayState {
+    std::vector<double> tau, boost_log, limit;
+    std::size_t alive = 0;
+    double path_cm = 0.0;  // the ray's path so far
+    std::vector<double> due;  // per set: the path at which to look at it next (inf: never)
+    double next_due_cm = 0.0; // the smallest of them
+};
+
+BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg,
+                                     const BiospecOptions& options, const BiospecChannels& channels,
+                                     std::vector<double> edges_deg)
+    : BiospecWavelength(*sets.front(), wavelength_nm, incidence_deg, options, channels, std::move(edges_deg)) {
+    sets_ = sets.size();
+    if (sets_ > 1 && options.estimator != AbsorptionEstimator::weighted) {
+        throw InputError("absorption replay needs the weighted estimator (the random test makes paths depend on absorption)");
+    }
+    mu_a_per_cm_.assign(layers_.size() * sets_, 0.0);
+    for (std::size_t s = 0; s < sets_; ++s) {
+        if (const auto why = biospec_path_difference(*sets.front(), *sets[s]); !why.empty()) {
+            throw InputError("absorption sets '" + sets.front()->name + "' and '" + sets[s]->name + "' differ in " + why +
+                             ", which changes paths (trace them separately)");
+        }
+        for (std::size_t k = 0; k < layers_.size(); ++k) {
+            mu_a_per_cm_[k * sets_ + s] = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
+        }
+    }
+    prepare_roulette_bounds();
+}
+
+void BiospecWavelength::prepare_roulette_bounds() {
+    max_mu_a_per_cm_.assign(sets_, 0.0);
+    for (std::size_t k = 0; k < layers_.size(); ++k) {
+        for (std::size_t s = 0; s < sets_; ++s) max_mu_a_per_cm_[s] = std::max(max_mu_a_per_cm_[s], mu_a_per_cm_[k * sets_ + s]);
+    }
+    inverse_max_mu_a_cm_.clear();
+    for (const double mu : max_mu_a_per_cm_) inverse_max_mu_a_cm_.push_back(mu > 0.0 ? 1.0 / mu : std::numeric_limits<double>::infinity());
+    // Sets without absorption never play roulette (due inf).
+    first_due_.clear();
+    for (std::size_t s = 0; s < sets_; ++s) first_due_.push_back(roulette_depth * inverse_max_mu_a_cm_[s] * due_margin);
+    first_next_due_cm_ = *std::min_element(first_due_.begin(), first_due_.end());
 }
 
 BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg,
@@ -73,12 +145,15 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
             }
             profile = &*epidermis_table_;
         }
-        layers_.push_back({o.thickness_cm, o.refractive_index, o.mu_a_per_cm, o.rayleigh_per_cm, o.hg_g, o.crossing, profile});
+        layers_.push_back({o.thickness_cm, o.refractive_index, o.rayleigh_per_cm, o.hg_g, o.crossing, profile});
+        mu_a_per_cm_.push_back(o.mu_a_per_cm);
     }
+    prepare_roulette_bounds();
 }
 
 void BiospecWavelength::trace(RandomStream& random, std::uint64_t rays, RayTally& tally) const {
-    trace_rays(channels_.count, rays, tally, [&](RayScore& score, std::uint64_t& truncated) { trace_one(random, score, truncated); });
+    RayState state{std::vector<double>(sets_), std::vector<double>(sets_), std::vector<double>(sets_), 0, 0.0, std::vector<double>(sets_), 0.0};
+    trace_rays(channels_.count * sets_, rays, tally, [&](RayScore& score, std::uint64_t&) { trace_one(random.bits64(), score, state); });
 }
 
 void BiospecWavelength::exit_into_bin(int first_bin, double cos_exit, double weight, RayScore& score) const {
@@ -130,12 +205,18 @@ Direction BiospecWavelength::scatter(const Layer& layer, const Direction& d, Ran
     return d;
 }
 
-void BiospecWavelength::trace_one(RandomStream& random, RayScore& score, std::uint64_t& truncated) const {
-    const auto add = [&](int channel, double value) {
-        if (channel >= 0) score.add(static_cast<std::size_t>(channel), value);
+void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RayState& state) const {
+    auto random = RandomStream::for_ray(ray_key);
+    const auto add = [&](std::size_t set, int channel, double value) {
+        if (channel >= 0) score.add(set * channels_.count + static_cast<std::size_t>(channel), value);
     };
-    const auto absorb = [&](std::size_t layer, double value) {
-        if (channels_.absorptance_first_layer >= 0) add(channels_.absorptance_first_layer + static_cast<int>(layer), value);
+    const bool absorptance = channels_.absorptance_first_layer >= 0;
+    const auto absorb = [&](std::size_t set, std::size_t layer, double value) {
+        if (absorptance) add(set, channels_.absorptance_first_layer + static_cast<int>(layer), value);
+    };
+    const auto weight = [&](std::size_t set) { return std::exp(state.boost_log[set] - state.tau[set]); };
+    const auto bin = [&](std::size_t set, int first_bin, double cos_exit, double w) {
+        if (first_bin >= 0) exit_into_bin(static_cast<int>(set * channels_.count) + first_bin, cos_exit, w, score);
     };
 
     // Step 1: air -> stratum corneum. Reflection is perturbed by the skin-fold distribution.
@@ -145,50 +226,89 @@ void BiospecWavelength::trace_one(RandomStream& random, RayScore& score, std::ui
             const double c = skin_fold_sample_cos(fold_sigma_, random.uniform());
             const Direction out = deflect(mirror(incident_), c, std::sqrt(std::max(0.0, 1.0 - c * c)), sample_azimuth(random));
             if (out.z < 0.0) {
-                add(channels_.reflectance, 1.0);
-                add(channels_.specular, 1.0);
-                exit_into_bin(channels_.brdf_first_bin, -out.z, 1.0, score);
+                for (std::size_t s = 0; s < sets_; ++s) {
+                    add(s, channels_.reflectance, 1.0);
+                    add(s, channels_.specular, 1.0);
+                    bin(s, channels_.brdf_first_bin, -out.z, 1.0);
+                }
                 return;
             }
             if (options_.fold_into_skin == FoldIntoSkin::drop) break;
         }
-        add(channels_.absorptance_surface, 1.0);
+        for (std::size_t s = 0; s < sets_; ++s) add(s, channels_.absorptance_surface, 1.0);
         return;
     }
     Direction d = *refract(incident_, n_above_, n_top);  // Fresnel was below 1, so the refracted ray exists
     std::size_t k = 0;
-    double weight = 1.0;
     const std::size_t last = layers_.size() - 1;
+    std::fill(state.tau.begin(), state.tau.end(), 0.0);
+    std::fill(state.boost_log.begin(), state.boost_log.end(), 0.0);
+    std::fill(state.limit.begin(), state.limit.end(), roulette_depth);
+    state.alive = sets_;
+    state.path_cm = 0.0;
+    std::copy(first_due_.begin(), first_due_.end(), state.due.begin());
+    state.next_due_cm = first_next_due_cm_;
+    const auto alive = [&](std::size_t set) { return state.limit[set] != dead_limit; };
+    const bool weighted = options_.estimator == AbsorptionEstimator::weighted;
 
     for (std::uint32_t event = 0;; ++event) {
         const Layer& layer = layers_[k];
         if (event >= options_.max_events_per_ray) {
-            absorb(k, weight);
-            ++truncated;
+            for (std::size_t s = 0; s < sets_; ++s) {
+                if (!alive(s)) continue;
+                absorb(s, k, weight(s));
+                add(s, channels_.truncated, 1.0);
+            }
             return;
         }
-        // Steps 2-3: direction change on this crossing; step 4: absorption along it.
+        // Steps 2-3: direction change on this crossing; step 4: absorption along it, per set.
         d = scatter(layer, d, random);
-        const double survival =
-            layer.mu_a_per_cm > 0.0 ? std::exp(-layer.mu_a_per_cm * layer.thickness_cm / std::max(std::abs(d.z), 1e-12)) : 1.0;
-        if (options_.estimator == AbsorptionEstimator::weighted) {
-            const double kept = weight * survival;
-            absorb(k, weight - kept);
-            weight = kept;
-            if (weight < roulette_weight) {
-                // Russian roulette that conserves each ray's energy exactly: a survivor's added weight is
-                // taken back from this layer's absorption, a loser's weight is absorbed; both unbiased.
-                if (random.uniform() < roulette_survival) {
-                    const double boosted = weight / roulette_survival;
-                    absorb(k, weight - boosted);
-                    weight = boosted;
-                } else {
-                    absorb(k, weight);
-                    return;
+        const double path_cm = layer.thickness_cm / std::max(std::abs(d.z), 1e-12);
+        const double* mu_a = &mu_a_per_cm_[k * sets_];
+        if (weighted) {
+            double* __restrict tau = state.tau.data();
+            if (absorptance) {
+                for (std::size_t s = 0; s < sets_; ++s) {
+                    const double before = tau[s];
+                    tau[s] += mu_a[s] * path_cm;
+                    if (alive(s) && mu_a[s] > 0.0) absorb(s, k, std::exp(state.boost_log[s] - before) - weight(s));
                 }
+            } else {
+                for (std::size_t s = 0; s < sets_; ++s) tau[s] += mu_a[s] * path_cm;  // the hot loop of a replay
             }
-        } else if (random.uniform() >= survival) {
-            absorb(k, weight);
+            // Russian roulette for the sets whose weight fell below roulette_weight, conserving each ray's energy
+            // exactly: a survivor's added weight is taken back from this layer's absorption, a loser's weight is
+            // absorbed; both unbiased. A set cannot cross its limit before the ray's path has grown by
+            // (limit - tau) / (its largest mu_a) (less a margin for rounding), so each set is looked at only once the
+            // path reaches that point: the decisions are those of a check at every crossing, whatever the sets.
+            state.path_cm += path_cm;
+            if (state.path_cm >= state.next_due_cm) {
+                double next = std::numeric_limits<double>::infinity();
+                for (std::size_t s = 0; s < sets_; ++s) {
+                    if (state.due[s] <= state.path_cm) {
+                        if (tau[s] > state.limit[s]) {
+                            const double w = weight(s);
+                            if (RandomStream::keyed_uniform(ray_key, event) < roulette_survival) {
+                                state.boost_log[s] += boost_log;
+                                state.limit[s] += boost_log;
+                                absorb(s, k, w - weight(s));
+                            } else {
+                                absorb(s, k, w);
+                                state.limit[s] = dead_limit;
+                                state.due[s] = dead_limit;
+                                --state.alive;
+                                continue;
+                            }
+                        }
+                        state.due[s] = state.path_cm + (state.limit[s] - tau[s]) * inverse_max_mu_a_cm_[s] * due_margin;
+                    }
+                    next = std::min(next, state.due[s]);
+                }
+                state.next_due_cm = next;
+                if (state.alive == 0) return;
+            }
+        } else if (mu_a[0] > 0.0 && random.uniform() >= std::exp(-mu_a[0] * path_cm)) {
+            absorb(0, k, 1.0);
             return;
         }
         // Steps 5-6: the interface the ray now meets.
@@ -208,15 +328,23 @@ void BiospecWavelength::trace_one(RandomStream& random, RayScore& score, std::ui
         d = *transmitted;
         if (down) {
             if (k == last) {
-                add(channels_.transmittance, weight);
-                exit_into_bin(channels_.btdf_first_bin, d.z, weight, score);
+                for (std::size_t s = 0; s < sets_; ++s) {
+                    if (!alive(s)) continue;
+                    const double w = weight(s);
+                    add(s, channels_.transmittance, w);
+                    bin(s, channels_.btdf_first_bin, d.z, w);
+                }
                 return;
             }
             ++k;
         } else {
             if (k == 0) {
-                add(channels_.reflectance, weight);
-                exit_into_bin(channels_.brdf_first_bin, -d.z, weight, score);
+                for (std::size_t s = 0; s < sets_; ++s) {
+                    if (!alive(s)) continue;
+                    const double w = weight(s);
+                    add(s, channels_.reflectance, w);
+                    bin(s, channels_.brdf_first_bin, -d.z, w);
+                }
                 return;
             }
             --k;

@@ -3,6 +3,13 @@
 // biospec-model.md "One ray"): directions only, every layer crossed as a whole, per-crossing scattering
 // (measured profile / Rayleigh + cosine / cosine / HG), absorption per crossing, Fresnel at every
 // interface, skin-fold perturbation of surface reflection, Lambertian bottom reflector or exit.
+//
+// Absorption replay (Alerstam et al. 2008's "white Monte Carlo" for this walk): with the weighted estimator a
+// ray's path does not depend on absorption, so one traced path serves several absorption sets (stacks that
+// differ only in absorbers): set s keeps the ray's optical depth tau_s = sum over crossings of
+// mu_a,s,layer * d / |cos| and its weight is w_s = b_s exp(-tau_s) (b_s its roulette boosts). Each ray has its
+// own random stream, and Russian roulette draws a number keyed by (ray, event) shared by all sets, so a set's
+// numbers equal those of its own run to rounding.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -25,14 +32,21 @@ struct BiospecChannels {
     int absorptance_first_layer = -1;
     int brdf_first_bin = -1;
     int btdf_first_bin = -1;
-    std::size_t count = 0;
+    int truncated = -1;  // 1 for a ray stopped at the event limit (always present)
+    std::size_t count = 0;  // channels of one absorption set; set s uses [s * count, (s + 1) * count)
 
     BiospecChannels(const Quantities& quantities, std::size_t layers, std::size_t angular_bins);
 };
 
+// What makes the paths of two stacks differ in this walk ("" when they trace alike and only absorbers differ):
+// layer count, thickness, index, crossing scattering, collagen, surroundings, bottom, fold, dermal Rayleigh.
+std::string biospec_path_difference(const LayerStack& a, const LayerStack& b);
+
 class BiospecWavelength {
 public:
-    BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, const BiospecOptions& options,
+    // `sets` share everything but their absorbers (InputError naming the first difference otherwise); one set
+    // with the random estimator.
+    BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg, const BiospecOptions& options,
                       const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
     BiospecWavelength(const BiospecWavelength&) = delete;
     BiospecWavelength& operator=(const BiospecWavelength&) = delete;
@@ -40,21 +54,32 @@ public:
     void trace(RandomStream& random, std::uint64_t rays, RayTally& tally) const;
 
 private:
+    // The geometry and scattering of `stack`, with its absorption as the one set.
+    BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, const BiospecOptions& options,
+                      const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
+
     struct Layer {
         double thickness_cm;
         double n;
-        double mu_a_per_cm;
         double rayleigh_per_cm;
         double hg_g;
         CrossingScattering crossing;
         const InverseCdfTable* profile;
     };
 
-    void trace_one(RandomStream& random, RayScore& score, std::uint64_t& truncated) const;
+    struct RayState;
+    void trace_one(std::uint64_t ray_key, RayScore& score, RayState& state) const;
     Direction scatter(const Layer& layer, const Direction& d, RandomStream& random) const;
     void exit_into_bin(int first_bin, double cos_exit, double weight, RayScore& score) const;
 
     std::vector<Layer> layers_;
+    std::size_t sets_ = 1;
+    std::vector<double> mu_a_per_cm_;  // [layer * sets + set]
+    std::vector<double> max_mu_a_per_cm_;  // per set, over the layers
+    std::vector<double> inverse_max_mu_a_cm_;  // 1 / max_mu_a_per_cm_ (inf for a set without absorption)
+    std::vector<double> first_due_;  // each set's first roulette look (path, cm)
+    double first_next_due_cm_ = 0.0;
+    void prepare_roulette_bounds();
     std::optional<InverseCdfTable> stratum_corneum_table_;
     std::optional<InverseCdfTable> epidermis_table_;
     double n_above_;

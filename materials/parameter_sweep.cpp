@@ -1,0 +1,84 @@
+#include "materials/parameter_sweep.hpp"
+
+#include <cmath>
+
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+namespace {
+
+constexpr std::size_t max_steps = 1000;
+
+}  // namespace
+
+std::vector<double> ParameterSweep::values() const {
+    std::vector<double> v(steps);
+    for (std::size_t i = 0; i < steps; ++i) {
+        const double t = steps == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(steps - 1);
+        v[i] = log ? first * std::pow(last / first, t) : first + (last - first) * t;
+    }
+    return v;
+}
+
+ParameterSweep parse_sweep(std::string_view text) {
+    const std::string what = "--vary '" + std::string(text) + "'";
+    const auto eq = text.find('=');
+    if (eq == std::string_view::npos || eq == 0) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS[:log]");
+    ParameterSweep sweep;
+    sweep.field = std::string(trim(text.substr(0, eq)));
+    auto range = text.substr(eq + 1);
+    if (range.ends_with(":log")) {
+        sweep.log = true;
+        range.remove_suffix(4);
+    }
+    const auto c1 = range.find(':');
+    const auto c2 = c1 == std::string_view::npos ? c1 : range.find(':', c1 + 1);
+    if (c2 == std::string_view::npos) throw InputError(what + ": expected FIELD=FIRST:LAST:STEPS[:log]");
+    const auto first = parse_double(range.substr(0, c1));
+    const auto last = parse_double(range.substr(c1 + 1, c2 - c1 - 1));
+    const auto steps = parse_double(range.substr(c2 + 1));
+    if (!first || !last || !std::isfinite(*first) || !std::isfinite(*last)) {
+        throw InputError(what + ": FIRST and LAST must be finite numbers");
+    }
+    if (!steps || *steps != std::floor(*steps) || *steps < 1 || *steps > static_cast<double>(max_steps)) {
+        throw InputError(what + ": STEPS must be a whole number in [1, " + std::to_string(max_steps) + "]");
+    }
+    sweep.first = *first;
+    sweep.last = *last;
+    sweep.steps = static_cast<std::size_t>(*steps);
+    if (sweep.log && !(sweep.first > 0.0 && sweep.last > 0.0)) {
+        throw InputError(what + ": a log range needs FIRST and LAST > 0 (got " + format_number(sweep.first) + " and " +
+                         format_number(sweep.last) + ")");
+    }
+    if (sweep.steps > 1 && sweep.first == sweep.last) {
+        throw InputError(what + ": empty range (FIRST = LAST with " + std::to_string(sweep.steps) + " steps)");
+    }
+    return sweep;
+}
+
+std::vector<std::vector<double>> sweep_grid(const std::vector<ParameterSweep>& sweeps) {
+    std::vector<std::vector<double>> grid{{}};
+    for (const auto& sweep : sweeps) {
+        std::vector<std::vector<double>> next;
+        const auto values = sweep.values();
+        // The first sweep varies fastest: rows (later sweeps) are the outer loop.
+        for (const double v : values) {
+            for (const auto& g : grid) {
+                auto combination = g;
+                combination.push_back(v);
+                next.push_back(std::move(combination));
+            }
+        }
+        grid = std::move(next);
+    }
+    return grid;
+}
+
+std::vector<MaterialOverride> sweep_overrides(const std::vector<ParameterSweep>& sweeps, const std::vector<double>& values) {
+    std::vector<MaterialOverride> out;
+    for (std::size_t s = 0; s < sweeps.size() && s < values.size(); ++s) out.push_back({sweeps[s].field, format_number(values[s]), "--vary"});
+    return out;
+}
+
+}  // namespace skinspec

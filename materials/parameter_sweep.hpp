@@ -1,0 +1,32 @@
+#pragma once
+// Sweeps over material fields: "FIELD=FIRST:LAST:STEPS[:log]" (at most two form a grid), used by `spectrum
+// --vary` and `swatch --vary`.
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "materials/material_file.hpp"
+
+namespace skinspec {
+
+// "FIELD=FIRST:LAST:STEPS[:log]", e.g. "epidermis.melanosome_fraction=0.01:0.42:8:log": STEPS values from
+// FIRST to LAST inclusive, evenly spaced or, with ":log", evenly spaced in the logarithm (FIRST, LAST > 0);
+// STEPS = 1: FIRST alone.
+struct ParameterSweep {
+    std::string field;
+    double first = 0.0;
+    double last = 0.0;
+    std::size_t steps = 1;
+    bool log = false;
+    std::vector<double> values() const;
+};
+// InputError naming the --vary text for a malformed sweep, an empty range or a log range through 0.
+ParameterSweep parse_sweep(std::string_view text);
+
+// Every combination of the sweeps' values, the first sweep varying fastest (columns, then rows).
+std::vector<std::vector<double>> sweep_grid(const std::vector<ParameterSweep>& sweeps);
+// The overrides of one combination.
+std::vector<MaterialOverride> sweep_overrides(const std::vector<ParameterSweep>& sweeps, const std::vector<double>& values);
+
+}  // namespace skinspec
