@@ -4,6 +4,8 @@
 //  2. a 100-level melanosome sweep 0.005-0.25 (log) replayed from one set of traced paths;
 //  3. the same sweep level by level (the way without replay): 10 of its levels timed, times 10;
 //  4. the default swatch chart (40 patches, Delta E 0.3), replayed and patch by patch;
+//  5. the volumetric walk (white Monte Carlo) on the slab n 1.4, mu_s 100/cm, g 0.9, 0.1 cm: 20 absorption levels
+//     mu_a 0.1-10/cm (log) replayed from one trace against 20 white runs, 200,000 photons each;
 // and the per-set cost of a replay in ns per ray per layer (one-thread CPU time).
 // Usage: skinspec_bench_replay
 #include <chrono>
@@ -16,6 +18,7 @@
 #include "appearance/swatch_chart.hpp"
 #include "materials/parameter_sweep.hpp"
 #include "solvers/spectral_solver.hpp"
+#include "transport/rte/rte_model.hpp"
 
 using namespace skinspec;
 
@@ -107,5 +110,21 @@ int main() {
     std::cout << fmt::format("  default swatch (40 patches, Delta E 0.3): replayed {:.3f} s (worst dE {:.3f}), patch by patch {:.3f} s "
                              "(worst dE {:.3f}): {:.1f}x faster\n",
                              t_chart, worst_with, t_chart_direct, worst_without, t_chart_direct / t_chart);
+
+    RteRequest slab;
+    slab.stack.layers.push_back({1.4, 1.0, 100.0, 0.1, PhaseFunction::henyey_greenstein(0.9)});
+    slab.photons = 200'000;
+    std::vector<std::vector<double>> levels;
+    for (const double mu : parse_sweep("mu_a=0.1:10:20:log").values()) levels.push_back({mu});
+    double t_white = 0.0;
+    for (const auto& level : levels) {
+        auto own = slab;
+        own.white = true;
+        own.stack.layers[0].mu_a_per_cm = level[0];
+        t_white += seconds_of([&] { solve_rte(own); });
+    }
+    const double t_rte_replay = seconds_of([&] { solve_rte_sets(slab, levels); });
+    std::cout << fmt::format("  volumetric walk, 20 absorption levels x 200,000 photons: replayed {:.3f} s, level by level {:.3f} s: "
+                             "{:.1f}x faster\n", t_rte_replay, t_white, t_white / t_rte_replay);
     return 0;
 }

@@ -1,8 +1,5 @@
 #include "solvers/biospec_walk_solver.hpp"
 
-#include <algorithm>
-#include <optional>
-
 #include "materials/material_fields.hpp"
 #include "transport/biospec/biospec_solver.hpp"
 #include "transport/biospec/biospec_walk.hpp"
@@ -37,30 +34,8 @@ public:
     std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         const auto o = options(request.switches);
         if (o.estimator != AbsorptionEstimator::weighted) return SpectralSolver::solve_many(materials, request);
-        std::vector<std::vector<std::size_t>> groups;
-        for (std::size_t i = 0; i < materials.size(); ++i) {
-            const auto& stack = std::get<LayerStack>(*materials[i]);
-            auto group = std::find_if(groups.begin(), groups.end(), [&](const std::vector<std::size_t>& g) {
-                return g.size() < max_replay_sets && biospec_path_difference(std::get<LayerStack>(*materials[g.front()]), stack).empty();
-            });
-            if (group == groups.end()) groups.push_back({i});
-            else group->push_back(i);
-        }
-        std::vector<std::optional<SpectralResult>> by_index(materials.size());
-        for (const auto& g : groups) {
-            if (request.spectral.cancel && request.spectral.cancel->load()) break;
-            std::vector<const LayerStack*> stacks;
-            for (const auto i : g) stacks.push_back(&std::get<LayerStack>(*materials[i]));
-            auto results = solve_biospec_sets(stacks, request.spectral, o);
-            for (std::size_t j = 0; j < g.size(); ++j) by_index[g[j]] = std::move(results[j]);
-        }
-        // In order, up to the first material not solved (a cancelled run keeps what finished before it).
-        std::vector<SpectralResult> out;
-        for (auto& r : by_index) {
-            if (!r) break;
-            out.push_back(std::move(*r));
-        }
-        return out;
+        return solve_in_replay_groups(materials, request, max_replay_sets, biospec_path_difference,
+                                      [&](const std::vector<const LayerStack*>& stacks) { return solve_biospec_sets(stacks, request.spectral, o); });
     }
 
 private:

@@ -1,6 +1,7 @@
 #include "solvers/spectral_solver.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "skinspec/version.hpp"
 #include "solvers/biospec_walk_solver.hpp"
@@ -94,6 +95,35 @@ std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const M
         if (results.back().partial) break;
     }
     return results;
+}
+
+std::vector<SpectralResult> solve_in_replay_groups(
+    const std::vector<const Material*>& materials, const SolverRequest& request, std::size_t max_sets,
+    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference,
+    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&)>& solve_group) {
+    std::vector<std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        const auto& stack = std::get<LayerStack>(*materials[i]);
+        auto group = std::find_if(groups.begin(), groups.end(), [&](const std::vector<std::size_t>& g) {
+            return g.size() < max_sets && path_difference(std::get<LayerStack>(*materials[g.front()]), stack).empty();
+        });
+        if (group == groups.end()) groups.push_back({i});
+        else group->push_back(i);
+    }
+    std::vector<std::optional<SpectralResult>> by_index(materials.size());
+    for (const auto& g : groups) {
+        if (request.spectral.cancel && request.spectral.cancel->load()) break;
+        std::vector<const LayerStack*> stacks;
+        for (const auto i : g) stacks.push_back(&std::get<LayerStack>(*materials[i]));
+        auto results = solve_group(stacks);
+        for (std::size_t j = 0; j < g.size(); ++j) by_index[g[j]] = std::move(results[j]);
+    }
+    std::vector<SpectralResult> out;
+    for (auto& r : by_index) {
+        if (!r) break;
+        out.push_back(std::move(*r));
+    }
+    return out;
 }
 
 SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&) const {

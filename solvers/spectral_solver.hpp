@@ -76,6 +76,14 @@ public:
     virtual SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const;
 };
 
+// For solve_many implementations that replay absorption: groups the layered materials whose paths agree
+// (`path_difference` empty), at most `max_sets` per group, solves each group with `solve_group` (one result per
+// stack, in order) and returns the results in the materials' order, up to the first one not solved (cancelled).
+std::vector<SpectralResult> solve_in_replay_groups(
+    const std::vector<const Material*>& materials, const SolverRequest& request, std::size_t max_sets,
+    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference,
+    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&)>& solve_group);
+
 // The registered solvers, in the order `--mode` lists them.
 const std::vector<const SpectralSolver*>& solver_registry();
 // InputError naming the allowed solvers for an unknown name; `what` is the option (e.g. "--mode").

@@ -1,5 +1,7 @@
 #include "solvers/volumetric_walk_solver.hpp"
 
+#include "materials/material_fields.hpp"
+
 namespace skinspec {
 namespace {
 
@@ -17,15 +19,24 @@ public:
             .uncertainty = true,
             .radial_profiles = false,
             .switches = {SolverSwitch::boundaries},
-            .replay_fields = {},
+            .replay_fields = absorption_only_fields(),
             .material_needs = "volumetric_mu_s_per_cm_at_500nm (and volumetric_g / volumetric_phase) in every layer",
         };
         return caps;
     }
     SpectralResult solve(const Material& material, const SolverRequest& request) const override {
-        return solve_rte_spectrum(std::get<LayerStack>(material), request.spectral,
-                                  request.switches.boundaries.value_or(BoundaryMode::random));
+        return solve_rte_spectrum(std::get<LayerStack>(material), request.spectral, boundaries(request));
     }
+    // Absorption replay: materials whose volumetric paths agree are traced once per wavelength in white Monte
+    // Carlo (at most max_replay_sets together; a material alone runs MCML's way).
+    std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
+        return solve_in_replay_groups(materials, request, max_replay_sets, volumetric_path_difference,
+                                      [&](const std::vector<const LayerStack*>& stacks) { return solve_rte_spectra(stacks, request.spectral, boundaries(request), false); });
+    }
+
+private:
+    static constexpr std::size_t max_replay_sets = 64;
+    static BoundaryMode boundaries(const SolverRequest& request) { return request.switches.boundaries.value_or(BoundaryMode::random); }
 };
 
 }  // namespace

@@ -142,3 +142,46 @@ TEST_CASE("bad volumetric inputs are input errors", "[rte_solver]") {
     r.incidence_deg = 90.0;
     CHECK_THROWS_AS(solve_rte(r), InputError);
 }
+
+TEST_CASE("white Monte Carlo reproduces the adding-doubling slabs too", "[rte_solver][replay]") {
+    // The same independent reference as MCML's way: paths from mu_s, absorption by Beer-Lambert along them.
+    for (const auto& ref : adding_doubling_slabs()) {
+        RteRequest request;
+        request.stack = ref.stack();
+        request.photons = 200'000;
+        request.white = true;
+        const auto r = solve_rte(request);
+        INFO("a " << ref.albedo << " b " << ref.optical_thickness << " g " << ref.g << " n " << ref.refractive_index);
+        const double rd = ref.diffuse_reflectance, tt = ref.total_transmittance;
+        CHECK(std::abs(r.diffuse_reflectance.value - rd) < 4.0 * r.diffuse_reflectance.stderr + 1e-3 * rd);
+        CHECK(std::abs(r.transmittance.value - tt) < 4.0 * r.transmittance.stderr + 1e-3 * tt + 1e-12);
+        CHECK(energy(r) == Approx(1.0).margin(1e-9));
+    }
+}
+
+TEST_CASE("absorption replay: each replayed set equals its own white run, grids included", "[rte_solver][replay]") {
+    auto request = slab(1.0, 100.0, 0.9, 0.1, 1.4, 4000);
+    request.stack.layers.push_back({1.37, 0.5, 60.0, 0.05, PhaseFunction::henyey_greenstein(0.8)});
+    request.grid = {0.01, 0.01, 20, 20, 6};
+    request.seed = 5;
+    const std::vector<std::vector<double>> sets{{0.1, 0.05}, {1.0, 0.5}, {20.0, 3.0}};
+    const auto replayed = solve_rte_sets(request, sets);
+    REQUIRE(replayed.size() == 3);
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+        auto own = request;
+        own.white = true;
+        for (std::size_t k = 0; k < 2; ++k) own.stack.layers[k].mu_a_per_cm = sets[s][k];
+        const auto direct = solve_rte(own);
+        const auto& a = replayed[s];
+        CHECK(a.diffuse_reflectance.value == Approx(direct.diffuse_reflectance.value).margin(1e-12));
+        CHECK(a.diffuse_reflectance.stderr == Approx(direct.diffuse_reflectance.stderr).margin(1e-12));
+        CHECK(a.transmittance.value == Approx(direct.transmittance.value).margin(1e-12));
+        for (std::size_t k = 0; k < 2; ++k) CHECK(a.absorption_layers[k].value == Approx(direct.absorption_layers[k].value).margin(1e-12));
+        for (std::size_t i = 0; i < a.absorption_rz.size(); ++i) CHECK(a.absorption_rz[i].value == Approx(direct.absorption_rz[i].value).margin(1e-9));
+        for (std::size_t i = 0; i < a.reflectance_ra.size(); ++i) CHECK(a.reflectance_ra[i].value == Approx(direct.reflectance_ra[i].value).margin(1e-9));
+        CHECK(energy(a) == Approx(1.0).margin(1e-9));  // per set
+    }
+    // More absorption, less light back: an ordering the sets must keep.
+    CHECK(replayed[0].diffuse_reflectance.value > replayed[1].diffuse_reflectance.value);
+    CHECK(replayed[1].diffuse_reflectance.value > replayed[2].diffuse_reflectance.value);
+}

@@ -56,6 +56,9 @@ struct RteRequest {
     BoundaryMode boundaries = BoundaryMode::random;
     RteGrid grid;
     std::uint64_t max_steps_per_photon = 100'000'000;
+    // White Monte Carlo (Alerstam et al. 2008): paths from mu_s alone, absorption by Beer-Lambert along them;
+    // statistically the same answers as MCML's way, and the mode absorption replay uses.
+    bool white = false;
     std::function<void(const Progress&)> on_progress;
     const CancelFlag* cancel = nullptr;
 };
@@ -78,8 +81,20 @@ struct RteResult {
 
 RteResult solve_rte(const RteRequest& request);
 
+// Absorption replay: one white trace of the request's geometry and scattering re-weighted for every set (mu_a per
+// layer, 1/cm); one result per set, each equal to its own white run (request.white with that mu_a) to rounding.
+// A stderr target is met by every set.
+std::vector<RteResult> solve_rte_sets(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets);
+
 // A material's spectra with the volumetric walk, in the shared result type and schema (model "rte"):
 // R = specular + diffuse, R_specular, T, A per layer; requires volumetric scattering in every layer.
 SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest& request, BoundaryMode boundaries = BoundaryMode::random);
+// Absorption replay of stacks that differ only in absorbers (white Monte Carlo, one trace per wavelength), one
+// result per stack; `white` with one stack: its own white run (what a replayed set equals to rounding).
+std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack*>& stacks, const SpectralRequest& request,
+                                              BoundaryMode boundaries, bool white);
+// What makes the volumetric paths of two stacks differ ("" when only absorbers differ): layer count, thickness,
+// index, volumetric scattering, surroundings, bottom.
+std::string volumetric_path_difference(const LayerStack& a, const LayerStack& b);
 
 }  // namespace skinspec
