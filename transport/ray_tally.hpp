@@ -55,6 +55,14 @@ public:
         truncated_ += other.truncated_;
     }
 
+    // A contribution to a channel that a ray reaches at most once (an exit: R, T, an angular bin), added straight
+    // into the sums: the same as going through the ray's RayScore, without its bookkeeping. The ray itself is
+    // still counted by add_ray.
+    void add_single(std::size_t channel, double v) {
+        sum_[channel] += v;
+        sum_sq_[channel] += v * v;
+    }
+
     // Rays stopped at the event limit (reported, not a channel).
     void add_truncated(std::uint64_t rays) { truncated_ += rays; }
     std::uint64_t truncated() const { return truncated_; }

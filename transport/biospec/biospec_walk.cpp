@@ -22,7 +22,7 @@ constexpr double roulette_survival = 0.1;
 const double roulette_depth = -std::log(roulette_weight);     // tau - ln(boost) beyond which a set plays roulette
 const double boost_log = -std::log(roulette_survival);
 constexpr double dead_limit = std::numeric_limits<double>::infinity();  // the limit of a set that lost the roulette
-constexpr double due_margin = 1.0 - 1e-9;  // the look-ahead bound a little early, so rounding never skips a crossing
+constexpr std::uint32_t roulette_every = 8;  // crossings between two roulette looks at the sets' weights
 
 }  // namespace
 
@@ -74,9 +74,6 @@ BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::s
 struct BiospecWavelength::RayState {
     std::vector<double> tau, boost_log, limit;
     std::size_t alive = 0;
-    double path_cm = 0.0;  // the ray's path so far
-    std::vector<double> due;  // per set: the path at which to look at it next (inf: never)
-    double next_due_cm = 0.0; // the smallest of them
 };
 
 BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg,
@@ -97,21 +94,8 @@ BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets,
             mu_a_per_cm_[k * sets_ + s] = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
         }
     }
-    prepare_roulette_bounds();
 }
 
-void BiospecWavelength::prepare_roulette_bounds() {
-    max_mu_a_per_cm_.assign(sets_, 0.0);
-    for (std::size_t k = 0; k < layers_.size(); ++k) {
-        for (std::size_t s = 0; s < sets_; ++s) max_mu_a_per_cm_[s] = std::max(max_mu_a_per_cm_[s], mu_a_per_cm_[k * sets_ + s]);
-    }
-    inverse_max_mu_a_cm_.clear();
-    for (const double mu : max_mu_a_per_cm_) inverse_max_mu_a_cm_.push_back(mu > 0.0 ? 1.0 / mu : std::numeric_limits<double>::infinity());
-    // Sets without absorption never play roulette (due inf).
-    first_due_.clear();
-    for (std::size_t s = 0; s < sets_; ++s) first_due_.push_back(roulette_depth * inverse_max_mu_a_cm_[s] * due_margin);
-    first_next_due_cm_ = *std::min_element(first_due_.begin(), first_due_.end());
-}
 
 BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg,
                                      const BiospecOptions& options, const BiospecChannels& channels,
@@ -148,21 +132,22 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
         layers_.push_back({o.thickness_cm, o.refractive_index, o.rayleigh_per_cm, o.hg_g, o.crossing, profile});
         mu_a_per_cm_.push_back(o.mu_a_per_cm);
     }
-    prepare_roulette_bounds();
 }
 
 void BiospecWavelength::trace(RandomStream& random, std::uint64_t rays, RayTally& tally) const {
-    RayState state{std::vector<double>(sets_), std::vector<double>(sets_), std::vector<double>(sets_), 0, 0.0, std::vector<double>(sets_), 0.0};
-    trace_rays(channels_.count * sets_, rays, tally, [&](RayScore& score, std::uint64_t&) { trace_one(random.bits64(), score, state); });
+    RayState state{std::vector<double>(sets_), std::vector<double>(sets_), std::vector<double>(sets_), 0};
+    RayScore score(channels_.count * sets_);
+    for (std::uint64_t i = 0; i < rays; ++i) {
+        trace_one(random.bits64(), score, tally, state);
+        tally.add_ray(score);
+    }
 }
 
-void BiospecWavelength::exit_into_bin(int first_bin, double cos_exit, double weight, RayScore& score) const {
-    if (first_bin < 0) return;
+std::size_t BiospecWavelength::exit_bin(double cos_exit) const {
     // Edges are stored as decreasing cosines; find the bin whose [cos_hi, cos_lo] holds cos_exit.
     const auto it = std::upper_bound(bin_edges_cos_.begin(), bin_edges_cos_.end(), cos_exit, std::greater<>());
     const auto upper = static_cast<std::size_t>(it - bin_edges_cos_.begin());
-    const std::size_t bin = upper == 0 ? 0 : std::min(upper - 1, bin_edges_cos_.size() - 2);
-    score.add(static_cast<std::size_t>(first_bin) + bin, weight);
+    return upper == 0 ? 0 : std::min(upper - 1, bin_edges_cos_.size() - 2);
 }
 
 // Step 2/3 of the specification: the direction change on one crossing of `layer`.
@@ -205,7 +190,7 @@ Direction BiospecWavelength::scatter(const Layer& layer, const Direction& d, Ran
     return d;
 }
 
-void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RayState& state) const {
+void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RayTally& tally, RayState& state) const {
     auto random = RandomStream::for_ray(ray_key);
     const auto add = [&](std::size_t set, int channel, double value) {
         if (channel >= 0) score.add(set * channels_.count + static_cast<std::size_t>(channel), value);
@@ -215,8 +200,12 @@ void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RaySta
         if (absorptance) add(set, channels_.absorptance_first_layer + static_cast<int>(layer), value);
     };
     const auto weight = [&](std::size_t set) { return std::exp(state.boost_log[set] - state.tau[set]); };
+    // Exits reach each channel once per ray: straight into the tally.
+    const auto leave = [&](std::size_t set, int channel, double w) {
+        if (channel >= 0) tally.add_single(set * channels_.count + static_cast<std::size_t>(channel), w);
+    };
     const auto bin = [&](std::size_t set, int first_bin, double cos_exit, double w) {
-        if (first_bin >= 0) exit_into_bin(static_cast<int>(set * channels_.count) + first_bin, cos_exit, w, score);
+        if (first_bin >= 0) leave(set, first_bin + static_cast<int>(exit_bin(cos_exit)), w);
     };
 
     // Step 1: air -> stratum corneum. Reflection is perturbed by the skin-fold distribution.
@@ -227,8 +216,8 @@ void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RaySta
             const Direction out = deflect(mirror(incident_), c, std::sqrt(std::max(0.0, 1.0 - c * c)), sample_azimuth(random));
             if (out.z < 0.0) {
                 for (std::size_t s = 0; s < sets_; ++s) {
-                    add(s, channels_.reflectance, 1.0);
-                    add(s, channels_.specular, 1.0);
+                    leave(s, channels_.reflectance, 1.0);
+                    leave(s, channels_.specular, 1.0);
                     bin(s, channels_.brdf_first_bin, -out.z, 1.0);
                 }
                 return;
@@ -245,9 +234,6 @@ void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RaySta
     std::fill(state.boost_log.begin(), state.boost_log.end(), 0.0);
     std::fill(state.limit.begin(), state.limit.end(), roulette_depth);
     state.alive = sets_;
-    state.path_cm = 0.0;
-    std::copy(first_due_.begin(), first_due_.end(), state.due.begin());
-    state.next_due_cm = first_next_due_cm_;
     const auto alive = [&](std::size_t set) { return state.limit[set] != dead_limit; };
     const bool weighted = options_.estimator == AbsorptionEstimator::weighted;
 
@@ -276,35 +262,23 @@ void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RaySta
             } else {
                 for (std::size_t s = 0; s < sets_; ++s) tau[s] += mu_a[s] * path_cm;  // the hot loop of a replay
             }
-            // Russian roulette for the sets whose weight fell below roulette_weight, conserving each ray's energy
-            // exactly: a survivor's added weight is taken back from this layer's absorption, a loser's weight is
-            // absorbed; both unbiased. A set cannot cross its limit before the ray's path has grown by
-            // (limit - tau) / (its largest mu_a) (less a margin for rounding), so each set is looked at only once the
-            // path reaches that point: the decisions are those of a check at every crossing, whatever the sets.
-            state.path_cm += path_cm;
-            if (state.path_cm >= state.next_due_cm) {
-                double next = std::numeric_limits<double>::infinity();
+            // Russian roulette, every roulette_every crossings, for the sets whose weight fell below roulette_weight,
+            // conserving each ray's energy exactly: a survivor's added weight is taken back from this layer's
+            // absorption, a loser's weight is absorbed; both unbiased.
+            if (event % roulette_every == roulette_every - 1) {
                 for (std::size_t s = 0; s < sets_; ++s) {
-                    if (state.due[s] <= state.path_cm) {
-                        if (tau[s] > state.limit[s]) {
-                            const double w = weight(s);
-                            if (RandomStream::keyed_uniform(ray_key, event) < roulette_survival) {
-                                state.boost_log[s] += boost_log;
-                                state.limit[s] += boost_log;
-                                absorb(s, k, w - weight(s));
-                            } else {
-                                absorb(s, k, w);
-                                state.limit[s] = dead_limit;
-                                state.due[s] = dead_limit;
-                                --state.alive;
-                                continue;
-                            }
-                        }
-                        state.due[s] = state.path_cm + (state.limit[s] - tau[s]) * inverse_max_mu_a_cm_[s] * due_margin;
+                    if (!(tau[s] > state.limit[s])) continue;  // also skips the sets that lost (limit inf)
+                    const double w = weight(s);
+                    if (RandomStream::keyed_uniform(ray_key, event) < roulette_survival) {
+                        state.boost_log[s] += boost_log;
+                        state.limit[s] += boost_log;
+                        absorb(s, k, w - weight(s));
+                    } else {
+                        absorb(s, k, w);
+                        state.limit[s] = dead_limit;
+                        --state.alive;
                     }
-                    next = std::min(next, state.due[s]);
                 }
-                state.next_due_cm = next;
                 if (state.alive == 0) return;
             }
         } else if (mu_a[0] > 0.0 && random.uniform() >= std::exp(-mu_a[0] * path_cm)) {
@@ -331,7 +305,7 @@ void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RaySta
                 for (std::size_t s = 0; s < sets_; ++s) {
                     if (!alive(s)) continue;
                     const double w = weight(s);
-                    add(s, channels_.transmittance, w);
+                    leave(s, channels_.transmittance, w);
                     bin(s, channels_.btdf_first_bin, d.z, w);
                 }
                 return;
@@ -342,7 +316,7 @@ void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RaySta
                 for (std::size_t s = 0; s < sets_; ++s) {
                     if (!alive(s)) continue;
                     const double w = weight(s);
-                    add(s, channels_.reflectance, w);
+                    leave(s, channels_.reflectance, w);
                     bin(s, channels_.brdf_first_bin, -d.z, w);
                 }
                 return;

@@ -8,8 +8,8 @@
 // ray's path does not depend on absorption, so one traced path serves several absorption sets (stacks that
 // differ only in absorbers): set s keeps the ray's optical depth tau_s = sum over crossings of
 // mu_a,s,layer * d / |cos| and its weight is w_s = b_s exp(-tau_s) (b_s its roulette boosts). Each ray has its
-// own random stream, and Russian roulette draws a number keyed by (ray, event) shared by all sets, so a set's
-// numbers equal those of its own run to rounding.
+// own random stream, and Russian roulette (looked at every 8 crossings) draws a number keyed by (ray, event)
+// shared by all sets, so a set's numbers equal those of its own run to rounding.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -68,18 +68,13 @@ private:
     };
 
     struct RayState;
-    void trace_one(std::uint64_t ray_key, RayScore& score, RayState& state) const;
+    void trace_one(std::uint64_t ray_key, RayScore& score, RayTally& tally, RayState& state) const;
     Direction scatter(const Layer& layer, const Direction& d, RandomStream& random) const;
-    void exit_into_bin(int first_bin, double cos_exit, double weight, RayScore& score) const;
+    std::size_t exit_bin(double cos_exit) const;
 
     std::vector<Layer> layers_;
     std::size_t sets_ = 1;
     std::vector<double> mu_a_per_cm_;  // [layer * sets + set]
-    std::vector<double> max_mu_a_per_cm_;  // per set, over the layers
-    std::vector<double> inverse_max_mu_a_cm_;  // 1 / max_mu_a_per_cm_ (inf for a set without absorption)
-    std::vector<double> first_due_;  // each set's first roulette look (path, cm)
-    double first_next_due_cm_ = 0.0;
-    void prepare_roulette_bounds();
     std::optional<InverseCdfTable> stratum_corneum_table_;
     std::optional<InverseCdfTable> epidermis_table_;
     double n_above_;
