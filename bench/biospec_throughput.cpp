@@ -10,20 +10,13 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "bench/bench_timing.hpp"
 #include "transport/biospec/biospec_solver.hpp"
 #include "materials/material_file.hpp"
 
 using namespace skinspec;
+using skinspec::bench::seconds_of;
 
-namespace {
-
-double seconds_of(const std::function<void()>& f) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     const std::uint64_t rays = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 4'000'000;

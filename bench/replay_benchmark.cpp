@@ -15,20 +15,17 @@
 #include <fmt/format.h>
 #include <tbb/task_arena.h>
 
+#include "bench/bench_timing.hpp"
 #include "appearance/swatch_chart.hpp"
 #include "materials/parameter_sweep.hpp"
 #include "solvers/spectral_solver.hpp"
 #include "transport/rte/rte_model.hpp"
 
 using namespace skinspec;
+using skinspec::bench::seconds_of;
 
 namespace {
 
-double seconds_of(const std::function<void()>& f) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::uint64_t total_rays(const SpectralResult& r) {
     std::uint64_t rays = 0;

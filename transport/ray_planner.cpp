@@ -22,6 +22,7 @@ RayPlanner::RayPlanner(const SpectralRequest& request, std::size_t channels, std
     planned_.assign(n, adaptive_ ? std::min<std::uint64_t>(budget, std::max<std::uint64_t>(1, request.initial_batches) * rays_per_batch_)
                                  : budget);
     expected_ = planned_;
+    update_totals();
 }
 
 std::vector<BatchTask> RayPlanner::next_round() const {
@@ -93,16 +94,17 @@ void RayPlanner::absorb(const std::vector<BatchTask>& tasks, const RoundOutput& 
         planned_[w] = std::clamp<std::uint64_t>(more, rays_per_batch_, budget - used);
         expected_[w] = static_cast<std::uint64_t>(std::min(std::ceil(needed), static_cast<double>(budget)));
     }
+    update_totals();
 }
 
-std::uint64_t RayPlanner::rays_expected() const {
-    std::uint64_t total = 0;
-    for (std::size_t w = 0; w < expected_.size(); ++w) total += std::max(expected_[w], state_.tallies[w].rays());
-    return total;
-}
+std::uint64_t RayPlanner::rays_expected() const { return rays_expected_; }
 
-std::size_t RayPlanner::wavelengths_finished() const {
-    return static_cast<std::size_t>(std::count(state_.finished.begin(), state_.finished.end(), true));
+std::size_t RayPlanner::wavelengths_finished() const { return wavelengths_finished_; }
+
+void RayPlanner::update_totals() {
+    rays_expected_ = 0;
+    for (std::size_t w = 0; w < expected_.size(); ++w) rays_expected_ += std::max(expected_[w], state_.tallies[w].rays());
+    wavelengths_finished_ = static_cast<std::size_t>(std::count(state_.finished.begin(), state_.finished.end(), true));
 }
 
 DriverOutcome RayPlanner::outcome(bool cancelled) const {

@@ -28,13 +28,15 @@ public:
     std::vector<BatchTask> next_round() const;
     // Takes a round's results: a wavelength whose batches all ran is merged and re-planned.
     void absorb(const std::vector<BatchTask>& tasks, const RoundOutput& round);
-    // Rays the whole request is expected to need, from the estimates so far (the budget without a target).
+    // Rays the whole request is expected to need, from the estimates so far (the budget without a target), and
+    // the wavelengths finished: both as of the last round (cheap to ask after every batch).
     std::uint64_t rays_expected() const;
     std::size_t wavelengths_finished() const;
     DriverOutcome outcome(bool cancelled) const;
 
 private:
     std::uint64_t batches_for(std::uint64_t rays) const { return (rays + rays_per_batch_ - 1) / rays_per_batch_; }
+    void update_totals();
 
     const SpectralRequest& request_;
     std::vector<std::size_t> target_channels_;
@@ -46,6 +48,8 @@ private:
     std::vector<std::uint64_t> next_batch_;
     std::vector<std::uint64_t> planned_;   // rays of the next round, per wavelength
     std::vector<std::uint64_t> expected_;  // rays each wavelength is expected to need in all
+    std::uint64_t rays_expected_ = 0;
+    std::size_t wavelengths_finished_ = 0;
 };
 
 // Plans rounds and runs them on `executor` until every wavelength is finished or the request is cancelled.
