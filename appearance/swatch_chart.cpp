@@ -57,6 +57,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     spectral.wavelengths = chart.wavelengths;
     spectral.quantities = Quantities{true, false, false, false};
     spectral.seed = request.seed;
+    spectral.geometry = request.geometry;
     spectral.max_rays_per_wavelength = request.max_rays_per_wavelength;
     spectral.rays_per_batch = 256;
     spectral.initial_batches = 2;
@@ -113,6 +114,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     }
     chart.settings["material"] = request.material;
     chart.settings["solver"] = request.solver;
+    chart.settings["geometry"] = std::string(to_string(request.geometry));
     chart.settings["delta_e_target"] = request.delta_e;
     chart.settings["illuminant"] = std::string(short_name(request.illuminant));
     chart.settings["observer"] = std::string(short_name(request.observer));

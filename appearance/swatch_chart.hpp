@@ -30,6 +30,7 @@ struct SwatchRequest {
     std::uint64_t seed = 1;
     std::uint64_t max_rays_per_wavelength = 1'000'000;
     std::string solver = "biospec";  // a registry name (solvers/spectral_solver.hpp)
+    MeasurementGeometry geometry = MeasurementGeometry::sci;  // the colour of R measured this way
     std::size_t patches_per_sweep = 64;  // patches solved together (replayed); 1: each patch traced on its own
     SolverSwitches switches;
     std::function<void(std::size_t patches_done, std::size_t patches_total)> on_progress;

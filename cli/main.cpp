@@ -19,6 +19,7 @@
 #include "cli/mcml_command.hpp"
 #include "cli/profile_command.hpp"
 #include "cli/fit_profile_command.hpp"
+#include "cli/fit_spectrum_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_mcml_command(app);
     skinspec::cli::add_profile_command(app);
     skinspec::cli::add_fit_profile_command(app);
+    skinspec::cli::add_fit_spectrum_command(app);
     skinspec::cli::add_bench_command(app);
     skinspec::cli::add_stress_command(app);
     try {

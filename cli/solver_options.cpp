@@ -31,4 +31,13 @@ SolverSwitches solver_switches(const SolverOptions& o) {
     return s;
 }
 
+void add_geometry_option(CLI::App& command, SolverOptions& o) {
+    command.add_option("--geometry", o.geometry,
+                       "How R is measured: sci (specular included, all light leaving the top), sce (specular excluded: without "
+                       "the first-surface reflection), 0-45 (normal incidence, reflectance factor at 40-50 deg exit; biospec)")
+        ->capture_default_str();
+}
+
+MeasurementGeometry measurement_geometry(const SolverOptions& o) { return parse_measurement_geometry(o.geometry, "--geometry"); }
+
 }  // namespace skinspec::cli

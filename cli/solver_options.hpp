@@ -16,6 +16,7 @@ struct SolverOptions {
     std::string fold_into_skin;  // "" = unset
     std::string boundaries;      // "" = unset
     double roughness = 0.0;      // 0 = unset (smooth)
+    std::string geometry = "sci";
 };
 
 // Adds --mode and the switches with help texts that name the solvers taking each. `default_text` describes
@@ -25,5 +26,8 @@ void add_solver_options(CLI::App& command, SolverOptions& options, const std::st
 // The solver named by --mode, or `fallback` when --mode was not given.
 const SpectralSolver& chosen_solver(const SolverOptions& options, std::string_view fallback = "biospec");
 SolverSwitches solver_switches(const SolverOptions& options);
+// --geometry (for the commands whose R is a measurement: spectrum, swatch, fit-spectrum).
+void add_geometry_option(CLI::App& command, SolverOptions& options);
+MeasurementGeometry measurement_geometry(const SolverOptions& options);
 
 }  // namespace skinspec::cli

@@ -87,6 +87,7 @@ void run_spectrum(const SpectrumOptions& o) {
     spectral.wavelengths = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
     spectral.quantities = parse_quantities(o.quantities);
     spectral.incidence_deg = o.incidence_deg;
+    spectral.geometry = measurement_geometry(o.solver);
     spectral.seed = o.seed;
     spectral.max_rays_per_wavelength = o.max_rays;
     if (o.rays > 0) request.fixed_rays_per_wavelength = o.rays;
@@ -202,8 +203,11 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
     cmd->add_option("--reflector", o->reflector, "Hypodermis reflector on|off (off: light leaving the bottom is transmittance)");
-    cmd->add_option("--variant", o->variant, "Model variant: biospec (default) or biospec-2004");
+    cmd->add_option("--variant", o->variant,
+                    "Model variant: biospec (default), biospec-2004, biospec-authors-code (reproduces the authors' current code, "
+                    "its defects included; not physics)");
     add_solver_options(*cmd, o->solver);
+    add_geometry_option(*cmd, o->solver);
     cmd->add_option("--output", o->output, "Write the result to FILE.csv or FILE.json");
     cmd->add_option("--plot", o->plot, "Plot R (and T) with +-2 standard-error bands to FILE.png or FILE.svg");
     cmd->add_flag("--overwrite,--force", o->force, "Replace the --output / --plot files if they exist");

@@ -96,6 +96,10 @@ void run_lit_swatch(const SwatchOptions& o) {
     // A lit patch needs radial profiles: the multipole unless --mode names another solver.
     const auto& solver = chosen_solver(o.solver, "multipole");
     const auto switches = solver_switches(o.solver);
+    if (measurement_geometry(o.solver) != MeasurementGeometry::sci) {
+        throw InputError("--geometry " + o.solver.geometry + ": a lit patch shows the light leaving every point of the surface (sci); "
+                         "other geometries are for the chart");
+    }
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
@@ -178,6 +182,7 @@ void run_swatch(const SwatchOptions& o) {
     request.max_rays_per_wavelength = o.max_rays;
     request.solver = std::string(chosen_solver(o.solver).name());
     request.switches = solver_switches(o.solver);
+    request.geometry = measurement_geometry(o.solver);
     if (o.patch_px < 32 || o.patch_px > 2048) throw InputError("--patch-size " + std::to_string(o.patch_px) + " is outside [32, 2048]");
     if (!o.outputs.empty()) {
         check_chart_size({request.sweeps.empty() ? 1 : request.sweeps[0].steps, request.sweeps.size() < 2 ? 1 : request.sweeps[1].steps, o.patch_px, 8});
@@ -320,6 +325,7 @@ void add_swatch_command(CLI::App& app) {
                     "whose luminance is the irradiance)")
         ->expected(1, 2);
     add_solver_options(*cmd, o->solver, "biospec; multipole with --lit");
+    add_geometry_option(*cmd, o->solver);
     cmd->add_option("--wavelengths", o->wavelengths, "With --lit: wavelengths (nm) for layered materials")->capture_default_str();
     cmd->add_option("--field", o->field_mm, "With --lit: width of the patch in mm")->capture_default_str();
     cmd->add_option("--pixels", o->pixels, "With --lit: image width in pixels, [8, 4096]")->capture_default_str();

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
@@ -16,6 +17,7 @@ constexpr FieldRange refractive_index{1.0, 4.0, false, false};
 constexpr FieldRange anisotropy{-1.0, 1.0, false, false};
 constexpr FieldRange fold_ratio{0.0, 1.0, true, false};
 constexpr FieldRange power_law_exponent{-10.0, 10.0, false, false};
+constexpr FieldRange vessel_radius{0.0, 1000.0, false, false};
 
 template <class Owner>
 void add_rows(std::vector<FieldRow>& rows, const std::string& prefix, const std::vector<NumberField<Owner>>& fields) {
@@ -48,6 +50,8 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
         {"hemoglobin_g_per_l", "g/L", non_negative, &L::hemoglobin_g_per_l, false, "haemoglobin in whole blood", true},
         {"bilirubin_g_per_l", "g/L", non_negative, &L::bilirubin_g_per_l, false, "bilirubin in whole blood", true},
         {"carotene_g_per_l", "g/L", non_negative, &L::carotene_g_per_l, false, "beta-carotene in the background tissue", true},
+        {"vessel_radius_um", "um", vessel_radius, &L::vessel_radius_um, false,
+         "mean blood-vessel radius for the packaging correction (0: off, blood spread evenly)", true},
         {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein"},
         {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)"},
         {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius"},
@@ -102,6 +106,15 @@ const std::vector<ModelField>& model_fields() {
         {"hemoglobin_molar_mass_g_per_mol", "g/mol", &M::hemoglobin_molar_mass_g_per_mol, positive, "haemoglobin molar mass", true},
         {"bilirubin_molar_mass_g_per_mol", "g/mol", &M::bilirubin_molar_mass_g_per_mol, positive, "bilirubin molar mass", true},
         {"carotene_molar_mass_g_per_mol", "g/mol", &M::carotene_molar_mass_g_per_mol, positive, "beta-carotene molar mass", true},
+        {"rayleigh_turn", "", &M::rayleigh_turn, {},
+         "where a Rayleigh-scattered ray turns: sampled_depth (free path ~ Exp(beta)), whole_crossing (the 2004 text), "
+         "no_absorption (authors' code: upward-turned rays charged nothing in the layer)"},
+        {"swapped_upward_indices", "", &M::swapped_upward_indices, {},
+         "authors' code: upward crossings evaluate the interface with its indices swapped (no TIR at SC -> air)"},
+        {"bottom_exit_fresnel", "", &M::bottom_exit_fresnel, {}, "Fresnel test where light leaves the bottom (boundary = exit)"},
+        {"redraw_reversals_in_stratum_corneum", "", &M::redraw_reversals_in_stratum_corneum, {},
+         "re-draw an SC perturbation that reverses the travel sense (false: authors' code, the ray leaves / passes on)"},
+        {"fold_formula", "", &M::fold_formula, {}, "skin-fold perturbation: biospec_2004 or authors_code"},
     };
     return fields;
 }
@@ -109,7 +122,7 @@ const std::vector<ModelField>& model_fields() {
 const std::vector<NamedField>& named_fields() {
     static const std::vector<NamedField> fields{
         {"", "kind", "layered, homogeneous", "what the file describes (default layered)"},
-        {"model", "variant", "biospec, biospec-2004", "model variant; sets every [model] switch not given"},
+        {"model", "variant", "biospec, biospec-2004, biospec-authors-code", "model variant; sets every [model] switch not given"},
         {"bottom", "boundary", "diffuse_reflector, exit", "hypodermis reflector or an open bottom"},
         {"layers", "name", "lower-case letters, digits, _", "layer name, unique in the stack"},
         {"layers", "scattering", "measured_stratum_corneum, measured_epidermis, rayleigh_cosine, cosine, henyey_greenstein",
@@ -131,8 +144,16 @@ std::vector<FieldRow> material_field_rows() {
     named("", "");
     named("model", "model.");
     for (const auto& f : model_fields()) {
-        const bool number = std::holds_alternative<double ModelOptions::*>(f.member);
-        rows.push_back({"model." + std::string(f.key), std::string(f.unit), number ? f.range.text() : "true, false", std::string(f.doc)});
+        const std::string allowed = std::visit(
+            [&](auto member) -> std::string {
+                using T = std::remove_cvref_t<decltype(ModelOptions{}.*member)>;
+                if constexpr (std::is_same_v<T, double>) return f.range.text();
+                else if constexpr (std::is_same_v<T, RayleighTurn>) return "sampled_depth, whole_crossing, no_absorption";
+                else if constexpr (std::is_same_v<T, FoldFormula>) return "biospec_2004, authors_code";
+                else return "true, false";
+            },
+            f.member);
+        rows.push_back({"model." + std::string(f.key), std::string(f.unit), allowed, std::string(f.doc)});
     }
     add_rows(rows, "surface.", surface_fields());
     named("bottom", "bottom.");
@@ -153,6 +174,45 @@ std::vector<std::string> absorption_only_fields() {
         if (f.absorption_only) keys.push_back("model." + std::string(f.key));
     }
     return keys;
+}
+
+bool layer_matches(std::string_view layer_name, std::string_view head) {
+    return layer_name == head || (layer_name.size() > head.size() + 1 && layer_name.ends_with(head) &&
+                                  layer_name[layer_name.size() - head.size() - 1] == '_');
+}
+
+double LayerFieldHandle::get(const LayerStack& stack) const { return stack.layers[layers.front()].*(field->member); }
+
+void LayerFieldHandle::set(LayerStack& stack, double value) const {
+    for (const auto k : layers) stack.layers[k].*(field->member) = value;
+}
+
+LayerFieldHandle layer_field(const LayerStack& stack, std::string_view key, std::string_view what) {
+    const auto dot = key.find('.');
+    if (dot == std::string_view::npos || dot == 0 || dot + 1 == key.size()) {
+        throw InputError(std::string(what) + " '" + std::string(key) + "': must be LAYER.FIELD (e.g. epidermis.melanosome_fraction)");
+    }
+    const auto head = key.substr(0, dot);
+    const auto name = key.substr(dot + 1);
+    LayerFieldHandle handle{std::string(key), nullptr, {}};
+    std::string fields;
+    for (const auto& f : layer_number_fields()) {
+        if (f.key == name) handle.field = &f;
+        fields += (fields.empty() ? "" : ", ") + std::string(f.key);
+    }
+    if (!handle.field) {
+        throw InputError(std::string(what) + " '" + std::string(key) + "': '" + std::string(name) + "' is not a layer field (allowed: " + fields + ")");
+    }
+    std::string layers;
+    for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+        if (layer_matches(stack.layers[k].name, head)) handle.layers.push_back(k);
+        layers += (layers.empty() ? "" : ", ") + stack.layers[k].name;
+    }
+    if (handle.layers.empty()) {
+        throw InputError(std::string(what) + " '" + std::string(key) + "': no layer '" + std::string(head) + "' in '" + stack.name +
+                         "' (layers: " + layers + ")");
+    }
+    return handle;
 }
 
 std::optional<FieldRow> describe_field(std::string_view key) {

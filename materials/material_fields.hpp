@@ -35,11 +35,14 @@ struct NumberField {
     bool absorption_only = false;  // changes mu_a only, never a ray's path (replayable)
 };
 
-// A [model] switch: a boolean, a decadic-conversion switch (written as true = multiply by ln 10) or a number.
+// A [model] switch: a boolean, a decadic-conversion switch (written as true = multiply by ln 10), a number or
+// one of a set of names (the Rayleigh turn rule, the fold formula).
 struct ModelField {
     std::string_view key;
     std::string_view unit;
-    std::variant<bool ModelOptions::*, DecadicConversion ModelOptions::*, double ModelOptions::*> member;
+    std::variant<bool ModelOptions::*, DecadicConversion ModelOptions::*, double ModelOptions::*, RayleighTurn ModelOptions::*,
+                 FoldFormula ModelOptions::*>
+        member;
     FieldRange range;  // numbers only
     std::string_view doc;
     bool absorption_only = false;
@@ -71,6 +74,21 @@ struct FieldRow {
 std::vector<FieldRow> material_field_rows();
 // The keys that change absorption only ("LAYER.melanosome_fraction", "model.baseline_absorption", ...).
 std::vector<std::string> absorption_only_fields();
+// Whether a layer named `layer_name` is addressed by the key head `head` of LAYER.FIELD: its name, or a suffix
+// after '_' ("dermis" addresses papillary_dermis and reticular_dermis).
+bool layer_matches(std::string_view layer_name, std::string_view head);
+
+// A number field of the layers a key addresses ("epidermis.melanosome_fraction", "dermis.oxygen_saturation"),
+// for setting it in place on a stack many times (fits). InputError naming `what`, the key and what is allowed.
+struct LayerFieldHandle {
+    std::string key;
+    const NumberField<TissueLayer>* field = nullptr;
+    std::vector<std::size_t> layers;  // indices into the stack
+    double get(const LayerStack& stack) const;  // the first addressed layer's value
+    void set(LayerStack& stack, double value) const;
+};
+LayerFieldHandle layer_field(const LayerStack& stack, std::string_view key, std::string_view what);
+
 // The row of a --set key ("epidermis.melanosome_fraction" -> LAYER.melanosome_fraction); nullopt if none.
 std::optional<FieldRow> describe_field(std::string_view key);
 

@@ -151,7 +151,14 @@ ModelOptions read_model(const Reader& r, const toml::table* model) {
             using T = std::remove_cvref_t<decltype(o.*member)>;
             if constexpr (std::is_same_v<T, bool>) o.*member = r.boolean(*model, f.key, path, o.*member);
             else if constexpr (std::is_same_v<T, DecadicConversion>) o.*member = ln10(r.boolean(*model, f.key, path, o.*member == DecadicConversion::multiply_ln10));
-            else o.*member = r.number(*model, f.key, path, f.range, o.*member);
+            else if constexpr (std::is_same_v<T, double>) o.*member = r.number(*model, f.key, path, f.range, o.*member);
+            else if constexpr (std::is_same_v<T, RayleighTurn>) {
+                o.*member = parse_rayleigh_turn(r.string(*model, f.key, path, std::string(to_string(o.*member))),
+                                                r.where(model->get(f.key), path) + "key '" + path + "'");
+            } else {
+                o.*member = parse_fold_formula(r.string(*model, f.key, path, std::string(to_string(o.*member))),
+                                               r.where(model->get(f.key), path) + "key '" + path + "'");
+            }
         }, f.member);
     }
     return o;
@@ -322,8 +329,7 @@ std::map<std::string, std::string> apply_overrides(toml::table& root, const std:
                 if (!layer) continue;
                 const auto name = (*layer)["name"].value_or(std::string());
                 names.push_back(name);
-                const bool suffix = name.size() > head.size() && name.ends_with("_" + head);
-                if (name == head || suffix) {
+                if (layer_matches(name, head)) {
                     set(*layer, key, name + "." + key);
                     matched = true;
                 }
@@ -354,6 +360,7 @@ toml::table stack_table(const LayerStack& s) {
             using T = std::remove_cvref_t<decltype(s.model.*member)>;
             if (s.model.*member == defaults.*member) return;
             if constexpr (std::is_same_v<T, DecadicConversion>) model.insert(f.key, s.model.*member == DecadicConversion::multiply_ln10);
+            else if constexpr (std::is_enum_v<T>) model.insert(f.key, std::string(to_string(s.model.*member)));
             else model.insert(f.key, s.model.*member);
         }, f.member);
     }

@@ -1,8 +1,48 @@
 #include "materials/model_options.hpp"
 
+#include <array>
+
 #include "spectral/input_error.hpp"
 
 namespace skinspec {
+namespace {
+
+template <class Kind, std::size_t N>
+Kind parse_switch(std::string_view text, std::string_view what, const std::array<Kind, N>& kinds, std::string_view noun) {
+    std::string allowed;
+    for (const auto k : kinds) {
+        if (text == to_string(k)) return k;
+        allowed += (allowed.empty() ? "" : ", ") + std::string(to_string(k));
+    }
+    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not " + std::string(noun) + " (allowed: " + allowed + ")");
+}
+
+}  // namespace
+
+std::string_view to_string(RayleighTurn turn) {
+    switch (turn) {
+        case RayleighTurn::sampled_depth: return "sampled_depth";
+        case RayleighTurn::whole_crossing: return "whole_crossing";
+        case RayleighTurn::no_absorption: return "no_absorption";
+    }
+    return "?";
+}
+
+RayleighTurn parse_rayleigh_turn(std::string_view text, std::string_view what) {
+    return parse_switch(text, what, std::array{RayleighTurn::sampled_depth, RayleighTurn::whole_crossing, RayleighTurn::no_absorption},
+                        "a Rayleigh turn rule");
+}
+
+std::string_view to_string(FoldFormula formula) { return formula == FoldFormula::biospec_2004 ? "biospec_2004" : "authors_code"; }
+
+FoldFormula parse_fold_formula(std::string_view text, std::string_view what) {
+    return parse_switch(text, what, std::array{FoldFormula::biospec_2004, FoldFormula::authors_code}, "a fold formula");
+}
+
+const std::vector<std::string_view>& model_variant_names() {
+    static const std::vector<std::string_view> names{"biospec", "biospec-2004", "biospec-authors-code"};
+    return names;
+}
 
 ModelOptions model_variant(std::string_view name, std::string_view what) {
     ModelOptions options;
@@ -14,7 +54,17 @@ ModelOptions model_variant(std::string_view name, std::string_view what) {
         options.baseline_absorption = false;
         return options;
     }
-    throw InputError(std::string(what) + ": '" + std::string(name) + "' is not a model variant (allowed: biospec, biospec-2004)");
+    if (name == "biospec-authors-code") {
+        options.variant = "biospec-authors-code";
+        options.rayleigh_turn = RayleighTurn::no_absorption;
+        options.swapped_upward_indices = true;
+        options.bottom_exit_fresnel = false;
+        options.redraw_reversals_in_stratum_corneum = false;
+        options.fold_formula = FoldFormula::authors_code;
+        return options;
+    }
+    throw InputError(std::string(what) + ": '" + std::string(name) +
+                     "' is not a model variant (allowed: biospec, biospec-2004, biospec-authors-code)");
 }
 
 }  // namespace skinspec

@@ -136,11 +136,20 @@ double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const M
     const double background_fraction = 1.0 - v_m - v_b;
     double mu_a = 0.0;
     if (v_m > 0.0) mu_a += v_m * compartment_absorption_per_cm(Compartment::melanosomes, layer, wavelength_nm, model);
-    if (v_b > 0.0) mu_a += v_b * compartment_absorption_per_cm(Compartment::blood, layer, wavelength_nm, model);
+    if (v_b > 0.0) {
+        const double mu_blood = compartment_absorption_per_cm(Compartment::blood, layer, wavelength_nm, model);
+        mu_a += v_b * vessel_packaging_factor(mu_blood, layer.vessel_radius_um) * mu_blood;
+    }
     if (background_fraction > 0.0) {
         mu_a += background_fraction * compartment_absorption_per_cm(Compartment::background, layer, wavelength_nm, model);
     }
     return mu_a;
+}
+
+double vessel_packaging_factor(double mu_blood_per_cm, double vessel_radius_um) {
+    constexpr double cm_per_um = 1e-4;
+    const double x = 2.0 * mu_blood_per_cm * vessel_radius_um * cm_per_um;
+    return x > 0.0 ? -std::expm1(-x) / x : 1.0;
 }
 
 double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_nm) {

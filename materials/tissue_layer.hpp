@@ -62,6 +62,7 @@ struct TissueLayer {
     double hemoglobin_g_per_l = 150.0;     // in whole blood
     double bilirubin_g_per_l = 0.05;       // in whole blood
     double carotene_g_per_l = 0.0;         // in the background
+    double vessel_radius_um = 0.0;         // mean radius of the vessels holding the blood; 0: blood spread evenly
 
     CrossingScattering crossing = CrossingScattering::cosine;
     double hg_g = 0.0;                         // for henyey_greenstein
@@ -77,11 +78,17 @@ struct TissueLayer {
 // Absorption coefficient [1/cm] at a wavelength (shared spec "Absorption coefficients"):
 //   mu_a = v_m (mu_eu + mu_ph) + v_b (S mu_HbO2 + (1 - S) mu_Hb + mu_bili) + (1 - v_m - v_b) (mu_car + mu_base).
 // Terms with zero weight are not evaluated, so a chromophore's table range only matters where it is present.
+// With a vessel radius R_v > 0 the blood term is packaged (Svaasand et al. 1995, Lasers Med Sci 10:55; Verkruysse
+// et al. 1997, Phys Med Biol 42:51, Eq. 6; van Veen et al. 2002, Opt Lett 27:246): v_b C mu_blood with
+// C = (1 - exp(-2 mu_blood R_v)) / (2 mu_blood R_v).
 double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const ModelOptions& model);
 
 // Rayleigh coefficient of the collagen fibres [1/cm] (shared spec step 3):
 //   beta = 8 pi^3 (eta^2 - 1)^2 / (3 N lambda^4), eta = n_fibre / n_layer, N = f / (4/3 pi r^3),
 // with lambda and r in cm.
 double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_nm);
+
+// The packaging factor C above for whole-blood absorption mu_blood [1/cm] and vessel radius [um]; 1 at radius 0.
+double vessel_packaging_factor(double mu_blood_per_cm, double vessel_radius_um);
 
 }  // namespace skinspec

@@ -23,6 +23,7 @@ public:
             .switches = {SolverSwitch::estimator, SolverSwitch::fold_into_skin, SolverSwitch::thin_layer_phase},
             .replay_fields = absorption_only_fields(),
             .material_needs = "",
+            .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce, MeasurementGeometry::zero_45},
         };
         return caps;
     }

@@ -170,6 +170,15 @@ void check_request(const SpectralSolver& solver, const Material& material, const
                                                     : c.quantities.angular;
                          }) + ")");
     }
+    const auto geometry = request.spectral.geometry;
+    if (std::find(caps.geometries.begin(), caps.geometries.end(), geometry) == caps.geometries.end()) {
+        std::string own;
+        for (const auto g : caps.geometries) own += (own.empty() ? "" : ", ") + std::string(to_string(g));
+        throw InputError(who + " does not measure R in geometry " + std::string(to_string(geometry)) + " (it offers " + own +
+                         "; " + std::string(to_string(geometry)) + " is offered by: " + offered_by([&](const SolverCapabilities& c) {
+                             return std::find(c.geometries.begin(), c.geometries.end(), geometry) != c.geometries.end();
+                         }) + ")");
+    }
     if (!caps.uncertainty && (request.spectral.stderr_target || request.spectral.stderr_targets || request.fixed_rays_per_wavelength)) {
         throw InputError(who + " is deterministic: it takes no standard-error target or ray count (Monte Carlo solvers: " +
                          offered_by([](const SolverCapabilities& c) { return c.uncertainty; }) + ")");

@@ -42,6 +42,7 @@ struct SolverCapabilities {
     std::vector<SolverSwitch> switches;
     std::vector<std::string> replay_fields;  // material fields re-weighted from traced paths (absorption replay)
     std::string material_needs;      // what a layered material must describe for this solver, "" when nothing
+    std::vector<MeasurementGeometry> geometries{MeasurementGeometry::sci};  // what its R can be measured as
 };
 
 // A request for one material. `spectral` is what the transport solvers consume; `overrides` are recorded in
@@ -91,8 +92,8 @@ const SpectralSolver& find_solver(std::string_view name, std::string_view what =
 // "biospec, rte, dipole, multipole".
 std::string solver_names();
 
-// InputError for anything the solver does not declare: the material's kind, a quantity, a switch, a
-// standard-error target or a ray count for a deterministic solver.
+// InputError for anything the solver does not declare: the material's kind, a quantity, a measurement geometry,
+// a switch, a standard-error target or a ray count for a deterministic solver.
 void check_request(const SpectralSolver& solver, const Material& material, const SolverRequest& request);
 void check_request(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 

@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 
 #include "transport/biospec/biospec_solver.hpp"
+#include "transport/fresnel.hpp"
 #include "transport/measured_profile.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
@@ -319,4 +320,184 @@ TEST_CASE("absorption replay refuses sets whose paths differ and the random esti
     BiospecOptions random;
     random.estimator = AbsorptionEstimator::random_test;
     CHECK_THROWS_WITH(solve_biospec_sets(sets, request, random), Catch::Contains("absorption replay needs the weighted estimator"));
+}
+
+// ---- The model authors' behaviours and the Rayleigh turn rules, each in isolation (shared spec 2026-12) ----
+
+namespace {
+
+// One layer between air and air (or matched media), reflector off, no absorbers unless set.
+LayerStack single_layer(CrossingScattering crossing, double n, double thickness_cm) {
+    LayerStack s;
+    s.name = "slab";
+    TissueLayer l;
+    l.name = "slab";
+    l.thickness_cm = thickness_cm;
+    l.refractive_index = n;
+    l.crossing = crossing;
+    s.layers = {l};
+    s.bottom = BottomBoundary::exit;
+    s.model.baseline_absorption = false;
+    return s;
+}
+
+// Hemispherical reflectance of Lambertian light meeting an interface n_from -> n_to: 2 int_0^1 F(mu) mu dmu
+// (midpoint rule on the Fresnel formula).
+double diffuse_fresnel(double n_from, double n_to) {
+    constexpr int steps = 20000;
+    double sum = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        const double mu = (i + 0.5) / steps;
+        sum += 2.0 * fresnel_reflectance(mu, n_from, n_to) * mu / steps;
+    }
+    return sum;
+}
+
+bool within(const Estimate& e, double expected, double sigmas = 4.0, double margin = 1e-12) {
+    return std::abs(e.value - expected) < sigmas * e.stderr + margin;
+}
+
+}  // namespace
+
+TEST_CASE("behaviour 1: upward interfaces with swapped indices lose total internal reflection", "[biospec_solver][authors]") {
+    // A non-absorbing cosine-scattering slab (n 1.55, air both sides): every crossing re-draws a Lambertian direction,
+    // so a ray leaves downward with t_d = 1 - r_int and upward with t_u per crossing, r_int / r_ext the diffuse
+    // Fresnel reflectances from inside / outside. R = F0 + (1 - F0) (1 - t_d) t_u / (1 - (1 - t_d)(1 - t_u)).
+    const double n = 1.55;
+    const double f0 = std::pow((n - 1.0) / (n + 1.0), 2);
+    const double r_int = diffuse_fresnel(n, 1.0), r_ext = diffuse_fresnel(1.0, n);
+    REQUIRE(r_int > 0.5);  // TIR beyond 40 deg
+    const auto expected = [&](double t_d, double t_u) { return f0 + (1.0 - f0) * (1.0 - t_d) * t_u / (1.0 - (1.0 - t_d) * (1.0 - t_u)); };
+    SpectralRequest request = all_quantities({550.0}, 400'000);
+    for (const bool swapped : {false, true}) {
+        INFO("swapped = " << swapped);
+        auto stack = single_layer(CrossingScattering::cosine, n, 0.01);
+        stack.model.swapped_upward_indices = swapped;
+        const auto w = solve_biospec(stack, request).wavelengths.front();
+        CHECK(within(w.reflectance, expected(1.0 - r_int, swapped ? 1.0 - r_ext : 1.0 - r_int)));
+        CHECK(energy(w) == Approx(1.0).margin(1e-12));
+    }
+}
+
+TEST_CASE("behaviour 3: with the bottom Fresnel test off, light leaves the bottom at once", "[biospec_solver][authors]") {
+    auto stack = single_layer(CrossingScattering::cosine, 1.55, 0.01);
+    stack.model.bottom_exit_fresnel = false;
+    const auto w = solve_biospec(stack, all_quantities({550.0}, 100'000)).wavelengths.front();
+    // Only the first-surface reflection comes back; everything that entered is transmitted.
+    CHECK(w.reflectance.value == w.specular_reflectance.value);
+    CHECK(w.transmittance.value == Approx(1.0 - w.reflectance.value).margin(1e-12));
+    CHECK(within(w.reflectance, std::pow(0.55 / 2.55, 2)));
+}
+
+TEST_CASE("behaviour 4: a reversing SC perturbation leaves as reflectance, unabsorbed", "[biospec_solver][authors]") {
+    // A thick, strongly absorbing, index-matched SC at 80 deg incidence: a ray survives only if its first perturbation
+    // (polar theta from the measured profile, uniform azimuth) turns it upward, which happens with probability
+    // P = int p(theta) acos(min(1, cot a cot theta)) / pi dtheta, a = 80 deg. With re-drawing (the specification)
+    // nothing comes back.
+    auto stack = single_layer(CrossingScattering::measured_stratum_corneum, 1.0, 0.5);
+    stack.layers[0].melanosome_fraction = 0.3;
+    REQUIRE(absorption_per_cm(stack.layers[0], 546.0, stack.model) * 0.5 > 50.0);
+    const double a = 80.0 * std::numbers::pi / 180.0;
+    const auto& profile = MeasuredProfile::stratum_corneum();
+    double expected = 0.0;
+    constexpr int steps = 20000;
+    for (int i = 0; i < steps; ++i) {
+        const double theta_deg = 62.5 * (i + 0.5) / steps;
+        const double x = 1.0 / std::tan(a) / std::tan(theta_deg * std::numbers::pi / 180.0);
+        expected += profile.pdf_theta(546.0, theta_deg) * 62.5 / steps * (x >= 1.0 ? 0.0 : std::acos(x) / std::numbers::pi);
+    }
+    REQUIRE(expected > 0.05);
+    auto request = all_quantities({546.0}, 200'000);
+    request.incidence_deg = 80.0;
+    stack.model.redraw_reversals_in_stratum_corneum = false;
+    const auto kept = solve_biospec(stack, request).wavelengths.front();
+    CHECK(within(kept.reflectance, expected, 4.0, 0.005));  // 0.005: the 1000-entry table against the continuous profile
+    CHECK(energy(kept) == Approx(1.0).margin(1e-12));
+    stack.model.redraw_reversals_in_stratum_corneum = true;
+    CHECK(solve_biospec(stack, request).wavelengths.front().reflectance.value < 1e-6);
+}
+
+TEST_CASE("Rayleigh turn rules: sampled depth, whole crossing, no absorption against their integrals", "[biospec_solver][rayleigh]") {
+    // An index-matched dermal slab (n 1, Rayleigh by collagen + cosine), normal incidence, reflector off: light comes
+    // back only from rays Rayleigh-scattered upward on their first crossing. With beta the Rayleigh coefficient,
+    // mu the absorption, d the thickness and p(c) = 3/8 (1 + c^2) the phase function (c = cos of the new direction):
+    //   sampled depth:  R = int_0^d beta e^-(beta + mu) z int_{-1}^0 p(c) e^(-mu z / |c|) dc dz
+    //   whole crossing: R = (1 - e^-beta d) int_{-1}^0 p(c) e^(-mu d / |c|) dc
+    //   no absorption:  R = (1 - e^-beta d) / 2
+    auto stack = single_layer(CrossingScattering::rayleigh_cosine, 1.0, 0.02);
+    stack.layers[0].blood_fraction = 0.1;
+    const double nm = 500.0;
+    const double beta = rayleigh_coefficient_per_cm(stack.layers[0], nm);
+    const double mu = absorption_per_cm(stack.layers[0], nm, stack.model);
+    const double d = 0.02;
+    REQUIRE(beta * d > 0.3);
+    REQUIRE(mu * d > 0.1);
+    constexpr int nz = 2000, nc = 2000;
+    const auto up = [&](double depth) {
+        double s = 0.0;
+        for (int j = 0; j < nc; ++j) {
+            const double c = (j + 0.5) / nc;  // |cos|
+            s += 0.375 * (1.0 + c * c) * std::exp(-mu * depth / c) / nc;
+        }
+        return s;
+    };
+    double sampled = 0.0;
+    for (int i = 0; i < nz; ++i) {
+        const double z = d * (i + 0.5) / nz;
+        sampled += beta * std::exp(-(beta + mu) * z) * up(z) * d / nz;
+    }
+    const double hit = 1.0 - std::exp(-beta * d);
+    const std::vector<std::pair<RayleighTurn, double>> rules{
+        {RayleighTurn::sampled_depth, sampled}, {RayleighTurn::whole_crossing, hit * up(d)}, {RayleighTurn::no_absorption, hit * 0.5}};
+    for (const auto& [rule, expected] : rules) {
+        INFO(to_string(rule) << ": expected " << expected);
+        stack.model.rayleigh_turn = rule;
+        const auto w = solve_biospec(stack, all_quantities({nm}, 400'000)).wavelengths.front();
+        CHECK(within(w.reflectance, expected, 4.0, 1e-4));
+        CHECK(energy(w) == Approx(1.0).margin(1e-12));
+    }
+}
+
+TEST_CASE("measurement geometries: SCE is SCI without the first surface, 0/45 of a perfect diffuser is 1", "[biospec_solver][geometry]") {
+    auto request = all_quantities({450.0, 650.0}, 50'000);
+    const auto skin = preset("biospec-moderately");
+    const auto sci = solve_biospec(skin, request);
+    request.geometry = MeasurementGeometry::sce;
+    const auto sce = solve_biospec(skin, request);
+    for (std::size_t w = 0; w < 2; ++w) {
+        CHECK(sce.wavelengths[w].reflectance.value + sce.wavelengths[w].specular_reflectance.value ==
+              Approx(sci.wavelengths[w].reflectance.value).margin(1e-12));
+    }
+    // A non-absorbing cosine slab with n = 1 on a Lambertian reflector is a perfect diffuser: R(0/45) = 1.
+    auto diffuser = single_layer(CrossingScattering::cosine, 1.0, 0.01);
+    diffuser.bottom = BottomBoundary::diffuse_reflector;
+    request.geometry = MeasurementGeometry::zero_45;
+    request.quantities = Quantities{};
+    const auto w = solve_biospec(diffuser, request).wavelengths.front();
+    CHECK(within(w.reflectance, 1.0));
+    CHECK(w.reflectance.stderr > 0.0);
+    request.incidence_deg = 8.0;
+    CHECK_THROWS_WITH(solve_biospec(diffuser, request), "geometry 0-45 defines normal incidence; incidence 8 deg given");
+}
+
+TEST_CASE("path recording: the white limit conserves energy and re-weighting matches the walk", "[biospec_solver][paths]") {
+    auto skin = preset("biospec-lightly");
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list({420.0, 600.0});
+    request.max_rays_per_wavelength = 40'000;
+    const auto paths = record_biospec_paths(skin, request);
+    REQUIRE(paths);
+    const auto walked = solve_biospec(skin, request);
+    for (std::size_t w = 0; w < 2; ++w) {
+        const auto& p = (*paths)[w];
+        CHECK(p.rays == 40'000);
+        const std::vector<double> ones(p.layers(), 1.0);
+        // No absorption and a reflector: every ray leaves the top.
+        CHECK(p.reflectance(std::vector<double>(p.layers(), 0.0), ones).value == Approx(1.0).margin(1e-12));
+        std::vector<double> mu;
+        for (const auto& l : skin.layers) mu.push_back(absorption_per_cm(l, request.wavelengths[w], skin.model));
+        const auto replayed = p.reflectance(mu, ones);
+        const auto& direct = walked.wavelengths[w].reflectance;
+        CHECK(std::abs(replayed.value - direct.value) < 4.0 * std::hypot(replayed.stderr, direct.stderr));
+    }
 }

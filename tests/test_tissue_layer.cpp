@@ -104,3 +104,32 @@ TEST_CASE("scattering names parse and print", "[tissue_layer]") {
     CHECK(parse_phase_function("isotropic", "x") == PhaseFunctionKind::isotropic);
     CHECK_THROWS_AS(parse_phase_function("hg2", "x"), InputError);
 }
+
+TEST_CASE("vessel packaging: Svaasand's factor, its limits, and the blood term it scales", "[tissue_layer]") {
+    // C = (1 - exp(-2 mu R)) / (2 mu R) (Svaasand et al. 1995; Verkruysse et al. 1997 Eq. 6).
+    CHECK(vessel_packaging_factor(100.0, 0.0) == 1.0);
+    CHECK(vessel_packaging_factor(1e-6, 10.0) == Approx(1.0).epsilon(1e-8));  // optically thin vessels: no change
+    // 2 mu R = 2 * 200 /cm * 25e-4 cm = 1: C = 1 - 1/e.
+    CHECK(vessel_packaging_factor(200.0, 25.0) == Approx(1.0 - std::exp(-1.0)).epsilon(1e-12));
+    // Optically thick vessels: C -> 1 / (2 mu R).
+    CHECK(vessel_packaging_factor(3000.0, 100.0) == Approx(1.0 / 60.0).epsilon(1e-12));
+    const ModelOptions model;
+    auto dermis = blood_only();
+    dermis.blood_fraction = 0.02;
+    dermis.carotene_g_per_l = 7e-5;
+    auto packaged = dermis;
+    packaged.vessel_radius_um = 15.0;
+    auto no_blood = dermis;
+    no_blood.blood_fraction = 0.0;
+    for (const double nm : {420.0, 542.0, 650.0}) {
+        INFO(nm << " nm");
+        const double mu_blood = absorption_per_cm(blood_only(), nm, model);
+        const double background = absorption_per_cm(no_blood, nm, model) * (1.0 - 0.02);
+        CHECK(absorption_per_cm(dermis, nm, model) == Approx(background + 0.02 * mu_blood).epsilon(1e-12));
+        CHECK(absorption_per_cm(packaged, nm, model) ==
+              Approx(background + 0.02 * vessel_packaging_factor(mu_blood, 15.0) * mu_blood).epsilon(1e-12));
+    }
+    // Packaging flattens the Soret band more than the red.
+    const auto ratio = [&](double nm) { return absorption_per_cm(packaged, nm, model) / absorption_per_cm(dermis, nm, model); };
+    CHECK(ratio(420.0) < ratio(650.0));
+}

@@ -36,4 +36,18 @@ inline double skin_fold_pdf_cos(double sigma, double c) {
     return -4.0 * s4 * c * (s2 - 1.0) / ((1.0 - s4) * m * m * m);
 }
 
+// The model authors' current code (shared spec "Behaviours of the model authors' current implementation", 5):
+//   theta = arccos( sqrt( (1 - u) / (u (sigma^2 - 1) + 1) ) ).
+inline double skin_fold_authors_sample_cos(double sigma, double u) {
+    const double cos2 = (1.0 - u) / (u * (sigma * sigma - 1.0) + 1.0);
+    return std::sqrt(std::clamp(cos2, 0.0, 1.0));
+}
+
+// P(cos theta <= c) of the authors' formula: cos^2 theta decreases in u, so with m = c^2,
+// P = P(u >= (1 - m) / (m (sigma^2 - 1) + 1)) = m sigma^2 / (m (sigma^2 - 1) + 1).
+inline double skin_fold_authors_cdf_cos(double sigma, double c) {
+    const double m = c * c;
+    return m * sigma * sigma / (m * (sigma * sigma - 1.0) + 1.0);
+}
+
 }  // namespace skinspec

@@ -5,7 +5,25 @@
 
 #include <fmt/format.h>
 
+#include "spectral/input_error.hpp"
+
 namespace skinspec {
+
+std::string_view to_string(MeasurementGeometry geometry) {
+    switch (geometry) {
+        case MeasurementGeometry::sci: return "sci";
+        case MeasurementGeometry::sce: return "sce";
+        case MeasurementGeometry::zero_45: return "0-45";
+    }
+    return "?";
+}
+
+MeasurementGeometry parse_measurement_geometry(std::string_view text, std::string_view what) {
+    for (const auto g : {MeasurementGeometry::sci, MeasurementGeometry::sce, MeasurementGeometry::zero_45}) {
+        if (text == to_string(g)) return g;
+    }
+    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a measurement geometry (allowed: sci, sce, 0-45)");
+}
 
 std::vector<double> default_angular_bin_edges_deg() {
     std::vector<double> edges{0.0};

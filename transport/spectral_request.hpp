@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -21,6 +22,19 @@ struct Quantities {
     bool absorptance = false;    // A per layer (and A_surface)
     bool angular = false;        // BRDF / BTDF per polar bin (virtual goniometer)
 };
+
+// How R is measured (CIE 15:2004 Sec. 5 geometries; docs/SOLVERS.md "Measurement geometry"):
+enum class MeasurementGeometry {
+    sci,      // specular component included: all light leaving the top (directional-hemispherical)
+    sce,      // specular component excluded: without the first-surface reflection
+    zero_45,  // 0/45: normal incidence, reflectance factor of the light leaving at 40-50 deg (annular), relative
+              // to a perfect diffuser: R = F(40-50 deg) / (sin^2 50 deg - sin^2 40 deg)
+};
+std::string_view to_string(MeasurementGeometry geometry);
+MeasurementGeometry parse_measurement_geometry(std::string_view text, std::string_view what);
+// The exit polar-angle band of 0/45, deg.
+inline constexpr double zero_45_band_lo_deg = 40.0;
+inline constexpr double zero_45_band_hi_deg = 50.0;
 
 struct Progress {
     std::uint64_t rays_done = 0;
@@ -41,6 +55,7 @@ struct SpectralRequest {
     WavelengthGrid wavelengths = WavelengthGrid::list({550.0});
     Quantities quantities;
     double incidence_deg = 0.0;                  // polar angle of the collimated incident beam, [0, 90)
+    MeasurementGeometry geometry = MeasurementGeometry::sci;  // what R is (0/45 needs incidence 0)
     std::optional<double> stderr_target;         // stop a wavelength once R's (and T's) standard error is below
     // Per-wavelength targets recomputed after every round from the current estimates of R (or T) at all
     // wavelengths; replaces stderr_target when set (e.g. a colour tolerance, layers/color_precision.hpp).
@@ -62,7 +77,7 @@ std::vector<double> default_angular_bin_edges_deg();
 
 struct WavelengthResult {
     double wavelength_nm = 0.0;
-    Estimate reflectance;           // total, specular included
+    Estimate reflectance;           // R in the request's geometry (SCI: total, specular included)
     Estimate specular_reflectance;  // first-surface reflection only
     Estimate transmittance;
     std::vector<Estimate> absorptance_layers;

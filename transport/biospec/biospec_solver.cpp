@@ -1,8 +1,12 @@
 #include "transport/biospec/biospec_solver.hpp"
 
 #include <cmath>
+#include <atomic>
 #include <memory>
+#include <optional>
 #include <numbers>
+
+#include <tbb/parallel_for.h>
 
 #include "transport/biospec/biospec_walk.hpp"
 #include "transport/ray_planner.hpp"
@@ -17,6 +21,9 @@ void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOp
     if (stack.layers.empty()) throw InputError("material '" + stack.name + "': no layers to simulate");
     if (!std::isfinite(r.incidence_deg) || r.incidence_deg < 0.0 || r.incidence_deg >= 90.0) {
         throw InputError("incidence angle " + format_number(r.incidence_deg) + " deg is outside [0, 90)");
+    }
+    if (r.geometry == MeasurementGeometry::zero_45 && r.incidence_deg != 0.0) {
+        throw InputError("geometry 0-45 defines normal incidence; incidence " + format_number(r.incidence_deg) + " deg given");
     }
     if (r.max_rays_per_wavelength < 1) throw InputError("ray budget 0 is outside [1, inf)");
     if (r.stderr_target && !(std::isfinite(*r.stderr_target) && *r.stderr_target > 0.0)) {
@@ -48,6 +55,12 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
         {"ln10_melanin_tables", m.melanin_tables == DecadicConversion::multiply_ln10},
         {"baseline_absorption", m.baseline_absorption},
         {"hemoglobin_molar_mass_g_per_mol", m.hemoglobin_molar_mass_g_per_mol},
+        {"rayleigh_turn", std::string(to_string(m.rayleigh_turn))},
+        {"swapped_upward_indices", m.swapped_upward_indices},
+        {"bottom_exit_fresnel", m.bottom_exit_fresnel},
+        {"redraw_reversals_in_stratum_corneum", m.redraw_reversals_in_stratum_corneum},
+        {"fold_formula", std::string(to_string(m.fold_formula))},
+        {"geometry", std::string(to_string(r.geometry))},
         {"absorption_estimator", std::string(to_string(o.estimator))},
         {"fold_into_skin", std::string(to_string(o.fold_into_skin))},
         {"fold_aspect_ratio", stack.fold_aspect_ratio},
@@ -87,7 +100,7 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
 
     std::vector<std::unique_ptr<BiospecWavelength>> setups;
     for (const double nm : request.wavelengths.nm()) {
-        setups.push_back(std::make_unique<BiospecWavelength>(stacks, nm, request.incidence_deg, options, channels, edges));
+        setups.push_back(std::make_unique<BiospecWavelength>(stacks, nm, request.incidence_deg, request.geometry, options, channels, edges));
     }
     std::vector<std::size_t> targets;
     if (channels.reflectance >= 0) targets.push_back(static_cast<std::size_t>(channels.reflectance));
@@ -149,6 +162,42 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
         results.push_back(std::move(result));
     }
     return results;
+}
+
+}  // namespace skinspec
+
+namespace skinspec {
+
+std::optional<std::vector<ExitPaths>> record_biospec_paths(const LayerStack& stack, const SpectralRequest& request, const BiospecOptions& options) {
+    validate(stack, request, options);
+    const auto& nm = request.wavelengths.nm();
+    std::vector<std::unique_ptr<BiospecWavelength>> setups;
+    for (const double w : nm) setups.push_back(std::make_unique<BiospecWavelength>(stack, w, request.incidence_deg, request.geometry, options));
+    const std::uint64_t per_batch = request.rays_per_batch;
+    const std::uint64_t batches = (request.max_rays_per_wavelength + per_batch - 1) / per_batch;
+    std::vector<ExitPaths> parts(nm.size() * batches);
+    std::atomic<bool> stopped{false};
+    tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t task) {
+        if (request.cancel && request.cancel->load()) {
+            stopped = true;
+            return;
+        }
+        const std::size_t w = task / batches;
+        const std::uint64_t b = task % batches;
+        const std::uint64_t rays = std::min(per_batch, request.max_rays_per_wavelength - b * per_batch);
+        auto random = RandomStream::for_batch(request.seed, nm[w], b);
+        setups[w]->record(random, rays, parts[task]);
+    });
+    if (stopped) return std::nullopt;
+    std::vector<ExitPaths> out(nm.size());
+    for (std::size_t w = 0; w < nm.size(); ++w) {
+        for (std::uint64_t b = 0; b < batches; ++b) {
+            auto& part = parts[w * batches + b];
+            out[w].factor = part.factor;
+            out[w].append(part);
+        }
+    }
+    return out;
 }
 
 }  // namespace skinspec

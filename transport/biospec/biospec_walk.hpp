@@ -10,11 +10,16 @@
 // mu_a,s,layer * d / |cos| and its weight is w_s = b_s exp(-tau_s) (b_s its roulette boosts). Each ray has its
 // own random stream, and Russian roulette (looked at every 8 crossings) draws a number keyed by (ray, event)
 // shared by all sets, so a set's numbers equal those of its own run to rounding.
+//
+// Path recording (white Monte Carlo proper, for fitting): the walk traced without absorption keeps, for every ray
+// that leaves the top into the measurement geometry, its path length in each layer, so that R for any absorption
+// is the mean of exp(-sum_k mu_a,k L_k) over the recorded rays (ExitPaths::reflectance), a smooth function of mu_a.
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "transport/biospec/biospec_options.hpp"
+#include "transport/biospec/exit_paths.hpp"
 #include "transport/direction.hpp"
 #include "transport/measured_profile.hpp"
 #include "transport/random_stream.hpp"
@@ -46,17 +51,22 @@ class BiospecWavelength {
 public:
     // `sets` share everything but their absorbers (InputError naming the first difference otherwise); one set
     // with the random estimator.
-    BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg, const BiospecOptions& options,
-                      const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
+    BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
+                      const BiospecOptions& options, const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
+    // For path recording: the geometry and scattering of `stack`, absorption ignored.
+    BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
+                      const BiospecOptions& options);
     BiospecWavelength(const BiospecWavelength&) = delete;
     BiospecWavelength& operator=(const BiospecWavelength&) = delete;
 
     void trace(RandomStream& random, std::uint64_t rays, RayTally& tally) const;
+    // Path recording (the path-recording constructor only): appends this batch's exits to `paths`.
+    void record(RandomStream& random, std::uint64_t rays, ExitPaths& paths) const;
 
 private:
     // The geometry and scattering of `stack`, with its absorption as the one set.
-    BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, const BiospecOptions& options,
-                      const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
+    BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
+                      const BiospecOptions& options, const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
 
     struct Layer {
         double thickness_cm;
@@ -67,10 +77,20 @@ private:
         const InverseCdfTable* profile;
     };
 
+    // One crossing's outcome: the new direction, the path [cm] absorption is charged over, and whether an SC
+    // perturbation reversed the travel sense (kept only with model.redraw_reversals_in_stratum_corneum off).
+    struct Crossing {
+        Direction d;
+        double path_cm;
+        bool reversed;
+    };
+
     struct RayState;
-    void trace_one(std::uint64_t ray_key, RayScore& score, RayTally& tally, RayState& state) const;
-    Direction scatter(const Layer& layer, const Direction& d, RandomStream& random) const;
+    void trace_one(std::uint64_t ray_key, RayScore& score, RayTally& tally, RayState& state, ExitPaths* paths) const;
+    Crossing scatter(const Layer& layer, const Direction& d, RandomStream& random) const;
     std::size_t exit_bin(double cos_exit) const;
+    // What a ray leaving the top with |cos| = cos_exit adds to R per unit weight in the geometry (0 outside it).
+    double geometry_factor(double cos_exit, bool first_surface) const;
 
     std::vector<Layer> layers_;
     std::size_t sets_ = 1;
@@ -81,6 +101,10 @@ private:
     double n_below_;
     bool reflector_;
     double fold_sigma_;
+    ModelOptions model_;
+    MeasurementGeometry geometry_;
+    double band_cos_lo_ = 0.0, band_cos_hi_ = 1.0, band_factor_ = 1.0;  // 0/45 acceptance
+    bool recording_ = false;
     Direction incident_;
     BiospecOptions options_;
     BiospecChannels channels_;

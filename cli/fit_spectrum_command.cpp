@@ -1,0 +1,367 @@
+#include "cli/fit_spectrum_command.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <mutex>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "cli/material_options.hpp"
+#include "cli/progress.hpp"
+#include "cli/solver_options.hpp"
+#include "formats/measured_spectra.hpp"
+#include "inverse/spectrum_fit/spectrum_fit.hpp"
+#include "materials/material_file.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
+#include "spectral/chart_image.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/line_plot.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct FitSpectrumOptions {
+    std::string measured;
+    std::string preset;
+    std::string material;
+    std::vector<std::string> overrides;
+    std::string variant;
+    std::vector<std::string> free;
+    std::vector<std::string> bounds;
+    std::vector<std::string> weights;
+    std::vector<std::string> spectra;
+    std::string window;  // "" = every wavelength of the file
+    double incidence_deg = 0.0;
+    std::uint64_t rays = 20'000;
+    std::uint64_t seed = 1;
+    std::size_t starts = 2;
+    unsigned threads = 0;
+    SolverOptions solver;
+    std::string output;
+    std::string plot;
+    bool force = false;
+    bool json = false;
+};
+
+constexpr const char* default_base = "biospec-moderately";
+
+// "FROM:TO" (two finite numbers).
+std::pair<double, double> parse_range(std::string_view text, const std::string& what) {
+    const auto colon = text.find(':');
+    const auto a = colon == std::string_view::npos ? std::nullopt : parse_double(text.substr(0, colon));
+    const auto b = colon == std::string_view::npos ? std::nullopt : parse_double(text.substr(colon + 1));
+    if (!a || !b || !std::isfinite(*a) || !std::isfinite(*b)) throw InputError(what + " '" + std::string(text) + "': must be LO:HI (two numbers)");
+    return {*a, *b};
+}
+
+std::vector<FitParameter> free_parameters(const FitSpectrumOptions& o) {
+    std::vector<FitParameter> free;
+    if (o.free.empty()) free = default_free_parameters();
+    for (const auto& key : o.free) free.push_back({key, {}, {}});
+    for (const auto& b : o.bounds) {
+        const auto eq = b.find('=');
+        if (eq == std::string::npos) throw InputError("--bounds '" + b + "': must be FIELD=LO:HI");
+        const auto key = std::string(trim(std::string_view(b).substr(0, eq)));
+        const auto [lo, hi] = parse_range(std::string_view(b).substr(eq + 1), "--bounds " + key);
+        if (!(lo < hi)) throw InputError("--bounds " + b + ": LO must be below HI");
+        const auto it = std::find_if(free.begin(), free.end(), [&](const FitParameter& p) { return p.key == key; });
+        if (it == free.end()) throw InputError("--bounds " + key + ": not a free parameter (free: " + [&] {
+            std::string keys;
+            for (const auto& p : free) keys += (keys.empty() ? "" : ", ") + p.key;
+            return keys;
+        }() + ")");
+        it->lo = lo;
+        it->hi = hi;
+    }
+    return free;
+}
+
+std::vector<WavelengthWeight> weights_of(const FitSpectrumOptions& o) {
+    std::vector<WavelengthWeight> out;
+    for (const auto& w : o.weights) {
+        const auto eq = w.find('=');
+        const auto value = eq == std::string::npos ? std::nullopt : parse_double(std::string_view(w).substr(eq + 1));
+        if (!value || !std::isfinite(*value) || *value < 0.0) throw InputError("--weight '" + w + "': must be FROM:TO=W with W >= 0");
+        const auto [from, to] = parse_range(std::string_view(w).substr(0, eq), "--weight");
+        if (!(from <= to)) throw InputError("--weight '" + w + "': FROM must not exceed TO");
+        out.push_back({from, to, *value});
+    }
+    return out;
+}
+
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json fit_json(const SpectrumFit& f) {
+    Json parameters = Json::object(), stderr = Json::object(), bound = Json::array();
+    for (std::size_t i = 0; i < f.parameter_keys.size(); ++i) {
+        parameters[f.parameter_keys[i]] = f.parameters[i];
+        stderr[f.parameter_keys[i]] = number_or_null(f.parameter_stderr[i]);
+        if (f.on_bound[i]) bound.push_back(f.parameter_keys[i]);
+    }
+    std::vector<double> residual;
+    for (std::size_t w = 0; w < f.measured.size(); ++w) residual.push_back(f.fitted[w] - f.measured[w]);
+    const auto lab = [](const Lab& l) { return Json::array({l.L, l.a, l.b}); };
+    return Json{{"name", f.name},
+                {"parameters", parameters},
+                {"parameter_stderr", stderr},
+                {"on_bound", bound},
+                {"rms", f.rms},
+                {"delta_e2000", f.delta_e2000},
+                {"measured_lab", lab(f.measured_lab)},
+                {"fitted_lab", lab(f.fitted_lab)},
+                {"wavelength_nm", f.wavelength_nm},
+                {"measured", f.measured},
+                {"fitted", f.fitted},
+                {"fitted_stderr", f.fitted_stderr},
+                {"residual", residual},
+                {"evaluations", f.evaluations},
+                {"seconds", f.seconds}};
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const auto n = v.size();
+    return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+std::string csv_of(const std::vector<SpectrumFit>& fits, const std::string& provenance) {
+    std::string out = fmt::format("# skinspec {} fit-spectrum (docs/SPECTRUM_FIT.md)\n# {}\n", version, provenance);
+    out += "name";
+    const auto& first = fits.front();
+    for (const auto& k : first.parameter_keys) out += "," + k + "," + k + "_stderr";
+    out += ",on_bound,rms,delta_e2000,measured_L,measured_a,measured_b,fitted_L,fitted_a,fitted_b";
+    for (const double nm : first.wavelength_nm) out += fmt::format(",fitted_{:g}nm", nm);
+    for (const double nm : first.wavelength_nm) out += fmt::format(",fitted_stderr_{:g}nm", nm);
+    out += '\n';
+    for (const auto& f : fits) {
+        out += f.name;
+        std::string bound;
+        for (std::size_t i = 0; i < f.parameters.size(); ++i) {
+            out += fmt::format(",{:.6g},{}", f.parameters[i], std::isfinite(f.parameter_stderr[i]) ? fmt::format("{:.3g}", f.parameter_stderr[i]) : "");
+            if (f.on_bound[i]) bound += (bound.empty() ? "" : ";") + f.parameter_keys[i];
+        }
+        out += fmt::format(",{},{:.5f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", bound, f.rms, f.delta_e2000, f.measured_lab.L,
+                           f.measured_lab.a, f.measured_lab.b, f.fitted_lab.L, f.fitted_lab.a, f.fitted_lab.b);
+        for (const double v : f.fitted) out += fmt::format(",{:.5f}", v);
+        for (const double v : f.fitted_stderr) out += fmt::format(",{:.5f}", v);
+        out += '\n';
+    }
+    return out;
+}
+
+std::string table_of(const std::vector<SpectrumFit>& fits) {
+    const auto& keys = fits.front().parameter_keys;
+    std::string out = fmt::format("{:<12}", "spectrum");
+    for (const auto& k : keys) out += fmt::format("  {:>24}", k.size() > 24 ? k.substr(k.size() - 24) : k);
+    out += fmt::format("  {:>7}  {:>6}  {:>13}\n", "rms", "dE00", "L* meas/fit");
+    for (const auto& f : fits) {
+        out += fmt::format("{:<12}", f.name);
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            const std::string se = std::isfinite(f.parameter_stderr[i]) ? fmt::format("{:.2g}", f.parameter_stderr[i]) : "n/a";
+            out += fmt::format("  {:>24}", fmt::format("{:.4g} +- {}{}", f.parameters[i], se, f.on_bound[i] ? " *" : ""));
+        }
+        out += fmt::format("  {:>7.4f}  {:>6.2f}  {:>6.1f}/{:<6.1f}\n", f.rms, f.delta_e2000, f.measured_lab.L, f.fitted_lab.L);
+    }
+    if (std::any_of(fits.begin(), fits.end(), [](const SpectrumFit& f) { return std::find(f.on_bound.begin(), f.on_bound.end(), true) != f.on_bound.end(); })) {
+        out += "* on a bound of its range (--bounds FIELD=LO:HI widens it)\n";
+    }
+    return out;
+}
+
+void write_fit_plot(const std::string& file, const std::vector<SpectrumFit>& fits) {
+    static const std::vector<RGB> palette{{0.12, 0.47, 0.71}, {1.0, 0.5, 0.05}, {0.17, 0.63, 0.17}, {0.84, 0.15, 0.16},
+                                          {0.58, 0.40, 0.74}, {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.5, 0.5, 0.5}};
+    std::vector<PlotCurve> spectra, residuals;
+    for (std::size_t i = 0; i < fits.size(); ++i) {
+        const auto& f = fits[i];
+        const RGB colour = palette[i % palette.size()];
+        spectra.push_back({f.name + " measured", f.wavelength_nm, f.measured, {}, colour, true, static_cast<int>(i % 8) + 1});
+        spectra.push_back({f.name + " fitted", f.wavelength_nm, f.fitted, f.fitted_stderr, colour, false, 0});
+        std::vector<double> r;
+        for (std::size_t w = 0; w < f.measured.size(); ++w) r.push_back(f.fitted[w] - f.measured[w]);
+        residuals.push_back({f.name, f.wavelength_nm, r, f.fitted_stderr, colour, false, static_cast<int>(i % 8) + 1});
+    }
+    write_line_plot(file, "Measured and fitted reflectance (bands: +-2 model standard errors)", "wavelength (nm)", "R", spectra);
+    const auto path = std::filesystem::path(file);
+    const auto residual_file = (path.parent_path() / (path.stem().string() + "-residuals" + path.extension().string())).string();
+    write_line_plot(residual_file, "Residual: fitted - measured (bands: +-2 model standard errors)", "wavelength (nm)", "R fitted - R measured", residuals);
+    std::cerr << "wrote " << file << " and " << residual_file << '\n';
+}
+
+void run_fit_spectrum(const FitSpectrumOptions& o) {
+    if (!o.output.empty()) check_output_path(o.output, o.force, {".csv", ".json"});
+    if (!o.plot.empty()) {
+        check_output_path(o.plot, o.force, {".png", ".svg"});
+        const auto path = std::filesystem::path(o.plot);
+        check_output_path(path.parent_path() / (path.stem().string() + "-residuals" + path.extension().string()), o.force, {".png", ".svg"});
+    }
+    const auto measured = read_measured_spectra(o.measured);
+    std::vector<std::size_t> chosen;
+    for (const auto& name : o.spectra) {
+        const auto it = std::find(measured.names.begin(), measured.names.end(), name);
+        if (it == measured.names.end()) {
+            std::string names;
+            for (const auto& n : measured.names) names += (names.empty() ? "" : ", ") + n;
+            throw InputError("--spectra: '" + name + "' is not a column of " + measured.file + " (columns: " + names + ")");
+        }
+        chosen.push_back(static_cast<std::size_t>(it - measured.names.begin()));
+    }
+    if (chosen.empty()) {
+        for (std::size_t i = 0; i < measured.names.size(); ++i) chosen.push_back(i);
+    }
+
+    std::vector<MaterialOverride> overrides;
+    if (!o.variant.empty()) overrides.push_back({"model.variant", o.variant, "--variant"});
+    for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
+    if (!o.preset.empty() && !o.material.empty()) throw InputError("--preset and --material: give one base material");
+    const std::string base_name = !o.material.empty() ? o.material : !o.preset.empty() ? o.preset : default_base;
+    const auto material = load_material(base_name, overrides);
+    const auto* base = std::get_if<LayerStack>(&material);
+    if (!base) throw InputError("material '" + base_name + "' is homogeneous: the fit needs a layered skin for the BioSpec walk");
+
+    SpectrumFitSettings settings;
+    settings.free = free_parameters(o);
+    if (!o.window.empty()) std::tie(settings.window_from_nm, settings.window_to_nm) = parse_range(o.window, "--window");
+    settings.weights = weights_of(o);
+    settings.rays_per_wavelength = o.rays;
+    settings.seed = o.seed;
+    settings.geometry = measurement_geometry(o.solver);
+    settings.incidence_deg = o.incidence_deg;
+    settings.starts = o.starts;
+    for (const auto line : measured.line_of_row) settings.wavelength_sources.push_back(measured.file + ":" + std::to_string(line));
+
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    const InterruptGuard interrupt;
+    settings.cancel = &InterruptGuard::cancel_flag();
+
+    const auto start = std::chrono::steady_clock::now();
+    const SpectrumFitter fitter(*base, measured.wavelength_nm, settings);
+    const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<std::optional<SpectrumFit>> slots(chosen.size());
+    if (!fitter.cancelled()) {
+        ProgressBar bar("fit-spectrum", "spectra");
+        std::atomic<std::size_t> done{0};
+        std::mutex progress_lock;
+        tbb::parallel_for(std::size_t{0}, chosen.size(), [&](std::size_t i) {
+            if (InterruptGuard::interrupted()) return;
+            slots[i] = fitter.fit(measured.names[chosen[i]], measured.reflectance[chosen[i]]);
+            const std::lock_guard lock(progress_lock);
+            bar(Progress{0, 0, ++done, chosen.size()});
+        });
+        bar.clear();
+    }
+    std::vector<SpectrumFit> fits;
+    for (auto& s : slots) {
+        if (s) fits.push_back(std::move(*s));
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    const std::string provenance = fmt::format("material {} ({}), geometry {}, {} rays per wavelength, seed {}, window {}", base_name,
+                                               base->model.variant, to_string(settings.geometry), o.rays, o.seed,
+                                               o.window.empty() ? "all" : o.window);
+    std::vector<double> rms;
+    for (const auto& f : fits) rms.push_back(f.rms);
+    const auto bands = residual_bands(fits);
+    if (!fits.empty()) {
+        if (o.json) {
+            Json fit_list = Json::array(), band_list = Json::array();
+            for (const auto& f : fits) fit_list.push_back(fit_json(f));
+            for (const auto& b : bands) band_list.push_back(Json{{"band", b.name}, {"mean_residual", b.mean_residual}});
+            Json overrides_json = Json::array();
+            for (const auto& ov : overrides) overrides_json.push_back(Json{{"key", ov.key}, {"value", ov.value}});
+            const Json out{{"skinspec_version", version},
+                           {"schema", "skinspec-spectrum-fit/1"},
+                           {"measured_file", measured.file},
+                           {"material", base_name},
+                           {"variant", base->model.variant},
+                           {"overrides", overrides_json},
+                           {"geometry", std::string(to_string(settings.geometry))},
+                           {"rays_per_wavelength", o.rays},
+                           {"seed", o.seed},
+                           {"partial", fits.size() < chosen.size()},
+                           {"median_rms", median(rms)},
+                           {"worst_rms", *std::max_element(rms.begin(), rms.end())},
+                           {"mean_residual_by_band", band_list},
+                           {"seconds", seconds},
+                           {"fits", fit_list}};
+            std::cout << out.dump(2) << '\n';
+            if (!o.output.empty() && o.output.ends_with(".json")) write_text_file(o.output, out.dump(2) + "\n", true);
+        } else {
+            std::cout << table_of(fits);
+        }
+        if (!o.output.empty() && !(o.json && o.output.ends_with(".json"))) {
+            if (o.output.ends_with(".json")) {
+                Json fit_list = Json::array();
+                for (const auto& f : fits) fit_list.push_back(fit_json(f));
+                write_text_file(o.output, Json{{"skinspec_version", version}, {"schema", "skinspec-spectrum-fit/1"}, {"fits", fit_list}}.dump(2) + "\n", true);
+            } else {
+                write_text_file(o.output, csv_of(fits, provenance), true);
+            }
+        }
+        if (!o.output.empty()) std::cerr << "wrote " << o.output << '\n';
+        if (!o.plot.empty()) write_fit_plot(o.plot, fits);
+        std::string band_text;
+        for (const auto& b : bands) band_text += fmt::format("{}{} {:+.4f}", band_text.empty() ? "" : ", ", b.name, b.mean_residual);
+        std::cerr << fmt::format("{} spectra fitted in {:.2f} s (paths: {} rays in {:.2f} s; {:.2f} s per spectrum): median RMS {:.4f}, worst {:.4f}\n",
+                                 fits.size(), seconds, fitter.rays(), trace_seconds, (seconds - trace_seconds) / static_cast<double>(fits.size()),
+                                 median(rms), *std::max_element(rms.begin(), rms.end()))
+                  << "mean residual (fitted - measured): " << band_text << '\n';
+    }
+    if (InterruptGuard::interrupted()) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": " << fits.size() << " of " << chosen.size()
+                  << " spectra were fitted and written\n";
+        std::exit(InterruptGuard::exit_code());
+    }
+}
+
+}  // namespace
+
+void add_fit_spectrum_command(CLI::App& app) {
+    auto o = std::make_shared<FitSpectrumOptions>();
+    auto* cmd = app.add_subcommand("fit-spectrum",
+                                   "Fit biophysical parameters (melanin, blood, oxygenation, ...) to measured skin reflectance spectra "
+                                   "with the BioSpec walk on replayed paths");
+    cmd->add_option("measured", o->measured, "CSV: wavelength_nm, then one column per spectrum (header = name)")->required();
+    cmd->add_option("--preset", o->preset, std::string("Base material preset (default ") + default_base + "); the free fields start from it");
+    cmd->add_option("--material", o->material, "Base material TOML file");
+    cmd->add_option("--set", o->overrides, set_option_help);
+    cmd->add_option("--variant", o->variant, "Model variant: biospec (default), biospec-2004, biospec-authors-code");
+    cmd->add_option("--free", o->free,
+                    "Free fields, LAYER.FIELD (comma list; default epidermis.melanosome_fraction, papillary_dermis.blood_fraction, "
+                    "reticular_dermis.blood_fraction, dermis.oxygen_saturation): fields that change absorption only (also "
+                    "carotene_g_per_l, bilirubin_g_per_l, vessel_radius_um, ...) or thickness_cm of a layer without Rayleigh scattering")
+        ->delimiter(',');
+    cmd->add_option("--bounds", o->bounds, "FIELD=LO:HI for a free field (repeatable; defaults in docs/SPECTRUM_FIT.md)");
+    add_geometry_option(*cmd, o->solver);
+    cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();
+    cmd->add_option("--window", o->window, "Fit only the wavelengths in FROM:TO nm (default: all of the file)");
+    cmd->add_option("--weight", o->weights, "FROM:TO=W: residuals in [FROM, TO] nm count W times (repeatable; default 1)");
+    cmd->add_option("--spectra", o->spectra, "Fit only these columns (comma list)")->delimiter(',');
+    cmd->add_option("--rays", o->rays, "Traced rays per wavelength (the model's Monte Carlo noise ~ 0.4 / sqrt(rays))")
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}));
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    cmd->add_option("--starts", o->starts, "Local searches per spectrum, from the best points of a 64-point scan")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t{1}, std::size_t{64}));
+    cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
+    cmd->add_option("--output", o->output, "Write the fits to FILE.csv (one row per spectrum) or FILE.json");
+    cmd->add_option("--plot", o->plot, "Plot measured vs fitted to FILE.png|.svg (and the residuals to FILE-residuals.png|.svg)");
+    cmd->add_flag("--overwrite,--force", o->force, "Replace the --output / --plot files if they exist");
+    cmd->add_flag("--json", o->json, "Print the fits as JSON");
+    cmd->callback([o] { run_fit_spectrum(*o); });
+}
+
+}  // namespace skinspec::cli

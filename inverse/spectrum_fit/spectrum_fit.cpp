@@ -1,0 +1,303 @@
+#include "inverse/spectrum_fit/spectrum_fit.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <Eigen/Dense>
+#include <nlopt.hpp>
+
+#include "spectral/ciede2000.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+#include "transport/biospec/biospec_solver.hpp"
+
+namespace skinspec {
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+// Radical inverse of i in `base` (Halton 1960): the scan's quasi-random points, the same for every run.
+double radical_inverse(std::size_t i, std::size_t base) {
+    double f = 1.0, r = 0.0;
+    for (; i > 0; i /= base) {
+        f /= static_cast<double>(base);
+        r += f * static_cast<double>(i % base);
+    }
+    return r;
+}
+
+constexpr std::size_t primes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+
+}  // namespace
+
+std::vector<FitParameter> default_free_parameters() {
+    return {{"epidermis.melanosome_fraction", {}, {}},
+            {"papillary_dermis.blood_fraction", {}, {}},
+            {"reticular_dermis.blood_fraction", {}, {}},
+            {"dermis.oxygen_saturation", {}, {}}};
+}
+
+std::pair<double, double> default_fit_bounds(std::string_view field, double current) {
+    if (field == "melanosome_fraction") return {0.001, 0.45};   // shared spec: lightly 0.019 ... up to 0.42
+    if (field == "blood_fraction") return {0.0005, 0.2};
+    if (field == "oxygen_saturation") return {0.0, 1.0};
+    if (field == "carotene_g_per_l") return {0.0, 2e-3};         // ~10x the spec's 2.1e-4 g/L
+    if (field == "bilirubin_g_per_l") return {0.0, 0.5};         // normal 0.003-0.012 g/L in serum, jaundice above 0.05
+    if (field == "vessel_radius_um") return {0.0, 100.0};
+    if (current > 0.0) return {0.5 * current, 2.0 * current};   // thicknesses, concentrations: a factor-of-two band
+    return {0.0, 1.0};
+}
+
+std::vector<ResidualBand> residual_bands(const std::vector<SpectrumFit>& fits) {
+    // Shared spec "Measured skin to compare with": the blue and its Soret dip, the haemoglobin Q bands, the early
+    // red edge, the red plateau.
+    std::vector<ResidualBand> bands{{"blue 400-450 nm", 400.0, 450.0, 0.0, 0},
+                                    {"540-580 nm", 540.0, 580.0, 0.0, 0},
+                                    {"590-600 nm", 590.0, 600.0, 0.0, 0},
+                                    {"red 610-700 nm", 610.0, 700.0, 0.0, 0}};
+    for (auto& b : bands) {
+        double sum = 0.0;
+        for (const auto& f : fits) {
+            for (std::size_t w = 0; w < f.wavelength_nm.size(); ++w) {
+                if (f.wavelength_nm[w] < b.from_nm || f.wavelength_nm[w] > b.to_nm) continue;
+                sum += f.fitted[w] - f.measured[w];
+                ++b.samples;
+            }
+        }
+        b.mean_residual = b.samples > 0 ? sum / static_cast<double>(b.samples) : 0.0;
+    }
+    return bands;
+}
+
+SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>& wavelength_nm, const SpectrumFitSettings& settings)
+    : base_(base), settings_(settings) {
+    if (settings.free.empty()) throw InputError("--free: no free parameters");
+    if (!(settings.window_from_nm < settings.window_to_nm)) {
+        throw InputError("--window " + format_number(settings.window_from_nm) + ":" + format_number(settings.window_to_nm) + ": FROM must be below TO");
+    }
+    for (const auto& p : settings.free) {
+        auto handle = layer_field(base, p.key, "--free");
+        const auto& f = *handle.field;
+        if (!f.absorption_only) {
+            const bool scalable = f.key == "thickness_cm" && std::all_of(handle.layers.begin(), handle.layers.end(), [&](std::size_t k) {
+                return base.layers[k].crossing != CrossingScattering::rayleigh_cosine || !base.model.dermal_rayleigh;
+            });
+            if (!scalable) {
+                std::string allowed;
+                for (const auto& g : layer_number_fields()) {
+                    if (g.absorption_only) allowed += std::string(g.key) + ", ";
+                }
+                throw InputError("--free '" + p.key + "': a fit re-weights traced paths, so a free field must change absorption only (" +
+                                 allowed + "or thickness_cm of a layer without Rayleigh scattering)");
+            }
+        }
+        for (const auto& other : keys_) {
+            if (other == p.key) throw InputError("--free '" + p.key + "' is given twice");
+        }
+        const auto [lo0, hi0] = default_fit_bounds(f.key, handle.get(base));
+        const double lo = p.lo.value_or(lo0), hi = p.hi.value_or(hi0);
+        if (!f.range.contains(lo) || !f.range.contains(hi)) {
+            throw InputError("--bounds " + p.key + "=" + format_number(lo) + ":" + format_number(hi) + ": outside the field's range " + f.range.text());
+        }
+        if (!(lo < hi)) throw InputError("--bounds " + p.key + "=" + format_number(lo) + ":" + format_number(hi) + ": LO must be below HI");
+        keys_.push_back(p.key);
+        bounds_.emplace_back(lo, hi);
+        log_scale_.push_back(lo > 0.0 && hi / lo > 10.0);
+        handles_.push_back(std::move(handle));
+    }
+    for (std::size_t i = 0; i < wavelength_nm.size(); ++i) {
+        const double nm = wavelength_nm[i];
+        if (nm < settings.window_from_nm || nm > settings.window_to_nm) continue;
+        used_.push_back(i);
+        wavelengths_nm_.push_back(nm);
+        double w = 1.0;
+        for (const auto& ww : settings.weights) {
+            if (nm >= ww.from_nm && nm <= ww.to_nm) w = ww.weight;
+        }
+        weights_.push_back(w);
+    }
+    if (used_.size() < 5) {
+        const bool windowed = settings.window_from_nm > 0.0 || std::isfinite(settings.window_to_nm);
+        throw InputError(std::to_string(used_.size()) + " measured wavelengths to fit" +
+                         (windowed ? " in --window " + format_number(settings.window_from_nm) + ":" + format_number(settings.window_to_nm) : "") +
+                         "; a fit needs at least 5");
+    }
+    // Every chromophore table must cover every fitted wavelength at both ends of the bounds.
+    for (const bool upper : {false, true}) {
+        auto stack = base_;
+        for (std::size_t p = 0; p < handles_.size(); ++p) handles_[p].set(stack, upper ? bounds_[p].second : bounds_[p].first);
+        for (const double nm : wavelengths_nm_) {
+            for (const auto& layer : stack.layers) {
+                try {
+                    absorption_per_cm(layer, nm, stack.model);
+                } catch (const InputError& e) {
+                    const auto at = static_cast<std::size_t>(&nm - wavelengths_nm_.data());
+                    const auto& sources = settings.wavelength_sources;
+                    const std::string where = used_[at] < sources.size() ? sources[used_[at]] + ": " : std::string();
+                    throw InputError(where + "wavelength " + format_number(nm) + " nm is outside the model's tables (layer '" + layer.name + "'): " + e.what());
+                }
+            }
+        }
+    }
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list(wavelengths_nm_);
+    request.geometry = settings.geometry;
+    request.incidence_deg = settings.incidence_deg;
+    request.seed = settings.seed;
+    request.max_rays_per_wavelength = settings.rays_per_wavelength;
+    request.cancel = settings.cancel;
+    auto paths = record_biospec_paths(base_, request, settings.walk);
+    if (paths) paths_ = std::move(*paths);
+    else cancelled_ = true;
+}
+
+std::uint64_t SpectrumFitter::rays() const {
+    std::uint64_t n = 0;
+    for (const auto& p : paths_) n += p.rays;
+    return n;
+}
+
+std::vector<Estimate> SpectrumFitter::model(const std::vector<double>& parameters) const {
+    auto stack = base_;
+    for (std::size_t p = 0; p < handles_.size(); ++p) handles_[p].set(stack, parameters[p]);
+    const std::size_t layers = stack.layers.size();
+    std::vector<double> scale(layers), mu(layers);
+    for (std::size_t k = 0; k < layers; ++k) scale[k] = stack.layers[k].thickness_cm / base_.layers[k].thickness_cm;
+    std::vector<Estimate> out;
+    out.reserve(paths_.size());
+    for (std::size_t w = 0; w < paths_.size(); ++w) {
+        for (std::size_t k = 0; k < layers; ++k) mu[k] = absorption_per_cm(stack.layers[k], wavelengths_nm_[w], stack.model);
+        out.push_back(paths_[w].reflectance(mu, scale));
+    }
+    return out;
+}
+
+SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<double>& measured_all) const {
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t p = keys_.size(), n = used_.size();
+    std::vector<double> measured;
+    for (const auto i : used_) measured.push_back(measured_all.at(i));
+    const double weight_sum = std::accumulate(weights_.begin(), weights_.end(), 0.0);
+
+    const auto to_value = [&](std::size_t i, double x) {
+        const auto [lo, hi] = bounds_[i];
+        return log_scale_[i] ? lo * std::pow(hi / lo, x) : lo + x * (hi - lo);
+    };
+    const auto values_of = [&](const std::vector<double>& x) {
+        std::vector<double> v(p);
+        for (std::size_t i = 0; i < p; ++i) v[i] = to_value(i, std::clamp(x[i], 0.0, 1.0));
+        return v;
+    };
+    std::size_t evaluations = 0;
+    const auto objective = [&](const std::vector<double>& x) {
+        ++evaluations;
+        const auto r = model(values_of(x));
+        double s = 0.0;
+        for (std::size_t w = 0; w < n; ++w) s += weights_[w] * (r[w].value - measured[w]) * (r[w].value - measured[w]);
+        return s / weight_sum;
+    };
+
+    // Scan: quasi-random points over the unit box, then local searches from the best distinct ones.
+    std::vector<std::pair<double, std::vector<double>>> scanned;
+    for (std::size_t j = 0; j < settings_.scan_points; ++j) {
+        std::vector<double> x(p);
+        for (std::size_t i = 0; i < p; ++i) x[i] = j == 0 ? 0.5 : radical_inverse(j, primes[i % std::size(primes)]);
+        scanned.emplace_back(objective(x), std::move(x));
+    }
+    std::sort(scanned.begin(), scanned.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<double> best_x = scanned.front().second;
+    double best = scanned.front().first;
+    const std::size_t starts = std::min(settings_.starts, scanned.size());
+    for (std::size_t s = 0; s < starts; ++s) {
+        if (settings_.cancel && settings_.cancel->load()) break;
+        nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(p));
+        opt.set_lower_bounds(std::vector<double>(p, 0.0));
+        opt.set_upper_bounds(std::vector<double>(p, 1.0));
+        opt.set_initial_step(std::vector<double>(p, 0.1));
+        opt.set_xtol_abs(1e-4);
+        opt.set_ftol_rel(1e-8);
+        opt.set_maxeval(400);
+        opt.set_min_objective(
+            [](const std::vector<double>& x, std::vector<double>&, void* data) {
+                return (*static_cast<decltype(objective)*>(data))(x);
+            },
+            const_cast<void*>(static_cast<const void*>(&objective)));
+        auto x = scanned[s].second;
+        double value = scanned[s].first;
+        try {
+            opt.optimize(x, value);
+        } catch (const nlopt::roundoff_limited&) {
+            value = objective(x);
+        }
+        if (value < best) {
+            best = value;
+            best_x = x;
+        }
+    }
+
+    SpectrumFit fit;
+    fit.name = name;
+    fit.parameter_keys = keys_;
+    fit.parameters = values_of(best_x);
+    for (std::size_t i = 0; i < p; ++i) fit.on_bound.push_back(best_x[i] < 1e-3 || best_x[i] > 1.0 - 1e-3);
+    const auto at_best = model(fit.parameters);
+    fit.wavelength_nm = wavelengths_nm_;
+    fit.measured = measured;
+    double sum_sq = 0.0, weighted_sq = 0.0;
+    for (std::size_t w = 0; w < n; ++w) {
+        fit.fitted.push_back(at_best[w].value);
+        fit.fitted_stderr.push_back(at_best[w].stderr);
+        const double r = at_best[w].value - measured[w];
+        sum_sq += r * r;
+        weighted_sq += weights_[w] * r * r;
+    }
+    fit.rms = std::sqrt(sum_sq / static_cast<double>(n));
+
+    // Standard errors (sandwich form): Cov = A^-1 B A^-1, A = J^T W J, B = J^T W diag(s^2 + m_w^2) W J, with J the
+    // model's Jacobian at the optimum (central differences of the smooth replayed model), s^2 the residual
+    // variance per degree of freedom and m_w the model's Monte Carlo standard error at wavelength w.
+    Eigen::MatrixXd jacobian(n, p);
+    for (std::size_t i = 0; i < p; ++i) {
+        const auto [lo, hi] = bounds_[i];
+        const double h = 1e-3 * std::max(std::abs(fit.parameters[i]), 1e-2 * (hi - lo));
+        auto up = fit.parameters, down = fit.parameters;
+        up[i] = std::min(hi, up[i] + h);
+        down[i] = std::max(lo, down[i] - h);
+        const auto r_up = model(up), r_down = model(down);
+        for (std::size_t w = 0; w < n; ++w) jacobian(static_cast<Eigen::Index>(w), static_cast<Eigen::Index>(i)) = (r_up[w].value - r_down[w].value) / (up[i] - down[i]);
+    }
+    const double dof = n > p ? static_cast<double>(n - p) : 1.0;
+    const double residual_variance = weighted_sq / (weight_sum / static_cast<double>(n)) / dof;
+    Eigen::VectorXd w_vec(n), noise(n);
+    for (std::size_t w = 0; w < n; ++w) {
+        w_vec(static_cast<Eigen::Index>(w)) = weights_[w];
+        noise(static_cast<Eigen::Index>(w)) = residual_variance + at_best[w].stderr * at_best[w].stderr;
+    }
+    const Eigen::MatrixXd wj = w_vec.asDiagonal() * jacobian;
+    const Eigen::MatrixXd a = jacobian.transpose() * wj;
+    const Eigen::MatrixXd b = wj.transpose() * noise.asDiagonal() * wj;
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
+    if (lu.isInvertible()) {
+        const Eigen::MatrixXd a_inv = lu.inverse();
+        const Eigen::MatrixXd cov = a_inv * b * a_inv;
+        for (std::size_t i = 0; i < p; ++i) {
+            const double v = cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+            fit.parameter_stderr.push_back(std::isfinite(v) && v >= 0.0 ? std::sqrt(v) : infinity);
+        }
+    } else {
+        fit.parameter_stderr.assign(p, infinity);
+    }
+
+    const TristimulusWeights tristimulus(fit.wavelength_nm, settings_.illuminant, settings_.observer, OutOfRangePolicy::hold);
+    fit.measured_lab = xyz_to_lab(tristimulus.integrate(fit.measured), tristimulus.white());
+    fit.fitted_lab = xyz_to_lab(tristimulus.integrate(fit.fitted), tristimulus.white());
+    fit.delta_e2000 = ciede2000(fit.measured_lab, fit.fitted_lab);
+    fit.evaluations = evaluations;
+    fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return fit;
+}
+
+}  // namespace skinspec

@@ -1,0 +1,115 @@
+#pragma once
+// Fitting measured reflectance spectra with the BioSpec walk (docs/SPECTRUM_FIT.md). The walk's paths are traced
+// once per wavelength without absorption (path recording, transport/biospec/biospec_walk.hpp); the model R for
+// any values of the free parameters is then a re-weighting of the same paths (common random numbers), a smooth
+// function of them, so a bounded optimiser (NLopt BOBYQA, from the best points of a quasi-random scan) can
+// minimise the weighted squared residual. Free parameters change absorption only, or the thickness of a layer
+// whose paths scale with it (no Rayleigh scattering), so one set of paths serves every spectrum.
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "materials/layer_stack.hpp"
+#include "materials/material_fields.hpp"
+#include "spectral/cie.hpp"
+#include "spectral/colorimetry.hpp"
+#include "transport/biospec/biospec_options.hpp"
+#include "transport/biospec/biospec_walk.hpp"
+#include "transport/spectral_request.hpp"
+
+namespace skinspec {
+
+struct FitParameter {
+    std::string key;  // a --set key addressing layer fields, e.g. "epidermis.melanosome_fraction", "dermis.oxygen_saturation"
+    std::optional<double> lo, hi;  // unset: default_fit_bounds
+};
+
+struct WavelengthWeight {
+    double from_nm, to_nm, weight;  // residuals at wavelengths in [from, to] count `weight` times
+};
+
+struct SpectrumFitSettings {
+    std::vector<FitParameter> free;
+    double window_from_nm = 0.0;  // default: every given wavelength
+    double window_to_nm = std::numeric_limits<double>::infinity();
+    std::vector<WavelengthWeight> weights;
+    std::uint64_t rays_per_wavelength = 20'000;
+    std::uint64_t seed = 1;
+    MeasurementGeometry geometry = MeasurementGeometry::sci;
+    double incidence_deg = 0.0;
+    BiospecOptions walk;
+    std::size_t scan_points = 64;  // quasi-random points over the bounds before the local searches
+    std::size_t starts = 2;        // local searches, from the best scan points
+    IlluminantKind illuminant = IlluminantKind::d65;
+    ObserverKind observer = ObserverKind::cie1931_2deg;
+    const CancelFlag* cancel = nullptr;
+    std::vector<std::string> wavelength_sources;  // per given wavelength, where it came from ("file.csv:12"), for messages
+};
+
+// The default free parameters: melanosome fraction, papillary and reticular blood fraction, oxygen saturation.
+std::vector<FitParameter> default_free_parameters();
+// Default bounds of a free field given its current value (a fraction's physiological range, a thickness's
+// factor-of-two band, ...).
+std::pair<double, double> default_fit_bounds(std::string_view field, double current);
+
+struct SpectrumFit {
+    std::string name;
+    std::vector<std::string> parameter_keys;
+    std::vector<double> parameters;
+    std::vector<double> parameter_stderr;  // +inf where the spectrum does not determine the parameter
+    std::vector<bool> on_bound;
+    double rms = 0.0;                      // unweighted, over the window
+    std::vector<double> wavelength_nm;
+    std::vector<double> measured;
+    std::vector<double> fitted;
+    std::vector<double> fitted_stderr;     // Monte Carlo standard error of the model at the optimum
+    Lab measured_lab, fitted_lab;
+    double delta_e2000 = 0.0;
+    std::size_t evaluations = 0;
+    double seconds = 0.0;
+};
+
+// Mean residual (fitted - measured) of many fits in the bands that show the model's systematic errors.
+struct ResidualBand {
+    std::string name;
+    double from_nm, to_nm;
+    double mean_residual;  // over the fits and the band's wavelengths; NaN-free: 0 with no wavelength inside
+    std::size_t samples;
+};
+std::vector<ResidualBand> residual_bands(const std::vector<SpectrumFit>& fits);
+
+class SpectrumFitter {
+public:
+    // Traces the paths of `base` at the measured wavelengths inside the window. InputError for a free field that
+    // is not one of a layer's absorption fields or a scalable thickness, bounds outside the field's range or
+    // with lo >= hi, and wavelengths outside the model's tables.
+    SpectrumFitter(const LayerStack& base, const std::vector<double>& wavelength_nm, const SpectrumFitSettings& settings);
+
+    // One spectrum at the fitter's wavelengths (all given ones; those outside the window are left out).
+    SpectrumFit fit(const std::string& name, const std::vector<double>& measured) const;
+    // The model at parameter values (in the order of the free keys), per fitted wavelength, with standard errors.
+    std::vector<Estimate> model(const std::vector<double>& parameters) const;
+
+    const std::vector<double>& wavelengths_nm() const { return wavelengths_nm_; }
+    const std::vector<std::string>& keys() const { return keys_; }
+    const std::vector<std::pair<double, double>>& bounds() const { return bounds_; }
+    std::uint64_t rays() const;
+    bool cancelled() const { return cancelled_; }
+
+private:
+    LayerStack base_;
+    SpectrumFitSettings settings_;
+    std::vector<LayerFieldHandle> handles_;
+    std::vector<std::string> keys_;
+    std::vector<std::pair<double, double>> bounds_;
+    std::vector<bool> log_scale_;
+    std::vector<std::size_t> used_;         // indices of the given wavelengths inside the window
+    std::vector<double> wavelengths_nm_;    // the fitted wavelengths
+    std::vector<double> weights_;
+    std::vector<ExitPaths> paths_;
+    bool cancelled_ = false;
+};
+
+}  // namespace skinspec

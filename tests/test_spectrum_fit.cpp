@@ -1,0 +1,85 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "inverse/spectrum_fit/spectrum_fit.hpp"
+#include "materials/material_file.hpp"
+#include "spectral/input_error.hpp"
+#include "transport/biospec/biospec_solver.hpp"
+#include "transport/random_stream.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+LayerStack preset(const char* name) { return std::get<LayerStack>(load_material(name)); }
+
+std::vector<double> grid() {
+    std::vector<double> nm;
+    for (double w = 400.0; w <= 700.0; w += 20.0) nm.push_back(w);
+    return nm;
+}
+
+}  // namespace
+
+TEST_CASE("fit round trip: spectra of the independent forward walk give back their parameters", "[spectrum_fit]") {
+    // Truth made by the BioSpec walk itself (another seed, its own paths, with absorption), plus Gaussian noise of
+    // 0.005; the fitter re-weights paths of its own. Each parameter must come back within 3 standard errors.
+    const std::vector<std::vector<double>> truths{{0.03, 0.012, 0.0091, 0.75}, {0.10, 0.02, 0.005, 0.6}, {0.008, 0.006, 0.015, 0.85}};
+    SpectrumFitSettings settings;
+    settings.free = default_free_parameters();
+    const auto base = preset("biospec-moderately");
+    const SpectrumFitter fitter(base, grid(), settings);
+    REQUIRE(fitter.keys().size() == 4);
+    auto noise = RandomStream::for_batch(99, 0.0, 0);
+    for (const auto& truth : truths) {
+        auto stack = base;
+        stack.layers[1].melanosome_fraction = truth[0];
+        stack.layers[2].blood_fraction = truth[1];
+        stack.layers[3].blood_fraction = truth[2];
+        stack.layers[2].oxygen_saturation = stack.layers[3].oxygen_saturation = truth[3];
+        SpectralRequest request;
+        request.wavelengths = WavelengthGrid::list(grid());
+        request.max_rays_per_wavelength = 100'000;
+        request.seed = 12345;
+        const auto forward = solve_biospec(stack, request);
+        std::vector<double> measured;
+        for (const auto& w : forward.wavelengths) {
+            // Box-Muller.
+            const double g = std::sqrt(-2.0 * std::log(1.0 - noise.uniform())) * std::cos(2.0 * std::numbers::pi * noise.uniform());
+            measured.push_back(w.reflectance.value + 0.005 * g);
+        }
+        const auto fit = fitter.fit("synthetic", measured);
+        for (std::size_t i = 0; i < truth.size(); ++i) {
+            INFO(fit.parameter_keys[i] << ": true " << truth[i] << ", fitted " << fit.parameters[i] << " +- " << fit.parameter_stderr[i]);
+            CHECK(std::abs(fit.parameters[i] - truth[i]) < 3.0 * fit.parameter_stderr[i]);
+        }
+        CHECK(fit.rms < 0.01);
+        CHECK(fit.delta_e2000 < 2.0);
+        CHECK(fit.wavelength_nm.size() == grid().size());
+    }
+}
+
+TEST_CASE("fit inputs: free fields, bounds and wavelengths are checked before any ray", "[spectrum_fit]") {
+    const auto base = preset("biospec-lightly");
+    const auto fails = [&](std::vector<FitParameter> free, const std::string& message, std::vector<double> nm = grid()) {
+        SpectrumFitSettings s;
+        s.free = std::move(free);
+        s.rays_per_wavelength = 100;
+        CHECK_THROWS_WITH(SpectrumFitter(base, nm, s), Catch::Contains(message));
+    };
+    fails({{"epidermis.melanin", {}, {}}}, "--free 'epidermis.melanin': 'melanin' is not a layer field (allowed: thickness_cm,");
+    fails({{"dermis.collagen_fibre_fraction", {}, {}}}, "a free field must change absorption only");
+    fails({{"reticular_dermis.thickness_cm", {}, {}}}, "or thickness_cm of a layer without Rayleigh scattering");
+    fails({{"hypodermis.blood_fraction", {}, {}}}, "no layer 'hypodermis' in 'biospec-lightly'");
+    fails({{"epidermis.melanosome_fraction", 0.1, 1.5}}, "--bounds epidermis.melanosome_fraction=0.1:1.5: outside the field's range [0, 1]");
+    fails({{"epidermis.melanosome_fraction", 0.2, 0.1}}, "--bounds epidermis.melanosome_fraction=0.2:0.1: LO must be below HI");
+    fails({{"epidermis.melanosome_fraction", {}, {}}, {"epidermis.melanosome_fraction", {}, {}}}, "is given twice");
+    fails({{"epidermis.melanosome_fraction", {}, {}}}, "4 measured wavelengths to fit; a fit needs at least 5", {400, 500, 600, 700});
+    fails({{"epidermis.melanosome_fraction", {}, {}}}, "wavelength 830 nm is outside the model's tables (layer 'epidermis'): eumelanin", {790, 800, 810, 820, 830});
+    // A thin layer's thickness scales its paths, so it may be free.
+    SpectrumFitSettings s;
+    s.free = {{"epidermis.thickness_cm", {}, {}}};
+    s.rays_per_wavelength = 100;
+    CHECK_NOTHROW(SpectrumFitter(base, grid(), s));
+}

@@ -1,0 +1,50 @@
+// Compiled with -ffast-math (CMakeLists.txt) so that the exponential of the re-weighting loop vectorises
+// (glibc's libmvec); nothing here depends on IEEE corner cases: every input is finite and non-negative.
+#include "transport/biospec/exit_paths.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace skinspec {
+
+void ExitPaths::append(const ExitPaths& other) {
+    rays += other.rays;
+    surface_exits += other.surface_exits;
+    if (layer_path_cm.size() < other.layer_path_cm.size()) layer_path_cm.resize(other.layer_path_cm.size());
+    for (std::size_t k = 0; k < other.layer_path_cm.size(); ++k) {
+        layer_path_cm[k].insert(layer_path_cm[k].end(), other.layer_path_cm[k].begin(), other.layer_path_cm[k].end());
+    }
+}
+
+// Two versions chosen at load time by the CPU (GCC function multiversioning): AVX2 (8-wide expf) or the baseline.
+__attribute__((target_clones("avx2", "default")))
+Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vector<double>& scale) const {
+    if (rays == 0) return {};
+    constexpr std::size_t chunk = 256;
+    float tau[chunk];
+    double sum = static_cast<double>(surface_exits), sum_sq = sum;
+    const std::size_t n = exits();
+    for (std::size_t start = 0; start < n; start += chunk) {
+        const std::size_t m = std::min(chunk, n - start);
+        std::fill(tau, tau + m, 0.0f);
+        for (std::size_t k = 0; k < layer_path_cm.size(); ++k) {
+            const float mu = static_cast<float>(mu_a[k] * scale[k]);
+            const float* p = layer_path_cm[k].data() + start;
+            for (std::size_t i = 0; i < m; ++i) tau[i] += mu * p[i];
+        }
+        float s = 0.0f, s2 = 0.0f;
+        for (std::size_t i = 0; i < m; ++i) {
+            const float w = std::exp(-tau[i]);
+            s += w;
+            s2 += w * w;
+        }
+        sum += s;
+        sum_sq += s2;
+    }
+    const double count = static_cast<double>(rays);
+    const double mean = sum / count;
+    const double variance = rays > 1 ? std::max(0.0, sum_sq / count - mean * mean) / (count - 1.0) : 0.0;
+    return {mean * factor, std::sqrt(variance) * factor};
+}
+
+}  // namespace skinspec

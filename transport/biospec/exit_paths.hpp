@@ -1,0 +1,32 @@
+#pragma once
+// The recorded exits of one wavelength of the BioSpec walk's path recording (transport/biospec/biospec_walk.hpp):
+// per ray that left the top into the measurement geometry (first-surface reflections apart), its path length in
+// each layer. R for any absorption is then the mean over the traced rays of exp(-sum_k mu_a,k L_k) (white Monte
+// Carlo, Alerstam et al. 2008, J. Biomed. Opt. 13:060504), a smooth function of mu_a.
+#include <cstdint>
+#include <vector>
+
+#include "transport/spectral_request.hpp"
+
+namespace skinspec {
+
+struct ExitPaths {
+    std::uint64_t rays = 0;           // rays traced
+    std::uint64_t surface_exits = 0;  // first-surface reflections into the geometry (no path in the skin)
+    double factor = 1.0;              // each exit's contribution (1, or 1 / band for 0/45)
+    std::vector<std::vector<float>> layer_path_cm;  // [layer][exit], layer-major so that re-weighting vectorises
+
+    void resize_layers(std::size_t layers) { layer_path_cm.resize(layers); }
+    std::size_t layers() const { return layer_path_cm.size(); }
+    std::size_t exits() const { return layer_path_cm.empty() ? 0 : layer_path_cm.front().size(); }
+    void add_exit(const std::vector<double>& path_cm_per_layer) {
+        for (std::size_t k = 0; k < layer_path_cm.size(); ++k) layer_path_cm[k].push_back(static_cast<float>(path_cm_per_layer[k]));
+    }
+    void append(const ExitPaths& other);
+    // R for the absorption coefficients mu_a [1/cm] per layer (scale_k multiplies layer k's paths: a thickness
+    // ratio for layers whose paths scale with thickness), and its standard error over the rays. Single precision
+    // per exit (relative error ~1e-6, far below the Monte Carlo error), sums in double.
+    Estimate reflectance(const std::vector<double>& mu_a_per_cm, const std::vector<double>& path_scale) const;
+};
+
+}  // namespace skinspec
