@@ -45,7 +45,7 @@ struct FitSpectrumOptions {
     double incidence_deg = 0.0;
     std::uint64_t rays = 20'000;
     std::uint64_t seed = 1;
-    std::size_t starts = 2;
+    std::size_t starts = 4;
     unsigned threads = 0;
     SolverOptions solver;
     std::string output;
@@ -162,14 +162,16 @@ std::string csv_of(const std::vector<SpectrumFit>& fits, const std::string& prov
 
 std::string table_of(const std::vector<SpectrumFit>& fits) {
     const auto& keys = fits.front().parameter_keys;
+    std::size_t width = 24;
+    for (const auto& k : keys) width = std::max(width, k.size());
     std::string out = fmt::format("{:<12}", "spectrum");
-    for (const auto& k : keys) out += fmt::format("  {:>24}", k.size() > 24 ? k.substr(k.size() - 24) : k);
+    for (const auto& k : keys) out += fmt::format("  {:>{}}", k, width);
     out += fmt::format("  {:>7}  {:>6}  {:>13}\n", "rms", "dE00", "L* meas/fit");
     for (const auto& f : fits) {
         out += fmt::format("{:<12}", f.name);
         for (std::size_t i = 0; i < keys.size(); ++i) {
             const std::string se = std::isfinite(f.parameter_stderr[i]) ? fmt::format("{:.2g}", f.parameter_stderr[i]) : "n/a";
-            out += fmt::format("  {:>24}", fmt::format("{:.4g} +- {}{}", f.parameters[i], se, f.on_bound[i] ? " *" : ""));
+            out += fmt::format("  {:>{}}", fmt::format("{:.4g} +- {}{}", f.parameters[i], se, f.on_bound[i] ? " *" : ""), width);
         }
         out += fmt::format("  {:>7.4f}  {:>6.2f}  {:>6.1f}/{:<6.1f}\n", f.rms, f.delta_e2000, f.measured_lab.L, f.fitted_lab.L);
     }

@@ -83,3 +83,26 @@ TEST_CASE("fit inputs: free fields, bounds and wavelengths are checked before an
     s.rays_per_wavelength = 100;
     CHECK_NOTHROW(SpectrumFitter(base, grid(), s));
 }
+
+TEST_CASE("the replayed model's analytic Jacobian equals central differences", "[spectrum_fit]") {
+    SpectrumFitSettings settings;
+    settings.free = default_free_parameters();
+    settings.free.push_back({"epidermis.thickness_cm", {}, {}});
+    settings.free.push_back({"reticular_dermis.vessel_radius_um", {}, {}});
+    settings.rays_per_wavelength = 5000;
+    const SpectrumFitter fitter(preset("biospec-lightly"), {420.0, 545.0, 580.0, 650.0, 700.0}, settings);
+    const std::vector<double> at{0.03, 0.01, 0.008, 0.7, 0.012, 12.0};
+    std::vector<std::vector<double>> jacobian;
+    const auto base = fitter.model(at, &jacobian);
+    for (std::size_t j = 0; j < at.size(); ++j) {
+        const double h = 1e-2 * at[j];  // large enough for single-precision re-weighting, small for O(h^2)
+        auto up = at, down = at;
+        up[j] += h;
+        down[j] -= h;
+        const auto r_up = fitter.model(up), r_down = fitter.model(down);
+        for (std::size_t w = 0; w < base.size(); ++w) {
+            INFO(fitter.keys()[j] << " at " << fitter.wavelengths_nm()[w] << " nm");
+            CHECK(jacobian[w][j] == Approx((r_up[w].value - r_down[w].value) / (2.0 * h)).epsilon(2e-3).margin(1e-6));
+        }
+    }
+}

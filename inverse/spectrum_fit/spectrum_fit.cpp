@@ -129,12 +129,12 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
     for (const bool upper : {false, true}) {
         auto stack = base_;
         for (std::size_t p = 0; p < handles_.size(); ++p) handles_[p].set(stack, upper ? bounds_[p].second : bounds_[p].first);
-        for (const double nm : wavelengths_nm_) {
+        for (std::size_t at = 0; at < wavelengths_nm_.size(); ++at) {
+            const double nm = wavelengths_nm_[at];
             for (const auto& layer : stack.layers) {
                 try {
                     absorption_per_cm(layer, nm, stack.model);
                 } catch (const InputError& e) {
-                    const auto at = static_cast<std::size_t>(&nm - wavelengths_nm_.data());
                     const auto& sources = settings.wavelength_sources;
                     const std::string where = used_[at] < sources.size() ? sources[used_[at]] + ": " : std::string();
                     throw InputError(where + "wavelength " + format_number(nm) + " nm is outside the model's tables (layer '" + layer.name + "'): " + e.what());
@@ -160,17 +160,53 @@ std::uint64_t SpectrumFitter::rays() const {
     return n;
 }
 
-std::vector<Estimate> SpectrumFitter::model(const std::vector<double>& parameters) const {
+std::vector<Estimate> SpectrumFitter::model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const {
     auto stack = base_;
     for (std::size_t p = 0; p < handles_.size(); ++p) handles_[p].set(stack, parameters[p]);
-    const std::size_t layers = stack.layers.size();
-    std::vector<double> scale(layers), mu(layers);
+    const std::size_t layers = stack.layers.size(), n = paths_.size(), free = handles_.size();
+    std::vector<double> scale(layers);
     for (std::size_t k = 0; k < layers; ++k) scale[k] = stack.layers[k].thickness_cm / base_.layers[k].thickness_cm;
+    std::vector<std::vector<double>> mu(n, std::vector<double>(layers));
+    for (std::size_t w = 0; w < n; ++w) {
+        for (std::size_t k = 0; k < layers; ++k) mu[w][k] = absorption_per_cm(stack.layers[k], wavelengths_nm_[w], stack.model);
+    }
+    // d(mu_a,k scale_k) / dparameter_j per wavelength: a thickness scales the paths; any other field changes mu_a,
+    // differentiated by a one-sided difference (mu_a is linear in every fraction and concentration).
+    std::vector<std::vector<std::vector<double>>> d_effective;
+    if (jacobian) {
+        d_effective.assign(free, std::vector<std::vector<double>>(n, std::vector<double>(layers, 0.0)));
+        for (std::size_t j = 0; j < free; ++j) {
+            const auto& h = handles_[j];
+            if (h.field->key == "thickness_cm") {
+                for (std::size_t w = 0; w < n; ++w) {
+                    for (const auto k : h.layers) d_effective[j][w][k] = mu[w][k] / base_.layers[k].thickness_cm;
+                }
+                continue;
+            }
+            const auto [lo, hi] = bounds_[j];
+            double step = 1e-6 * std::max(std::abs(parameters[j]), hi - lo);
+            if (parameters[j] + step > hi) step = -step;
+            auto moved = stack;
+            h.set(moved, parameters[j] + step);
+            for (std::size_t w = 0; w < n; ++w) {
+                for (const auto k : h.layers) {
+                    d_effective[j][w][k] = (absorption_per_cm(moved.layers[k], wavelengths_nm_[w], moved.model) - mu[w][k]) / step * scale[k];
+                }
+            }
+        }
+        jacobian->assign(n, std::vector<double>(free, 0.0));
+    }
     std::vector<Estimate> out;
-    out.reserve(paths_.size());
-    for (std::size_t w = 0; w < paths_.size(); ++w) {
-        for (std::size_t k = 0; k < layers; ++k) mu[k] = absorption_per_cm(stack.layers[k], wavelengths_nm_[w], stack.model);
-        out.push_back(paths_[w].reflectance(mu, scale));
+    out.reserve(n);
+    std::vector<double> d_r;
+    for (std::size_t w = 0; w < n; ++w) {
+        out.push_back(paths_[w].reflectance(mu[w], scale, jacobian ? &d_r : nullptr));
+        if (!jacobian) continue;
+        for (std::size_t j = 0; j < free; ++j) {
+            double g = 0.0;
+            for (std::size_t k = 0; k < layers; ++k) g += d_r[k] * d_effective[j][w][k];
+            (*jacobian)[w][j] = g;
+        }
     }
     return out;
 }
@@ -191,14 +227,27 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
         for (std::size_t i = 0; i < p; ++i) v[i] = to_value(i, std::clamp(x[i], 0.0, 1.0));
         return v;
     };
+    const auto slope = [&](std::size_t i, double x) {  // d value / d x
+        const auto [lo, hi] = bounds_[i];
+        return log_scale_[i] ? to_value(i, x) * std::log(hi / lo) : hi - lo;
+    };
     std::size_t evaluations = 0;
-    const auto objective = [&](const std::vector<double>& x) {
+    // Weighted mean squared residual and, when asked, its gradient in the unit box.
+    const auto objective_with_gradient = [&](const std::vector<double>& x, std::vector<double>* gradient) {
         ++evaluations;
-        const auto r = model(values_of(x));
+        std::vector<std::vector<double>> jac;
+        const auto r = model(values_of(x), gradient ? &jac : nullptr);
         double s = 0.0;
-        for (std::size_t w = 0; w < n; ++w) s += weights_[w] * (r[w].value - measured[w]) * (r[w].value - measured[w]);
+        if (gradient) gradient->assign(p, 0.0);
+        for (std::size_t w = 0; w < n; ++w) {
+            const double residual = r[w].value - measured[w];
+            s += weights_[w] * residual * residual;
+            if (!gradient) continue;
+            for (std::size_t i = 0; i < p; ++i) (*gradient)[i] += 2.0 * weights_[w] * residual * jac[w][i] * slope(i, std::clamp(x[i], 0.0, 1.0)) / weight_sum;
+        }
         return s / weight_sum;
     };
+    const auto objective = [&](const std::vector<double>& x) { return objective_with_gradient(x, nullptr); };
 
     // Scan: quasi-random points over the unit box, then local searches from the best distinct ones.
     std::vector<std::pair<double, std::vector<double>>> scanned;
@@ -213,24 +262,28 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
     const std::size_t starts = std::min(settings_.starts, scanned.size());
     for (std::size_t s = 0; s < starts; ++s) {
         if (settings_.cancel && settings_.cancel->load()) break;
-        nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(p));
+        // Bounded quasi-Newton on the analytic gradient of the replayed model (smooth: common random numbers).
+        nlopt::opt opt(nlopt::LD_LBFGS, static_cast<unsigned>(p));
         opt.set_lower_bounds(std::vector<double>(p, 0.0));
         opt.set_upper_bounds(std::vector<double>(p, 1.0));
-        opt.set_initial_step(std::vector<double>(p, 0.1));
         opt.set_xtol_abs(1e-4);
-        opt.set_ftol_rel(1e-8);
-        opt.set_maxeval(400);
+        opt.set_ftol_rel(1e-7);
+        opt.set_maxeval(300);
         opt.set_min_objective(
-            [](const std::vector<double>& x, std::vector<double>&, void* data) {
-                return (*static_cast<decltype(objective)*>(data))(x);
+            [](const std::vector<double>& x, std::vector<double>& grad, void* data) {
+                auto& f = *static_cast<decltype(objective_with_gradient)*>(data);
+                return f(x, grad.empty() ? nullptr : &grad);
             },
-            const_cast<void*>(static_cast<const void*>(&objective)));
+            const_cast<void*>(static_cast<const void*>(&objective_with_gradient)));
         auto x = scanned[s].second;
         double value = scanned[s].first;
         try {
             opt.optimize(x, value);
         } catch (const nlopt::roundoff_limited&) {
             value = objective(x);
+        } catch (const std::runtime_error&) {  // NLopt's generic failure: keep the scan point
+            x = scanned[s].second;
+            value = scanned[s].first;
         }
         if (value < best) {
             best = value;

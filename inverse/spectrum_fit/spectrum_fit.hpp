@@ -41,7 +41,7 @@ struct SpectrumFitSettings {
     double incidence_deg = 0.0;
     BiospecOptions walk;
     std::size_t scan_points = 64;  // quasi-random points over the bounds before the local searches
-    std::size_t starts = 2;        // local searches, from the best scan points
+    std::size_t starts = 4;        // local searches, from the best scan points
     IlluminantKind illuminant = IlluminantKind::d65;
     ObserverKind observer = ObserverKind::cie1931_2deg;
     const CancelFlag* cancel = nullptr;
@@ -89,8 +89,9 @@ public:
 
     // One spectrum at the fitter's wavelengths (all given ones; those outside the window are left out).
     SpectrumFit fit(const std::string& name, const std::vector<double>& measured) const;
-    // The model at parameter values (in the order of the free keys), per fitted wavelength, with standard errors.
-    std::vector<Estimate> model(const std::vector<double>& parameters) const;
+    // The model at parameter values (in the order of the free keys), per fitted wavelength, with standard errors;
+    // with `jacobian`, also dR_w / dparameter_j ([w][j]) from the same pass over the paths.
+    std::vector<Estimate> model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian = nullptr) const;
 
     const std::vector<double>& wavelengths_nm() const { return wavelengths_nm_; }
     const std::vector<std::string>& keys() const { return keys_; }

@@ -40,3 +40,7 @@ skinspec_cli_test("swatch in a diffusion mode" 0 "2 patches, 0 rays" swatch --mo
 skinspec_cli_test("color of spectrum's CSV" 0 "XYZ" color spectrum_result.csv --material skin_b --column T)
 skinspec_cli_test("spectrum vary grid" 0 "epidermis.melanosome_fraction +dermis.blood_fraction.*4 results" spectrum --preset biospec-lightly --vary epidermis.melanosome_fraction=0.01:0.1:2:log --vary dermis.blood_fraction=0.005:0.02:2 --wavelengths 400:700:20 --rays 500)
 skinspec_cli_test("spectrum vary json records values" 0 "\"varied\": \\{\n *\"epidermis.melanosome_fraction\": 0.1" spectrum --preset biospec-lightly --vary epidermis.melanosome_fraction=0.01:0.1:2 --wavelengths 550 --rays 200 --json)
+skinspec_cli_test("fit-spectrum recovers the presets' melanin" 0 "light +0\\.01[89][0-9]* \\+- [0-9.e-]+ .*\nmoderate +0\\.05[0-4][0-9]* \\+- " fit-spectrum fit_two.csv --rays 20000)
+skinspec_cli_test("fit-spectrum json" 0 "\"fits\": \\[\n *\\{\n *\"name\": \"light\",\n *\"parameters\": \\{\n *\"epidermis.melanosome_fraction\"" fit-spectrum fit_two.csv --rays 2000 --spectra light --json)
+skinspec_cli_test("spectrum authors-code variant" 0 "variant.*biospec-authors-code" spectrum --variant biospec-authors-code --wavelengths 550 --rays 1000 --json)
+skinspec_cli_test("spectrum 0-45" 0 "\"geometry\": \"0-45\"" spectrum --geometry 0-45 --wavelengths 550 --rays 1000 --json)

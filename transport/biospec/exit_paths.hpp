@@ -26,7 +26,10 @@ struct ExitPaths {
     // R for the absorption coefficients mu_a [1/cm] per layer (scale_k multiplies layer k's paths: a thickness
     // ratio for layers whose paths scale with thickness), and its standard error over the rays. Single precision
     // per exit (relative error ~1e-6, far below the Monte Carlo error), sums in double.
-    Estimate reflectance(const std::vector<double>& mu_a_per_cm, const std::vector<double>& path_scale) const;
+    // With `gradient` (one entry per layer) also dR/dm_k, m_k = mu_a,k scale_k (the effective coefficient of the
+    // recorded paths): -factor / N sum over exits of L_k exp(-tau), accumulated in the same pass.
+    Estimate reflectance(const std::vector<double>& mu_a_per_cm, const std::vector<double>& path_scale,
+                         std::vector<double>* gradient = nullptr) const;
 };
 
 }  // namespace skinspec
