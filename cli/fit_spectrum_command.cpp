@@ -194,10 +194,10 @@ void write_fit_plot(const std::string& file, const std::vector<SpectrumFit>& fit
         for (std::size_t w = 0; w < f.measured.size(); ++w) r.push_back(f.fitted[w] - f.measured[w]);
         residuals.push_back({f.name, f.wavelength_nm, r, f.fitted_stderr, colour, false, static_cast<int>(i % 8) + 1});
     }
-    write_line_plot(file, "Measured and fitted reflectance (bands: +-2 model standard errors)", "wavelength (nm)", "R", spectra);
+    write_line_plot(file, "Measured and fitted R (bands: +-2 model s.e.)", "wavelength (nm)", "R", spectra);
     const auto path = std::filesystem::path(file);
     const auto residual_file = (path.parent_path() / (path.stem().string() + "-residuals" + path.extension().string())).string();
-    write_line_plot(residual_file, "Residual: fitted - measured (bands: +-2 model standard errors)", "wavelength (nm)", "R fitted - R measured", residuals);
+    write_line_plot(residual_file, "Fitted - measured R (bands: +-2 model s.e.)", "wavelength (nm)", "R fitted - R measured", residuals);
     std::cerr << "wrote " << file << " and " << residual_file << '\n';
 }
 

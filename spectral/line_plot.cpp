@@ -41,13 +41,15 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
     const auto ext = file.extension().string();
     if (ext != ".png" && ext != ".svg") throw InputError(file.string() + ": plot extension '" + ext + "' is not supported (allowed: .png, .svg)");
     if (curves.empty()) throw InputError(file.string() + ": nothing to plot");
-    double x_min = 1e300, x_max = -1e300, y_max = 0.0;
+    const auto band = [](const PlotCurve& c, std::size_t i) { return c.stderr.empty() ? 0.0 : 2.0 * c.stderr[i]; };
+    double x_min = 1e300, x_max = -1e300, y_max = 0.0, y_low = 0.0;
     for (const auto& c : curves) {
         for (std::size_t i = 0; i < c.value.size(); ++i) {
             if (log_x && !(c.x[i] > 0.0)) continue;
             x_min = std::min(x_min, log_x ? std::log10(c.x[i]) : c.x[i]);
             x_max = std::max(x_max, log_x ? std::log10(c.x[i]) : c.x[i]);
-            y_max = std::max(y_max, c.value[i] + 2.0 * c.stderr[i]);
+            y_max = std::max(y_max, c.value[i] + band(c, i));
+            y_low = std::min(y_low, c.value[i] - band(c, i));
         }
     }
     if (log_x && x_min > x_max) throw InputError(file.string() + ": no point with a positive x on the logarithmic x axis");
@@ -68,11 +70,16 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
         }
         y_min = std::max(smallest, y_max - 8.0);
         if (y_min >= y_max) y_min = y_max - 1.0;
+    } else if (y_low < 0.0) {
+        // Values of both signs (residuals): a symmetric axis, in steps of 0.01 below 0.1.
+        const double m = std::max(y_max, -y_low) * 1.05;
+        y_max = m < 0.1 ? std::ceil(m * 100.0) / 100.0 : m <= 1.0 ? std::ceil(m * 10.0) / 10.0 : m;
+        y_min = -y_max;
     } else {
         y_max = y_max <= 1.0 ? std::max(0.05, std::ceil(y_max * 10.0 * 1.05) / 10.0) : y_max * 1.05;
     }
     const auto x_of = [&](double x) { return log_x ? std::log10(x) : x; };
-    const auto y_of = [&](double v) { return log_y ? std::clamp(v > 0.0 ? std::log10(v) : y_min, y_min, y_max) : std::clamp(v, 0.0, y_max); };
+    const auto y_of = [&](double v) { return log_y ? std::clamp(v > 0.0 ? std::log10(v) : y_min, y_min, y_max) : std::clamp(v, y_min, y_max); };
 
     write_atomically(file, [&](const std::filesystem::path& temporary) {
         auto pls = std::make_unique<plstream>();
@@ -109,7 +116,7 @@ void write_line_plot(const std::filesystem::path& file, const std::string& title
                 if (log_x && !(c.x[i] > 0.0)) continue;
                 xs.push_back(c.x[i]);
                 ys.push_back(c.value[i]);
-                ss.push_back(c.stderr[i]);
+                ss.push_back(c.stderr.empty() ? 0.0 : c.stderr[i]);
             }
             for (const auto& [first, last] : visible_runs(ys, log_y, y_min)) {
                 std::vector<PLFLT> bx, by, lx, ly;
