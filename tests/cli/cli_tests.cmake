@@ -44,3 +44,4 @@ skinspec_cli_test("fit-spectrum recovers the presets' melanin" 0 "light +0\\.01[
 skinspec_cli_test("fit-spectrum json" 0 "\"fits\": \\[\n *\\{\n *\"name\": \"light\",\n *\"parameters\": \\{\n *\"epidermis.melanosome_fraction\"" fit-spectrum fit_two.csv --rays 2000 --spectra light --json)
 skinspec_cli_test("spectrum authors-code variant" 0 "variant.*biospec-authors-code" spectrum --variant biospec-authors-code --wavelengths 550 --rays 1000 --json)
 skinspec_cli_test("spectrum 0-45" 0 "\"geometry\": \"0-45\"" spectrum --geometry 0-45 --wavelengths 550 --rays 1000 --json)
+skinspec_cli_test("swatch geometry sce" 0 "2 patches" swatch --geometry sce --vary epidermis.melanosome_fraction=0.01:0.2:2 --delta-e 2 --max-rays 20000)
