@@ -12,6 +12,7 @@
 #include "cli/progress.hpp"
 #include "cli/spectral_output.hpp"
 #include "formats/mcml_files.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
@@ -26,7 +27,8 @@ struct McmlOptions {
     std::uint64_t photons = 0;
     std::uint64_t seed = 1;
     unsigned threads = 0;
-    std::string boundaries = "random";
+    std::string boundaries;  // "" = random
+    std::string solver = "rte";
     std::string json_output;
     std::string output_dir;
     bool overwrite = false;
@@ -78,8 +80,14 @@ void run_mcml(const McmlOptions& o) {
         if (!std::filesystem::is_directory(o.output_dir)) throw InputError("--output-dir " + o.output_dir + ": not a folder");
         for (auto& run : runs) run.output_file = (std::filesystem::path(o.output_dir) / run.output_file).string();
     }
-    if (o.boundaries != "random" && o.boundaries != "split") {
+    if (!o.boundaries.empty() && o.boundaries != "random" && o.boundaries != "split") {
         throw InputError("--boundaries: '" + o.boundaries + "' is not allowed (allowed: random, split)");
+    }
+    const bool deterministic = o.solver == "adding-doubling";
+    if (!deterministic && o.solver != "rte") throw InputError("--solver: '" + o.solver + "' is not allowed (allowed: rte, adding-doubling)");
+    if (deterministic && (o.photons > 0 || !o.boundaries.empty())) {
+        throw InputError(std::string("--solver adding-doubling is deterministic: it takes no ") + (o.photons > 0 ? "--photons" : "--boundaries") +
+                         " (the volumetric walk does)");
     }
     for (const auto& run : runs) {
         if (run.output_format != 'A') throw InputError(o.file + ": output '" + run.output_file + "' asks for binary format B (only A is written)");
@@ -107,6 +115,35 @@ void run_mcml(const McmlOptions& o) {
         ProgressBar bar(fmt::format("run {}", i + 1));
         request.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
+        if (deterministic) {
+            const auto ad = solve_adding_doubling(run.stack, {});
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            RteResult totals;
+            totals.specular_reflectance = {ad.specular_reflectance, 0.0};
+            totals.diffuse_reflectance = {ad.diffuse_reflectance, 0.0};
+            totals.transmittance = {ad.transmittance, 0.0};
+            double absorbed = 0.0;
+            for (const double a : ad.absorbed_layers) {
+                totals.absorption_layers.push_back({a, 0.0});
+                absorbed += a;
+            }
+            totals.absorbed = {absorbed, 0.0};
+            write_text_file(run.output_file,
+                            mco_text(run, totals, fmt::format("skinspec {} adding-doubling: {} channels, accuracy {:.1e}, {:.4f} sec", version,
+                                                              ad.channels, ad.accuracy, seconds),
+                                     false),
+                            true);
+            auto j = run_json(run, totals, seconds);
+            j["model"] = "adding-doubling";
+            j["accuracy"] = ad.accuracy;
+            all.push_back(std::move(j));
+            if (!o.json) {
+                std::cout << fmt::format("run {} -> {}: adding-doubling in {:.4f} s (accuracy {:.1e})\n", i + 1, run.output_file, seconds, ad.accuracy)
+                          << fmt::format("  specular R {:.6f}; diffuse R {:.6f}; absorbed {:.6f}; T {:.6f}\n", ad.specular_reflectance,
+                                         ad.diffuse_reflectance, absorbed, ad.transmittance);
+            }
+            continue;
+        }
         const auto result = solve_rte(request);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         run.photons = result.photons;
@@ -126,7 +163,7 @@ void run_mcml(const McmlOptions& o) {
         if (result.partial) break;
     }
     const Json doc{{"skinspec_version", version}, {"schema", "skinspec-rte-result/1"}, {"input", o.file}, {"seed", o.seed},
-                   {"boundaries", o.boundaries}, {"runs", all}};
+                   {"solver", o.solver}, {"boundaries", o.boundaries.empty() ? std::string("random") : o.boundaries}, {"runs", all}};
     if (o.json) std::cout << doc.dump(2) << '\n';
     if (!o.json_output.empty()) write_text_file(o.json_output, doc.dump(2) + "\n", true);
     if (InterruptGuard::interrupted()) std::exit(InterruptGuard::exit_code());
@@ -141,7 +178,10 @@ void add_mcml_command(CLI::App& app) {
     cmd->add_option("--photons", o->photons, "Override the photon count of every run")->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
     cmd->add_option("--seed", o->seed, "Random seed (identical results for any thread count)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
-    cmd->add_option("--boundaries", o->boundaries, "Fresnel at the outer boundaries: random (all-or-none, MCML) or split")->capture_default_str();
+    cmd->add_option("--boundaries", o->boundaries, "Fresnel at the outer boundaries: random (all-or-none, MCML; default) or split");
+    cmd->add_option("--solver", o->solver,
+                    "rte (the volumetric walk, every output) or adding-doubling (deterministic totals: the .mco's RAT and A_l)")
+        ->capture_default_str();
     cmd->add_option("--output-dir", o->output_dir, "Write the .mco files here (default: the current folder, as MCML does)");
     cmd->add_option("--output", o->json_output, "Also write the results with standard errors as JSON to this file");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing .mco / JSON files");

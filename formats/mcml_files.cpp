@@ -128,7 +128,7 @@ std::vector<McmlRun> read_mci(const std::filesystem::path& file) {
     return out;
 }
 
-std::string mco_text(const McmlRun& run, const RteResult& r, const std::string& time_report) {
+std::string mco_text(const McmlRun& run, const RteResult& r, const std::string& time_report, bool grids) {
     const auto& g = run.grid;
     std::string out = "A1 \t# Version number of the file format.\n\n"
                       "####\n# Data categories include: \n# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n"
@@ -155,6 +155,7 @@ std::string mco_text(const McmlRun& run, const RteResult& r, const std::string& 
     out += fmt::format("{:<14.6G} \t#Transmittance [-]\n\n", r.transmittance.value);
     out += "A_l #Absorption as a function of layer. [-]\n";
     for (const auto& a : r.absorption_layers) out += fmt::format("{:12.4G}\n", a.value);
+    if (!grids) return out + "\n# A_z, Rd_r, Rd_a, Tt_r, Tt_a and the 2-D grids: not computed by this solver (the volumetric walk computes them)\n";
     out += "\nA_z #A[0], [1],..A[nz-1]. [1/cm]\n" + array_lines(r.absorption_z);
     out += "\nRd_r #Rd[0], [1],..Rd[nr-1]. [1/cm2]\n" + array_lines(r.reflectance_r);
     out += "\nRd_a #Rd[0], [1],..Rd[na-1]. [sr-1]\n" + array_lines(r.reflectance_a);

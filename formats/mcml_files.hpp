@@ -22,6 +22,7 @@ struct McmlRun {
 std::vector<McmlRun> read_mci(const std::filesystem::path& file);
 
 // The .mco text of one run (MCML 1.2 layout; `time_report` becomes the "# ..." line after the header).
-std::string mco_text(const McmlRun& run, const RteResult& result, const std::string& time_report);
+// With `grids` false (a deterministic solver's totals) the file ends after A_l with a note.
+std::string mco_text(const McmlRun& run, const RteResult& result, const std::string& time_report, bool grids = true);
 
 }  // namespace skinspec

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "skinspec/version.hpp"
+#include "solvers/adding_doubling_solver.hpp"
 #include "solvers/biospec_walk_solver.hpp"
 #include "solvers/diffusion_solvers.hpp"
 #include "solvers/volumetric_walk_solver.hpp"
@@ -132,7 +133,7 @@ SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&
 
 const std::vector<const SpectralSolver*>& solver_registry() {
     // Adding a solver: its own files and one entry here (docs/SOLVERS.md).
-    static const std::vector<const SpectralSolver*> solvers{&biospec_walk_solver(), &volumetric_walk_solver(),
+    static const std::vector<const SpectralSolver*> solvers{&biospec_walk_solver(), &volumetric_walk_solver(), &adding_doubling_solver(),
                                                             &multipole_solver(), &dipole_solver()};
     return solvers;
 }

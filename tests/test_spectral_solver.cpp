@@ -18,9 +18,9 @@ SolverRequest one_wavelength(std::uint64_t rays = 2000) {
 }  // namespace
 
 TEST_CASE("the registry lists every solver once, by name", "[solver]") {
-    CHECK(solver_names() == "biospec, rte, multipole, dipole");
+    CHECK(solver_names() == "biospec, rte, adding-doubling, multipole, dipole");
     for (const auto* s : solver_registry()) CHECK(&find_solver(s->name()) == s);
-    CHECK_THROWS_WITH(find_solver("tripole"), Catch::Contains("--mode: 'tripole' is not a solver (allowed: biospec, rte, multipole, dipole)"));
+    CHECK_THROWS_WITH(find_solver("tripole"), Catch::Contains("--mode: 'tripole' is not a solver (allowed: biospec, rte, adding-doubling, multipole, dipole)"));
 }
 
 TEST_CASE("a request for what a solver does not declare is refused with one message", "[solver]") {
@@ -55,10 +55,16 @@ TEST_CASE("a request for what a solver does not declare is refused with one mess
 }
 
 TEST_CASE("every declared capability is served", "[solver]") {
-    const auto skin = load_material("biospec-lightly");
+    const auto plain = load_material("biospec-lightly");
+    std::vector<MaterialOverride> volumetric;
+    for (const char* layer : {"stratum_corneum", "epidermis", "papillary_dermis", "reticular_dermis"}) {
+        volumetric.push_back({std::string(layer) + ".volumetric_mu_s_per_cm_at_500nm", "200"});
+        volumetric.push_back({std::string(layer) + ".volumetric_g", "0.9"});
+    }
+    const auto described = load_material("biospec-lightly", volumetric);
     for (const auto* solver : solver_registry()) {
         const auto& caps = solver->capabilities();
-        if (!caps.material_needs.empty() && solver->name() == "rte") continue;  // the presets carry no volumetric scattering
+        const auto& skin = caps.material_needs.empty() ? plain : described;  // the presets carry no volumetric scattering
         SolverRequest request;
         request.spectral.wavelengths = WavelengthGrid::list({550.0});
         request.spectral.quantities = caps.quantities;

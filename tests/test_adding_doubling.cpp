@@ -1,0 +1,85 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "formats/adding_doubling_reference.hpp"
+#include "spectral/input_error.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
+#include "transport/adding_doubling/gauss_quadrature.hpp"
+#include "transport/adding_doubling/phase_moments.hpp"
+
+using namespace skinspec;
+
+TEST_CASE("Gauss-Legendre and Gauss-Radau rules match their closed forms", "[adding_doubling]") {
+    // 3-point Radau on [-1, 1] with -1 fixed (Abramowitz & Stegun 25.4.31): nodes -1, (1 -+ sqrt 6) / 5.
+    const auto radau = gauss_radau(3, -1.0, 1.0, -1.0);
+    CHECK(radau.nodes[0] == -1.0);
+    CHECK(radau.nodes[1] == Approx((1.0 - std::sqrt(6.0)) / 5.0).epsilon(1e-12));
+    CHECK(radau.nodes[2] == Approx((1.0 + std::sqrt(6.0)) / 5.0).epsilon(1e-12));
+    CHECK(radau.weights[0] == Approx(2.0 / 9.0).epsilon(1e-12));
+    CHECK(radau.weights[1] == Approx((16.0 + std::sqrt(6.0)) / 18.0).epsilon(1e-12));
+    const auto right = gauss_radau(4, 0.0, 1.0, 1.0);
+    CHECK(right.nodes.back() == 1.0);
+    // Exactness: n-point Gauss integrates x^(2n-1), Radau x^(2n-2).
+    const auto gauss = gauss_legendre(5, 0.0, 2.0);
+    double g = 0.0, r = 0.0;
+    for (std::size_t i = 0; i < 5; ++i) g += gauss.weights[i] * std::pow(gauss.nodes[i], 9);
+    for (std::size_t i = 0; i < 4; ++i) r += right.weights[i] * std::pow(right.nodes[i], 6);
+    CHECK(g == Approx(std::pow(2.0, 10) / 10.0).epsilon(1e-12));
+    CHECK(r == Approx(1.0 / 7.0).epsilon(1e-12));
+}
+
+TEST_CASE("Legendre moments of the phase functions", "[adding_doubling]") {
+    const auto hg = legendre_moments(PhaseFunction::henyey_greenstein(0.8), 4);
+    CHECK(hg[3] == Approx(0.512));
+    PhaseFunction rayleigh;
+    rayleigh.kind = PhaseFunction::Kind::rayleigh;
+    const auto ray = legendre_moments(rayleigh, 4);
+    CHECK(ray[1] == 0.0);
+    CHECK(ray[2] == Approx(0.1));  // <P_2> of 3/8 (1 + mu^2)
+}
+
+namespace {
+
+RteStack one_layer(double n, double mu_a, double mu_s, double g, double d) {
+    RteStack s;
+    s.layers.push_back({n, mu_a, mu_s, d, PhaseFunction::henyey_greenstein(g)});
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("adding-doubling reproduces Prahl's slabs within 1e-4", "[adding_doubling]") {
+    for (const auto& slab : adding_doubling_slabs()) {
+        INFO("a " << slab.albedo << " b " << slab.optical_thickness << " g " << slab.g << " n " << slab.refractive_index);
+        const auto r = solve_adding_doubling(slab.stack(), {});
+        CHECK(r.diffuse_reflectance == Approx(slab.diffuse_reflectance).margin(1e-4));
+        CHECK(r.transmittance == Approx(slab.total_transmittance).margin(1e-4));
+        CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-9));
+        // The stated accuracy (the change with twice the channels) is what the reference confirms.
+        CHECK(std::abs(r.diffuse_reflectance - slab.diffuse_reflectance) <= 1.5 * r.accuracy + 5e-6);
+        CHECK(std::abs(r.transmittance - slab.total_transmittance) <= 1.5 * r.accuracy + 5e-6);
+        CHECK(r.accuracy < 1e-4);
+    }
+}
+
+TEST_CASE("adding-doubling analytic limits", "[adding_doubling]") {
+    // A pure absorber between matched media: Beer-Lambert at normal incidence.
+    const auto clear = solve_adding_doubling(one_layer(1.0, 2.0, 0.0, 0.0, 0.5), {});
+    CHECK(clear.transmittance == Approx(std::exp(-1.0)).epsilon(3e-6));  // the diamond start's (1 - h/mu)/(1 + h/mu)
+    // With n 1.5 in air: T = (1 - F)^2 e^-tau / (1 - F^2 e^-2 tau), F = (0.5 / 2.5)^2 (Born & Wolf, incoherent slab).
+    const double f = 0.04, e = std::exp(-1.0);
+    const auto glass = solve_adding_doubling(one_layer(1.5, 2.0, 0.0, 0.0, 0.5), {});
+    CHECK(glass.transmittance == Approx((1 - f) * (1 - f) * e / (1 - f * f * e * e)).epsilon(3e-6));
+    CHECK(glass.specular_reflectance == Approx(f).epsilon(1e-12));
+    // A clear matched layer over the Lambertian reflector returns everything.
+    auto white = one_layer(1.0, 0.0, 0.0, 0.0, 0.1);
+    white.bottom_reflector = true;
+    CHECK(solve_adding_doubling(white, {}).diffuse_reflectance == Approx(1.0).epsilon(1e-9));
+    // Conservative scattering: nothing absorbed, at any incidence and for diffuse light.
+    for (const AdIncidence inc : {AdIncidence{false, 0.0}, AdIncidence{false, 60.0}, AdIncidence{true, 0.0}}) {
+        const auto r = solve_adding_doubling(one_layer(1.4, 0.0, 100.0, 0.9, 0.05), inc);
+        CHECK(r.absorbed_layers[0] == Approx(0.0).margin(1e-9));
+        CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance == Approx(1.0).margin(1e-9));
+    }
+}

@@ -1,0 +1,334 @@
+#include "transport/adding_doubling/adding_doubling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+#include "transport/adding_doubling/gauss_quadrature.hpp"
+#include "transport/adding_doubling/phase_moments.hpp"
+#include "transport/fresnel.hpp"
+
+namespace skinspec {
+namespace {
+
+using Matrix = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
+
+constexpr double thin_layer_depth = 1.0 / 256.0;  // diamond start, then doubled
+
+// The channels: s = n sin(theta) per channel (increasing) and its measure d(s^2).
+struct Channels {
+    std::vector<double> s;
+    std::vector<double> measure;
+    std::size_t incident = 0;  // the collimated beam's channel
+    std::size_t size() const { return s.size(); }
+    // cos(theta) in a medium of index n (0 where the channel does not propagate) and the flux weight d(s^2) / n^2.
+    double cosine(std::size_t k, double n) const { return s[k] < n ? std::sqrt(std::max(0.0, 1.0 - (s[k] / n) * (s[k] / n))) : 0.0; }
+    double weight(std::size_t k, double n) const { return s[k] < n ? measure[k] / (n * n) : 0.0; }
+};
+
+// `indices`: every medium's index; `layer_indices`: the layers' (where light scatters, so where the quadrature
+// should be Gaussian in the cosine).
+Channels make_channels(const std::vector<double>& indices, const std::vector<double>& layer_indices, std::size_t per_hemisphere,
+                       double incident_s, bool collimated) {
+    std::vector<double> breaks{0.0};
+    for (const double n : indices) breaks.push_back(n);
+    if (collimated && incident_s > 0.0) breaks.push_back(incident_s);
+    std::sort(breaks.begin(), breaks.end());
+    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+    const double n_max = breaks.back();
+    Channels c;
+    std::vector<std::pair<double, double>> nodes;  // (s, measure)
+    bool incident_found = false;
+    for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
+        const double s_lo = breaks[b], s_hi = breaks[b + 1];
+        // The segment's own medium, whose cosine is the quadrature variable: the lowest-index layer that covers it
+        // (Gaussian where the light scatters; the others see smooth functions of it), else the lowest medium.
+        double owner = n_max;
+        bool in_a_layer = false;
+        for (const double n : layer_indices) {
+            if (n >= s_hi) {
+                owner = std::min(owner, n);
+                in_a_layer = true;
+            }
+        }
+        if (!in_a_layer) {
+            for (const double n : indices) {
+                if (n >= s_hi) owner = std::min(owner, n);
+            }
+        }
+        const double mu_hi = std::sqrt(std::max(0.0, 1.0 - (s_lo / owner) * (s_lo / owner)));
+        const double mu_lo = std::sqrt(std::max(0.0, 1.0 - (s_hi / owner) * (s_hi / owner)));
+        const double share = (s_hi * s_hi - s_lo * s_lo) / (n_max * n_max);
+        const auto m = std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(share * static_cast<double>(per_hemisphere))));
+        QuadratureRule rule;
+        const bool fixed_at_lo_s = collimated && s_lo == incident_s;
+        const bool fixed_at_hi_s = collimated && s_hi == incident_s && !incident_found;
+        if (fixed_at_lo_s && !incident_found) rule = gauss_radau(m, mu_lo, mu_hi, mu_hi);
+        else if (fixed_at_hi_s) rule = gauss_radau(m, mu_lo, mu_hi, mu_lo);
+        else rule = gauss_legendre(m, mu_lo, mu_hi);
+        for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+            const double mu = rule.nodes[i];
+            const double s = owner * std::sqrt(std::max(0.0, 1.0 - mu * mu));
+            nodes.emplace_back(s, 2.0 * owner * owner * mu * rule.weights[i]);  // d(s^2) = 2 n^2 mu dmu
+        }
+        if (fixed_at_lo_s || fixed_at_hi_s) incident_found = true;
+    }
+    std::sort(nodes.begin(), nodes.end());
+    for (const auto& [s, w] : nodes) {
+        c.s.push_back(s);
+        c.measure.push_back(w);
+    }
+    if (collimated) {
+        // The node placed at the incident s (exact by construction; the nearest within rounding).
+        std::size_t best = 0;
+        for (std::size_t k = 0; k < c.size(); ++k) {
+            if (std::abs(c.s[k] - incident_s) < std::abs(c.s[best] - incident_s)) best = k;
+        }
+        c.incident = best;
+        c.s[best] = incident_s;
+    }
+    return c;
+}
+
+// One element of the stack in flux channels: reflection and transmission for light from above (top) and below.
+struct Element {
+    Matrix r_top, t_down, r_bottom, t_up;
+};
+
+Element empty_element(std::size_t n) {
+    return {Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)), Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)),
+            Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)), Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n))};
+}
+
+// A above B (van de Hulst 1980, Eq. 4.25; Prahl 1995, Eq. 5.17-5.20):
+//   R = R_A + T'_A R_B (1 - R'_A R_B)^-1 T_A,  T = T_B (1 - R'_A R_B)^-1 T_A, and the same from below.
+Element add(const Element& a, const Element& b) {
+    const auto n = a.r_top.rows();
+    const Matrix identity = Matrix::Identity(n, n);
+    const Eigen::PartialPivLU<Matrix> down(identity - a.r_bottom * b.r_top);
+    const Eigen::PartialPivLU<Matrix> up(identity - b.r_top * a.r_bottom);
+    const Matrix x = down.solve(a.t_down);
+    const Matrix z = up.solve(b.t_up);
+    return {a.r_top + a.t_up * b.r_top * x, b.t_down * x, b.r_bottom + b.t_down * a.r_bottom * z, a.t_up * z};
+}
+
+// Fresnel interface from index n1 (above) to n2 (below): diagonal in s.
+Element interface(const Channels& c, double n1, double n2) {
+    auto e = empty_element(c.size());
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        const auto kk = static_cast<Eigen::Index>(k);
+        const bool above = c.s[k] < n1, below = c.s[k] < n2;
+        if (above && below) {
+            const double f = fresnel_reflectance(c.cosine(k, n1), n1, n2);
+            e.r_top(kk, kk) = e.r_bottom(kk, kk) = f;
+            e.t_down(kk, kk) = e.t_up(kk, kk) = 1.0 - f;
+        } else if (above) {
+            e.r_top(kk, kk) = 1.0;  // total internal reflection
+        } else if (below) {
+            e.r_bottom(kk, kk) = 1.0;
+        }
+    }
+    return e;
+}
+
+// The ideal Lambertian reflector under a layer of index n: any incident flux leaves upward as c_i.
+Element lambertian_reflector(const Channels& c, double n) {
+    auto e = empty_element(c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        for (std::size_t j = 0; j < c.size(); ++j) {
+            if (c.s[j] < n) e.r_top(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c.weight(i, n);
+        }
+    }
+    return e;
+}
+
+// A homogeneous layer: delta-M scaled phase function, diamond thin layer, doubling. Flux channels.
+Element slab(const Channels& c, const RteLayer& layer) {
+    const double n = layer.refractive_index;
+    std::vector<std::size_t> live;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        if (c.s[k] < n) live.push_back(k);
+    }
+    const auto m = static_cast<Eigen::Index>(live.size());
+    const double mu_t = layer.mu_a_per_cm + layer.mu_s_per_cm;
+    double albedo = mu_t > 0.0 ? layer.mu_s_per_cm / mu_t : 0.0;
+    double depth = mu_t * layer.thickness_cm;
+    // Delta-M with 2m moments kept: f = chi_2m (Wiscombe 1977).
+    const std::size_t moments = 2 * live.size();
+    auto chi = legendre_moments(layer.phase, moments + 1);
+    const double f = chi[moments];
+    if (f > 0.0 && f < 1.0) {
+        depth *= 1.0 - albedo * f;
+        albedo = albedo * (1.0 - f) / (1.0 - albedo * f);
+        for (std::size_t l = 0; l < moments; ++l) chi[l] = (chi[l] - f) / (1.0 - f);
+    }
+    chi.resize(moments);
+    Vector mu(m), w(m), cw(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+        const auto k = live[static_cast<std::size_t>(i)];
+        mu(i) = c.cosine(k, n);
+        cw(i) = c.weight(k, n);
+        w(i) = cw(i) / (2.0 * mu(i));  // the dmu weight
+    }
+    // H(mu_i | +-mu_j) = sum_l (2l + 1) / 2 chi_l P_l(mu_i) P_l(+-mu_j); P_l(-x) = (-1)^l P_l(x).
+    Matrix pl(m, static_cast<Eigen::Index>(moments));
+    for (Eigen::Index i = 0; i < m; ++i) {
+        const auto p = legendre_polynomials(mu(i), moments);
+        for (std::size_t l = 0; l < moments; ++l) pl(i, static_cast<Eigen::Index>(l)) = p[l];
+    }
+    Vector even(static_cast<Eigen::Index>(moments)), odd(static_cast<Eigen::Index>(moments));
+    for (std::size_t l = 0; l < moments; ++l) {
+        const double coefficient = (2.0 * static_cast<double>(l) + 1.0) / 2.0 * chi[l];
+        even(static_cast<Eigen::Index>(l)) = coefficient;
+        odd(static_cast<Eigen::Index>(l)) = l % 2 == 0 ? coefficient : -coefficient;
+    }
+    Matrix same = pl * even.asDiagonal() * pl.transpose();
+    const Matrix opposite = pl * odd.asDiagonal() * pl.transpose();
+    // Energy: scattered light from every direction j integrates to 1 (correction on the diagonal, Prahl 1995).
+    for (Eigen::Index j = 0; j < m; ++j) {
+        double total = 0.0;
+        for (Eigen::Index i = 0; i < m; ++i) total += (same(i, j) + opposite(i, j)) * w(i);
+        same(j, j) += (1.0 - total) / w(j);
+    }
+    // Thin layer by the diamond difference: with C = M^-1 (1 - a H++ W), S = M^-1 a H+- W, h = depth/2,
+    // A = 1 + h C, B = h S: T = (A - B)^-1 + (A + B)^-1 - 1, R = (A - B)^-1 - (A + B)^-1 (radiance operators).
+    int doublings = 0;
+    double thin = depth;
+    while (thin > thin_layer_depth) {
+        thin *= 0.5;
+        ++doublings;
+    }
+    const Matrix identity = Matrix::Identity(m, m);
+    const Matrix inv_mu = mu.cwiseInverse().asDiagonal();
+    const Matrix cmat = inv_mu * (identity - albedo * same * w.asDiagonal());
+    const Matrix smat = inv_mu * (albedo * opposite * w.asDiagonal());
+    const double h = 0.5 * thin;
+    const Matrix minus = (identity + h * cmat - h * smat).partialPivLu().inverse();
+    const Matrix plus = (identity + h * cmat + h * smat).partialPivLu().inverse();
+    // Flux operators: D R D^-1 with D = diag(c) (flux of a channel = pi c L).
+    Matrix r = cw.asDiagonal() * (minus - plus) * cw.cwiseInverse().asDiagonal();
+    Matrix t = cw.asDiagonal() * (minus + plus - identity) * cw.cwiseInverse().asDiagonal();
+    for (int d = 0; d < doublings; ++d) {
+        const Eigen::PartialPivLU<Matrix> lu(identity - r * r);
+        const Matrix x = lu.solve(t);
+        r = r + t * r * x;
+        t = t * x;
+        // Transmission of thick layers decays towards the subnormal range, where arithmetic is ~100x slower.
+        t = (t.array().abs() < 1e-250).select(0.0, t);
+    }
+    auto e = empty_element(c.size());
+    for (Eigen::Index i = 0; i < m; ++i) {
+        for (Eigen::Index j = 0; j < m; ++j) {
+            const auto a = static_cast<Eigen::Index>(live[static_cast<std::size_t>(i)]);
+            const auto b = static_cast<Eigen::Index>(live[static_cast<std::size_t>(j)]);
+            e.r_top(a, b) = e.r_bottom(a, b) = r(i, j);
+            e.t_down(a, b) = e.t_up(a, b) = t(i, j);
+        }
+    }
+    return e;
+}
+
+struct Solution {
+    double specular = 0.0, diffuse = 0.0, transmittance = 0.0;
+    std::vector<double> absorbed;
+};
+
+Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere, bool absorption) {
+    std::vector<double> indices{stack.above_refractive_index};
+    for (const auto& l : stack.layers) indices.push_back(l.refractive_index);
+    if (!stack.bottom_reflector) indices.push_back(stack.below_refractive_index);
+    constexpr double deg = std::numbers::pi / 180.0;
+    const double n0 = stack.above_refractive_index;
+    const double incident_s = incidence.diffuse ? 0.0 : n0 * std::sin(incidence.angle_deg * deg);
+    std::vector<double> layer_indices;
+    for (const auto& l : stack.layers) layer_indices.push_back(l.refractive_index);
+    const auto channels = make_channels(indices, layer_indices, per_hemisphere, incident_s, !incidence.diffuse);
+    const auto n = static_cast<Eigen::Index>(channels.size());
+
+    std::vector<Element> elements;
+    std::vector<int> layer_of;  // per element: layer index or -1
+    double above = n0;
+    for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+        elements.push_back(interface(channels, above, stack.layers[k].refractive_index));
+        layer_of.push_back(-1);
+        elements.push_back(slab(channels, stack.layers[k]));
+        layer_of.push_back(static_cast<int>(k));
+        above = stack.layers[k].refractive_index;
+    }
+    elements.push_back(stack.bottom_reflector ? lambertian_reflector(channels, above) : interface(channels, above, stack.below_refractive_index));
+    layer_of.push_back(-1);
+
+    Vector incident = Vector::Zero(n);
+    if (incidence.diffuse) {
+        for (std::size_t k = 0; k < channels.size(); ++k) incident(static_cast<Eigen::Index>(k)) = channels.weight(k, n0);
+    } else {
+        incident(static_cast<Eigen::Index>(channels.incident)) = 1.0;
+    }
+    // Prefix composites give R and T; with the suffix composites, the fluxes between any two elements.
+    const std::size_t count = elements.size();
+    std::vector<Element> prefix{elements.front()};
+    for (std::size_t e = 1; e < count; ++e) prefix.push_back(add(prefix.back(), elements[e]));
+
+    Solution out;
+    const Vector reflected = prefix.back().r_top * incident;
+    const Vector transmitted = prefix.back().t_down * incident;
+    const double total_r = reflected.sum();
+    out.specular = (elements.front().r_top * incident).sum();
+    out.diffuse = total_r - out.specular;
+    out.transmittance = stack.bottom_reflector ? 0.0 : transmitted.sum();
+    if (!absorption) return out;
+    std::vector<Element> suffix(count);
+    suffix[count - 1] = elements[count - 1];
+    for (std::size_t e = count - 1; e-- > 0;) suffix[e] = add(elements[e], suffix[e + 1]);
+    // Net downward flux below element e: x = (1 - R'_above R_below)^-1 T_above u, y = R_below x.
+    std::vector<double> net_below(count, 0.0);
+    const Matrix identity = Matrix::Identity(n, n);
+    for (std::size_t e = 0; e + 1 < count; ++e) {
+        const Vector x = (identity - prefix[e].r_bottom * suffix[e + 1].r_top).partialPivLu().solve(prefix[e].t_down * incident);
+        const Vector y = suffix[e + 1].r_top * x;
+        net_below[e] = x.sum() - y.sum();
+    }
+    net_below[count - 1] = out.transmittance;
+    double net_above = incident.sum() - total_r;
+    out.absorbed.assign(stack.layers.size(), 0.0);
+    for (std::size_t e = 0; e < count; ++e) {
+        if (layer_of[e] >= 0) out.absorbed[static_cast<std::size_t>(layer_of[e])] = net_above - net_below[e];
+        net_above = net_below[e];
+    }
+    return out;
+}
+
+}  // namespace
+
+AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options) {
+    validate(stack);
+    if (!incidence.diffuse && !(std::isfinite(incidence.angle_deg) && incidence.angle_deg >= 0.0 && incidence.angle_deg < 90.0)) {
+        throw InputError("incidence angle " + format_number(incidence.angle_deg) + " deg is outside [0, 90)");
+    }
+    if (options.channels < 4 || options.channels > 256) {
+        throw InputError("adding-doubling channels " + std::to_string(options.channels) + " is outside [4, 256]");
+    }
+    const auto full = solve_with(stack, incidence, options.channels, options.absorption);
+    AdResult result;
+    result.specular_reflectance = full.specular;
+    result.diffuse_reflectance = full.diffuse;
+    result.transmittance = full.transmittance;
+    result.absorbed_layers = full.absorbed;
+    result.channels = options.channels;
+    if (options.accuracy_check) {
+        // The quadrature-doubling check: the same stack with twice the channels, whose error is far smaller.
+        const auto fine = solve_with(stack, incidence, 2 * options.channels, options.absorption);
+        double change = std::max(std::abs(full.diffuse - fine.diffuse), std::abs(full.transmittance - fine.transmittance));
+        for (std::size_t k = 0; k < full.absorbed.size(); ++k) change = std::max(change, std::abs(full.absorbed[k] - fine.absorbed[k]));
+        result.accuracy = change;
+    }
+    return result;
+}
+
+}  // namespace skinspec

@@ -1,0 +1,45 @@
+#pragma once
+// Deterministic radiative transfer in plane-parallel layers by adding and doubling (van de Hulst 1980, Multiple
+// Light Scattering, ch. 4; Prahl 1995, "The adding-doubling method", in Optical-Thermal Response of
+// Laser-Irradiated Tissue, ch. 5), on the same RteStack the volumetric walk traces (transport/rte/rte_model.hpp).
+//
+// Directions are discrete channels of the invariant s = n sin(theta) (Snell: a ray keeps s through every
+// interface), so Fresnel interfaces are diagonal and one quadrature serves every layer: s is split at every
+// refractive index of the stack (and at the incident beam's s), each segment carries Gauss-Legendre points in
+// the cosine of its lowest covering medium (Radau where the incident beam's channel is an end point), and in a
+// layer of index n the channels with s < n propagate with cos = sqrt(1 - s^2 / n^2) and weight d(s^2) / n^2.
+// Light is carried as flux per channel (radiance scales with n^2 across an interface, the channel's measure with
+// 1 / n^2). Each layer: delta-M scaling of its phase function (Wiscombe 1977, J. Atmos. Sci. 34:1408), a
+// diamond-difference thin layer (Wiscombe 1976, JQSRT 16:637) of optical depth <= 2^-8 doubled to its
+// thickness; layers and interfaces are added; A per layer from the net fluxes between them.
+#include <cstddef>
+#include <vector>
+
+#include "transport/rte/rte_model.hpp"
+
+namespace skinspec {
+
+struct AdIncidence {
+    bool diffuse = false;     // Lambertian incidence from above instead of a collimated beam
+    double angle_deg = 0.0;   // collimated beam's polar angle in the medium above, [0, 90)
+};
+
+struct AdOptions {
+    std::size_t channels = 24;        // quadrature channels per hemisphere in the densest medium (about)
+    bool accuracy_check = true;       // also solve with twice the channels: AdResult::accuracy (8x the work)
+    bool absorption = true;           // A per layer (the fluxes between all elements: about as much work again)
+};
+
+struct AdResult {
+    double specular_reflectance = 0.0;  // first-surface reflection
+    double diffuse_reflectance = 0.0;   // everything else leaving the top
+    double transmittance = 0.0;         // leaving the bottom, unscattered included (0 over a reflector)
+    std::vector<double> absorbed_layers;  // empty without AdOptions::absorption
+    double accuracy = 0.0;              // the largest change of R_d, T or A with twice the channels
+    std::size_t channels = 0;
+};
+
+// InputError for stacks the solver cannot take (validate(RteStack) plus the incidence).
+AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options = {});
+
+}  // namespace skinspec
