@@ -50,16 +50,19 @@ LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsSc
         if (model.dermal_rayleigh) o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
         else o.crossing = CrossingScattering::cosine;
     }
+    const auto reduced = [&] {
+        return layer.reduced->table.empty() ? power_law(layer.reduced->per_cm_at_500nm, layer.reduced->power, wavelength_nm)
+                                            : per_cm_from_per_mm(reduced_scattering_table(layer.reduced->table)(wavelength_nm));
+    };
     if (scope.volumetric && layer.volumetric) {
-        o.mu_s_per_cm = power_law(layer.volumetric->mu_s_per_cm_at_500nm, layer.volumetric->power, wavelength_nm);
-        o.phase = layer.volumetric->phase;
-        o.g = layer.volumetric->g;
+        const auto& v = *layer.volumetric;
+        // mu_s = mu_s' / (1 - g) (the similarity relation, e.g. Jacques 2013, Phys. Med. Biol. 58:R37, Eq. 2).
+        o.mu_s_per_cm = v.source == VolumetricSource::power_law ? power_law(v.mu_s_per_cm_at_500nm, v.power, wavelength_nm)
+                                                                : reduced() / (1.0 - v.g);
+        o.phase = v.phase;
+        o.g = v.g;
     }
-    if (scope.reduced && layer.reduced) {
-        o.mu_s_reduced_per_cm = layer.reduced->table.empty()
-                                    ? power_law(layer.reduced->per_cm_at_500nm, layer.reduced->power, wavelength_nm)
-                                    : per_cm_from_per_mm(reduced_scattering_table(layer.reduced->table)(wavelength_nm));
-    }
+    if (scope.reduced && layer.reduced) o.mu_s_reduced_per_cm = reduced();
     return o;
 }
 

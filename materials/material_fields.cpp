@@ -128,6 +128,8 @@ const std::vector<NamedField>& named_fields() {
         {"layers", "scattering", "measured_stratum_corneum, measured_epidermis, rayleigh_cosine, cosine, henyey_greenstein",
          "BioSpec walk: what a crossing does to a ray's direction"},
         {"layers", "volumetric_phase", "henyey_greenstein, isotropic, rayleigh", "volumetric walk: phase function"},
+        {"layers", "volumetric_scattering", "power_law, from_reduced_scattering",
+         "volumetric solvers: mu_s from volumetric_mu_s_* (default), or mu_s = mu_s' / (1 - volumetric_g) from the layer's reduced scattering"},
         {"layers", "reduced_scattering_table", "salomatina_epidermis, salomatina_dermis, salomatina_hypodermis",
          "diffusion: measured reduced scattering (or the power law, not both)"},
     };

@@ -175,7 +175,8 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
     const std::string p = layer.name + ".";
     std::vector<std::string_view> known{"name"};
     for (const auto& keys : {keys_of(layer_number_fields()), std::vector<std::string_view>{"scattering"}, keys_of(volumetric_fields()),
-                             std::vector<std::string_view>{"volumetric_phase", "reduced_scattering_table"}, keys_of(reduced_power_law_fields())}) {
+                             std::vector<std::string_view>{"volumetric_phase", "volumetric_scattering", "reduced_scattering_table"},
+                             keys_of(reduced_power_law_fields())}) {
         known.insert(known.end(), keys.begin(), keys.end());
     }
     r.reject_unknown(t, p, known);
@@ -187,21 +188,39 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
     }
     layer.crossing = parse_crossing_scattering(r.string(t, "scattering", p + "scattering", std::nullopt),
                                                r.where(t.get("scattering"), p + "scattering") + "key '" + p + "scattering'");
-    if (std::any_of(volumetric_fields().begin(), volumetric_fields().end(), [&](const auto& f) { return t.contains(f.key); }) ||
-        t.contains("volumetric_phase")) {
-        VolumetricScattering v;
-        read_numbers(r, t, p, volumetric_fields(), v);
-        v.phase = parse_phase_function(r.string(t, "volumetric_phase", p + "volumetric_phase", "henyey_greenstein"),
-                                       r.where(t.get("volumetric_phase"), p + "volumetric_phase") + "key '" + p +
-                                           "volumetric_phase'");
-        layer.volumetric = v;
-    }
+    const bool volumetric = std::any_of(volumetric_fields().begin(), volumetric_fields().end(), [&](const auto& f) { return t.contains(f.key); }) ||
+                            t.contains("volumetric_phase") || t.contains("volumetric_scattering");
     const bool has_table = t.contains("reduced_scattering_table");
     const bool has_law = std::any_of(reduced_power_law_fields().begin(), reduced_power_law_fields().end(),
                                      [&](const auto& f) { return t.contains(f.key); });
     if (has_table && has_law) {
         throw InputError(r.where(t.get("reduced_scattering_table"), p + "reduced_scattering_table") + "layer '" +
                          layer.name + "': give reduced_scattering_table or the power law, not both");
+    }
+    if (volumetric) {
+        VolumetricScattering v;
+        const std::string source_key = p + "volumetric_scattering";
+        v.source = parse_volumetric_source(r.string(t, "volumetric_scattering", source_key, "power_law"),
+                                           r.where(t.get("volumetric_scattering"), source_key) + "key '" + source_key + "'");
+        if (v.source == VolumetricSource::power_law) {
+            read_numbers(r, t, p, volumetric_fields(), v);
+        } else {
+            for (const auto& f : volumetric_fields()) {
+                if (f.key != "volumetric_g" && t.contains(f.key)) {
+                    throw InputError(r.where(t.get(f.key), p + std::string(f.key)) + "layer '" + layer.name + "': " + std::string(f.key) +
+                                     " contradicts volumetric_scattering = from_reduced_scattering (mu_s comes from mu_s' / (1 - g))");
+                }
+            }
+            if (!has_table && !has_law) {
+                throw InputError(r.where(t.get("volumetric_scattering"), source_key) + "layer '" + layer.name +
+                                 "': volumetric_scattering = from_reduced_scattering needs reduced_scattering_table or the reduced power law");
+            }
+            v.g = r.number(t, "volumetric_g", p + "volumetric_g", FieldRange{-1.0, 1.0, false, true}, 0.0);
+        }
+        v.phase = parse_phase_function(r.string(t, "volumetric_phase", p + "volumetric_phase", "henyey_greenstein"),
+                                       r.where(t.get("volumetric_phase"), p + "volumetric_phase") + "key '" + p +
+                                           "volumetric_phase'");
+        layer.volumetric = v;
     }
     if (has_table) {
         ReducedScattering reduced;
@@ -375,7 +394,12 @@ toml::table stack_table(const LayerStack& s) {
         toml::table t{{"name", l.name}, {"scattering", std::string(to_string(l.crossing))}};
         write_numbers(t, layer_number_fields(), l);
         if (l.volumetric) {
-            write_numbers(t, volumetric_fields(), *l.volumetric);
+            if (l.volumetric->source == VolumetricSource::power_law) {
+                write_numbers(t, volumetric_fields(), *l.volumetric);
+            } else {
+                t.insert("volumetric_scattering", std::string(to_string(l.volumetric->source)));
+                t.insert("volumetric_g", l.volumetric->g);
+            }
             t.insert("volumetric_phase", std::string(to_string(l.volumetric->phase)));
         }
         if (l.reduced && !l.reduced->table.empty()) t.insert("reduced_scattering_table", l.reduced->table);

@@ -59,6 +59,14 @@ PhaseFunctionKind parse_phase_function(std::string_view text, std::string_view w
                        "phase function");
 }
 
+std::string_view to_string(VolumetricSource source) {
+    return source == VolumetricSource::power_law ? "power_law" : "from_reduced_scattering";
+}
+
+VolumetricSource parse_volumetric_source(std::string_view text, std::string_view what) {
+    return parse_named(text, what, std::array{VolumetricSource::power_law, VolumetricSource::from_reduced_scattering}, "volumetric scattering source");
+}
+
 const std::vector<std::string_view>& reduced_scattering_tables() {
     static const std::vector<std::string_view> names{"salomatina_epidermis", "salomatina_dermis", "salomatina_hypodermis"};
     return names;

@@ -26,12 +26,20 @@ enum class PhaseFunctionKind { henyey_greenstein, isotropic, rayleigh };
 std::string_view to_string(PhaseFunctionKind kind);
 PhaseFunctionKind parse_phase_function(std::string_view text, std::string_view what);
 
-// Volumetric scattering for radiative-transfer walks: mu_s(lambda) = mu_s(500 nm) * (lambda / 500 nm)^-power.
+// Where the volumetric mu_s comes from: its own power law, or the layer's reduced scattering (table or power law)
+// as mu_s = mu_s' / (1 - g), so that every solver sees the same mu_s' (one skin in every mode).
+enum class VolumetricSource { power_law, from_reduced_scattering };
+std::string_view to_string(VolumetricSource source);
+VolumetricSource parse_volumetric_source(std::string_view text, std::string_view what);
+
+// Volumetric scattering for radiative-transfer walks: mu_s(lambda) = mu_s(500 nm) * (lambda / 500 nm)^-power, or
+// from the reduced scattering (VolumetricSource).
 struct VolumetricScattering {
     double mu_s_per_cm_at_500nm = 0.0;
     double power = 0.0;
     PhaseFunctionKind phase = PhaseFunctionKind::henyey_greenstein;
     double g = 0.0;
+    VolumetricSource source = VolumetricSource::power_law;
     bool operator==(const VolumetricScattering&) const = default;
 };
 

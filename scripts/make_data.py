@@ -357,7 +357,7 @@ name = "{name}"
 description = "BioSpec skin, {label} (melanosome fraction {melanosomes})"
 
 [model]
-variant = "biospec"                  # or "biospec-2004"; any switch below overrides the variant
+variant = "biospec"                  # or "biospec-2004", "biospec-authors-code"; any switch below overrides it
 hemoglobin_molar_mass_g_per_mol = 66500
 
 [surface]
@@ -375,6 +375,8 @@ refractive_index = 1.55
 scattering = "measured_stratum_corneum"
 carotene_g_per_l = 2.1e-4
 reduced_scattering_table = "salomatina_epidermis"
+volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
+volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)
 
 [[layers]]
 name = "epidermis"
@@ -386,6 +388,8 @@ eumelanin_mg_per_ml = 80
 pheomelanin_mg_per_ml = 12
 carotene_g_per_l = 2.1e-4
 reduced_scattering_table = "salomatina_epidermis"
+volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
+volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)
 
 [[layers]]
 name = "papillary_dermis"
@@ -398,6 +402,8 @@ hemoglobin_g_per_l = 150
 bilirubin_g_per_l = 0.05
 carotene_g_per_l = 7e-5
 reduced_scattering_table = "salomatina_dermis"
+volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
+volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)
 
 [[layers]]
 name = "reticular_dermis"
@@ -410,6 +416,8 @@ hemoglobin_g_per_l = 150
 bilirubin_g_per_l = 0.05
 carotene_g_per_l = 7e-5
 reduced_scattering_table = "salomatina_dermis"
+volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
+volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)
 """
         path = out / "materials" / f"{name}.toml"
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -26,7 +26,7 @@ TEST_CASE("optics of every layer come with their units and descriptions", "[laye
     for (const auto& o : optics) {
         CHECK(o.mu_a_per_cm > 0.0);
         CHECK(o.mu_s_reduced_per_cm.has_value());
-        CHECK_FALSE(o.mu_s_per_cm.has_value());
+        CHECK(o.mu_s_per_cm.has_value());  // from the reduced scattering (volumetric_scattering = from_reduced_scattering)
     }
     CHECK(stack.optics(2, 550.0).mu_a_per_cm == optics[2].mu_a_per_cm);
 }
@@ -79,4 +79,17 @@ TEST_CASE("sub-stacks keep the named layers in stack order", "[layer_stack]") {
     CHECK(sub.layers[0].name == "stratum_corneum");
     CHECK(sub.layers[1].name == "epidermis");
     CHECK_THROWS_WITH(stack.sub_stack({"nail"}), Catch::Contains("'nail' is not a layer of 'biospec-lightly' (allowed: stratum_corneum"));
+}
+
+TEST_CASE("volumetric scattering from the reduced scattering: mu_s = mu_s' / (1 - g) in every preset layer", "[layer_stack]") {
+    // The similarity relation mu_s' = mu_s (1 - g): the volumetric solvers and diffusion see the same mu_s'.
+    const auto skin = std::get<LayerStack>(load_material("biospec-moderately"));
+    for (std::size_t k = 0; k < skin.layers.size(); ++k) {
+        for (const double nm : {400.0, 550.0, 700.0}) {
+            const auto o = skin.optics(k, nm, OpticsScope{true, true});
+            REQUIRE(o.mu_s_per_cm);
+            REQUIRE(o.mu_s_reduced_per_cm);
+            CHECK(*o.mu_s_per_cm * (1.0 - *o.g) == Approx(*o.mu_s_reduced_per_cm).epsilon(1e-12));
+        }
+    }
 }

@@ -165,6 +165,13 @@ TEST_CASE("each invalid material file gets its error naming file, line, key, val
         {"reduced.toml", with("reduced_scattering_table = \"salomatina_nail\"\n"), "'salomatina_nail' is not a table"},
         {"reduced_both.toml", with("reduced_scattering_table = \"salomatina_dermis\"\nreduced_scattering_power = 1\n"), "not both"},
         {"volumetric.toml", with("volumetric_g = 0.9\n"), "key 'slab.volumetric_mu_s_per_cm_at_500nm' is missing"},
+        {"from_reduced_alone.toml", with("volumetric_scattering = \"from_reduced_scattering\"\n"),
+         "volumetric_scattering = from_reduced_scattering needs reduced_scattering_table or the reduced power law"},
+        {"from_reduced_mu_s.toml", with("volumetric_scattering = \"from_reduced_scattering\"\nvolumetric_mu_s_per_cm_at_500nm = 100\n"
+                                        "reduced_scattering_table = \"salomatina_dermis\"\n"),
+         "volumetric_mu_s_per_cm_at_500nm contradicts volumetric_scattering = from_reduced_scattering"},
+        {"from_reduced_g1.toml", with("volumetric_scattering = \"from_reduced_scattering\"\nvolumetric_g = 1\nreduced_scattering_table = \"salomatina_dermis\"\n"),
+         "key 'slab.volumetric_g' = 1 is outside [-1, 1)"},
         {"bands.toml", "kind = \"homogeneous\"\nname = \"m\"\nrelative_refractive_index = 1.3\nbands = [\"R\", \"G\"]\n"
                        "reduced_scattering_per_mm = [1.0]\nabsorption_per_mm = [0.1, 0.2]\n", "must have the same, non-zero length"},
         {"homogeneous_neg.toml", "kind = \"homogeneous\"\nname = \"m\"\nrelative_refractive_index = 1.3\nbands = [\"R\"]\n"

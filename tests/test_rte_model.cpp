@@ -6,11 +6,13 @@
 
 using namespace skinspec;
 
-TEST_CASE("skin presets run in the volumetric walk once their layers carry mu_s and g", "[rte_model]") {
-    const auto plain = std::get<LayerStack>(load_material("biospec-lightly"));
+TEST_CASE("skin presets run in the volumetric walk; a layer without volumetric scattering is refused", "[rte_model]") {
+    auto plain = std::get<LayerStack>(load_material("biospec-lightly"));
+    plain.layers[0].volumetric.reset();
     CHECK_THROWS_WITH(rte_stack_from(plain, 550.0), Catch::Contains("layer 'stratum_corneum' of 'biospec-lightly' has no volumetric scattering"));
     std::vector<MaterialOverride> o;
     for (const char* layer : {"stratum_corneum", "epidermis", "dermis"}) {
+        o.push_back({std::string(layer) + ".volumetric_scattering", "power_law"});
         o.push_back({std::string(layer) + ".volumetric_mu_s_per_cm_at_500nm", "200"});
         o.push_back({std::string(layer) + ".volumetric_g", "0.8"});
     }

@@ -45,7 +45,7 @@ skinspec_malformed_input("compare-phase bad source" 2 "--hg-source '1.5' is not 
 skinspec_malformed_input("phase-study output dir is a file" 2 "exists and is not a folder" - phase-study --output-dir grey18.csv)
 skinspec_malformed_input("mcml refuses overwrite" 2 "existing_output.csv: exists already \\(use --overwrite" - mcml overwrite_check.mci --photons 100)
 skinspec_malformed_input("mcml bad file" 2 "cannot open the .mci file" - mcml no_such.mci)
-skinspec_malformed_input("spectrum rte needs volumetric" 2 "has no volumetric scattering" - spectrum --mode rte --wavelengths 550 --rays 100)
+skinspec_malformed_input("spectrum rte needs volumetric" 2 "has no volumetric scattering" - spectrum --mode rte --material white_reflector.toml --wavelengths 550 --rays 100)
 skinspec_malformed_input("spectrum diffusion no A" 2 "solver .multipole. does not compute A \\(it computes R, T; A is computed by: biospec, rte, adding-doubling\\)" - spectrum --mode multipole --quantities R,A)
 skinspec_malformed_input("spectrum bands and wavelengths" 2 "run them separately" - spectrum --mode dipole --preset biospec-lightly --preset jensen2001-skin1)
 skinspec_malformed_input("spectrum roughness needs diffusion" 2 "solver .biospec. does not take the switch .roughness. \\(taken by: multipole, dipole\\)" - spectrum --roughness 0.3 --rays 100)
