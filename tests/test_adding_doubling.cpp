@@ -83,3 +83,37 @@ TEST_CASE("adding-doubling analytic limits", "[adding_doubling]") {
         CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance == Approx(1.0).margin(1e-9));
     }
 }
+
+TEST_CASE("adding-doubling stress: extreme layers stay finite, in [0, 1] and energy-conserving", "[adding_doubling]") {
+    for (const double g : {0.0, 0.9, 0.99}) {
+        for (const double albedo : {0.0, 0.5, 1.0}) {
+            for (const double mfp : {1e-6, 1e-2, 1.0, 100.0, 1e3}) {
+                for (const double n : {1.0, 1.4, 2.0}) {
+                    for (const double angle : {0.0, 60.0, 89.9}) {
+                        INFO("g " << g << " albedo " << albedo << " mfp " << mfp << " n " << n << " angle " << angle);
+                        const double mu_t = 100.0;
+                        auto stack = one_layer(n, mu_t * (1.0 - albedo), mu_t * albedo, g, mfp / mu_t);
+                        AdOptions o;
+                        o.accuracy_check = false;
+                        const auto r = solve_adding_doubling(stack, {false, angle}, o);
+                        for (const double v : {r.specular_reflectance, r.diffuse_reflectance, r.transmittance, r.absorbed_layers[0]}) {
+                            CHECK(std::isfinite(v));
+                            CHECK(v >= -1e-9);
+                            CHECK(v <= 1.0 + 1e-9);
+                        }
+                        CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-8));
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("adding-doubling refuses what it cannot solve", "[adding_doubling]") {
+    CHECK_THROWS_WITH(solve_adding_doubling(one_layer(1.4, 1.0, 10.0, 0.9, 0.1), {false, 90.0}), "incidence angle 90 deg is outside [0, 90)");
+    AdOptions few;
+    few.channels = 2;
+    CHECK_THROWS_WITH(solve_adding_doubling(one_layer(1.4, 1.0, 10.0, 0.9, 0.1), {}, few), "adding-doubling channels 2 is outside [4, 256]");
+    CHECK_THROWS_AS(solve_adding_doubling(one_layer(1.4, -1.0, 10.0, 0.9, 0.1), {}), InputError);
+    CHECK_THROWS_AS(solve_adding_doubling(RteStack{}, {}), InputError);
+}

@@ -188,8 +188,10 @@ Element slab(const Channels& c, const RteLayer& layer) {
         even(static_cast<Eigen::Index>(l)) = coefficient;
         odd(static_cast<Eigen::Index>(l)) = l % 2 == 0 ? coefficient : -coefficient;
     }
-    Matrix same = pl * even.asDiagonal() * pl.transpose();
-    const Matrix opposite = pl * odd.asDiagonal() * pl.transpose();
+    // The truncated series of a strongly forward phase function dips below zero in places (g -> 1): those entries
+    // are set to 0 (a redistribution is a probability) before the energy renormalisation below.
+    Matrix same = (pl * even.asDiagonal() * pl.transpose()).cwiseMax(0.0);
+    const Matrix opposite = (pl * odd.asDiagonal() * pl.transpose()).cwiseMax(0.0);
     // Energy: scattered light from every direction j integrates to 1 (correction on the diagonal, Prahl 1995).
     for (Eigen::Index j = 0; j < m; ++j) {
         double total = 0.0;
