@@ -277,41 +277,32 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     for (const auto& f : fits) rms.push_back(f.rms);
     const auto bands = residual_bands(fits);
     if (!fits.empty()) {
-        if (o.json) {
-            Json fit_list = Json::array(), band_list = Json::array();
+        // One document for standard output (--json) and for --output F.json.
+        const auto document = [&] {
+            Json fit_list = Json::array(), band_list = Json::array(), overrides_json = Json::array();
             for (const auto& f : fits) fit_list.push_back(fit_json(f));
             for (const auto& b : bands) band_list.push_back(Json{{"band", b.name}, {"mean_residual", b.mean_residual}});
-            Json overrides_json = Json::array();
             for (const auto& ov : overrides) overrides_json.push_back(Json{{"key", ov.key}, {"value", ov.value}});
-            const Json out{{"skinspec_version", version},
-                           {"schema", "skinspec-spectrum-fit/1"},
-                           {"measured_file", measured.file},
-                           {"material", base_name},
-                           {"variant", base->model.variant},
-                           {"overrides", overrides_json},
-                           {"geometry", std::string(to_string(settings.geometry))},
-                           {"rays_per_wavelength", o.rays},
-                           {"seed", o.seed},
-                           {"partial", fits.size() < chosen.size()},
-                           {"median_rms", median(rms)},
-                           {"worst_rms", *std::max_element(rms.begin(), rms.end())},
-                           {"mean_residual_by_band", band_list},
-                           {"seconds", seconds},
-                           {"fits", fit_list}};
-            std::cout << out.dump(2) << '\n';
-            if (!o.output.empty() && o.output.ends_with(".json")) write_text_file(o.output, out.dump(2) + "\n", true);
-        } else {
-            std::cout << table_of(fits);
-        }
-        if (!o.output.empty() && !(o.json && o.output.ends_with(".json"))) {
-            if (o.output.ends_with(".json")) {
-                Json fit_list = Json::array();
-                for (const auto& f : fits) fit_list.push_back(fit_json(f));
-                write_text_file(o.output, Json{{"skinspec_version", version}, {"schema", "skinspec-spectrum-fit/1"}, {"fits", fit_list}}.dump(2) + "\n", true);
-            } else {
-                write_text_file(o.output, csv_of(fits, provenance), true);
-            }
-        }
+            return Json{{"skinspec_version", version},
+                        {"schema", "skinspec-spectrum-fit/1"},
+                        {"measured_file", measured.file},
+                        {"material", base_name},
+                        {"variant", base->model.variant},
+                        {"overrides", overrides_json},
+                        {"geometry", std::string(to_string(settings.geometry))},
+                        {"rays_per_wavelength", o.rays},
+                        {"seed", o.seed},
+                        {"partial", fits.size() < chosen.size()},
+                        {"median_rms", median(rms)},
+                        {"worst_rms", *std::max_element(rms.begin(), rms.end())},
+                        {"mean_residual_by_band", band_list},
+                        {"seconds", seconds},
+                        {"fits", fit_list}};
+        };
+        const bool json_file = o.output.ends_with(".json");
+        const Json doc = o.json || json_file ? document() : Json{};
+        std::cout << (o.json ? doc.dump(2) + "\n" : table_of(fits));
+        if (!o.output.empty()) write_text_file(o.output, json_file ? doc.dump(2) + "\n" : csv_of(fits, provenance), true);
         if (!o.output.empty()) std::cerr << "wrote " << o.output << '\n';
         if (!o.plot.empty()) write_fit_plot(o.plot, fits);
         std::string band_text;

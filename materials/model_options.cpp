@@ -3,21 +3,9 @@
 #include <array>
 
 #include "spectral/input_error.hpp"
+#include "spectral/named_choice.hpp"
 
 namespace skinspec {
-namespace {
-
-template <class Kind, std::size_t N>
-Kind parse_switch(std::string_view text, std::string_view what, const std::array<Kind, N>& kinds, std::string_view noun) {
-    std::string allowed;
-    for (const auto k : kinds) {
-        if (text == to_string(k)) return k;
-        allowed += (allowed.empty() ? "" : ", ") + std::string(to_string(k));
-    }
-    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not " + std::string(noun) + " (allowed: " + allowed + ")");
-}
-
-}  // namespace
 
 std::string_view to_string(RayleighTurn turn) {
     switch (turn) {
@@ -29,14 +17,14 @@ std::string_view to_string(RayleighTurn turn) {
 }
 
 RayleighTurn parse_rayleigh_turn(std::string_view text, std::string_view what) {
-    return parse_switch(text, what, std::array{RayleighTurn::sampled_depth, RayleighTurn::whole_crossing, RayleighTurn::no_absorption},
+    return parse_named_choice(text, what, std::array{RayleighTurn::sampled_depth, RayleighTurn::whole_crossing, RayleighTurn::no_absorption},
                         "a Rayleigh turn rule");
 }
 
 std::string_view to_string(FoldFormula formula) { return formula == FoldFormula::biospec_2004 ? "biospec_2004" : "authors_code"; }
 
 FoldFormula parse_fold_formula(std::string_view text, std::string_view what) {
-    return parse_switch(text, what, std::array{FoldFormula::biospec_2004, FoldFormula::authors_code}, "a fold formula");
+    return parse_named_choice(text, what, std::array{FoldFormula::biospec_2004, FoldFormula::authors_code}, "a fold formula");
 }
 
 const std::vector<std::string_view>& model_variant_names() {

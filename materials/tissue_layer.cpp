@@ -6,23 +6,9 @@
 #include <utility>
 
 #include "spectral/input_error.hpp"
+#include "spectral/named_choice.hpp"
 
 namespace skinspec {
-namespace {
-
-template <class Kind, std::size_t N>
-Kind parse_named(std::string_view text, std::string_view what, const std::array<Kind, N>& kinds, std::string_view noun) {
-    std::string allowed;
-    for (const auto k : kinds) {
-        if (text == to_string(k)) return k;
-        allowed += (allowed.empty() ? "" : ", ") + std::string(to_string(k));
-    }
-    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a " + std::string(noun) +
-                     " (allowed: " + allowed + ")");
-}
-
-
-}  // namespace
 
 std::string_view to_string(CrossingScattering kind) {
     switch (kind) {
@@ -36,11 +22,11 @@ std::string_view to_string(CrossingScattering kind) {
 }
 
 CrossingScattering parse_crossing_scattering(std::string_view text, std::string_view what) {
-    return parse_named(text, what,
+    return parse_named_choice(text, what,
                        std::array{CrossingScattering::measured_stratum_corneum, CrossingScattering::measured_epidermis,
                                   CrossingScattering::rayleigh_cosine, CrossingScattering::cosine,
                                   CrossingScattering::henyey_greenstein},
-                       "scattering description");
+                       "a scattering description");
 }
 
 std::string_view to_string(PhaseFunctionKind kind) {
@@ -53,10 +39,10 @@ std::string_view to_string(PhaseFunctionKind kind) {
 }
 
 PhaseFunctionKind parse_phase_function(std::string_view text, std::string_view what) {
-    return parse_named(text, what,
+    return parse_named_choice(text, what,
                        std::array{PhaseFunctionKind::henyey_greenstein, PhaseFunctionKind::isotropic,
                                   PhaseFunctionKind::rayleigh},
-                       "phase function");
+                       "a phase function");
 }
 
 std::string_view to_string(VolumetricSource source) {
@@ -64,7 +50,7 @@ std::string_view to_string(VolumetricSource source) {
 }
 
 VolumetricSource parse_volumetric_source(std::string_view text, std::string_view what) {
-    return parse_named(text, what, std::array{VolumetricSource::power_law, VolumetricSource::from_reduced_scattering}, "volumetric scattering source");
+    return parse_named_choice(text, what, std::array{VolumetricSource::power_law, VolumetricSource::from_reduced_scattering}, "a volumetric scattering source");
 }
 
 const std::vector<std::string_view>& reduced_scattering_tables() {

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "spectral/input_error.hpp"
+#include "spectral/named_choice.hpp"
 
 namespace skinspec {
 
@@ -19,10 +19,8 @@ std::string_view to_string(MeasurementGeometry geometry) {
 }
 
 MeasurementGeometry parse_measurement_geometry(std::string_view text, std::string_view what) {
-    for (const auto g : {MeasurementGeometry::sci, MeasurementGeometry::sce, MeasurementGeometry::zero_45}) {
-        if (text == to_string(g)) return g;
-    }
-    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a measurement geometry (allowed: sci, sce, 0-45)");
+    return parse_named_choice(text, what, std::array{MeasurementGeometry::sci, MeasurementGeometry::sce, MeasurementGeometry::zero_45},
+                              "a measurement geometry");
 }
 
 std::vector<double> default_angular_bin_edges_deg() {

@@ -296,7 +296,8 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
     fit.parameter_keys = keys_;
     fit.parameters = values_of(best_x);
     for (std::size_t i = 0; i < p; ++i) fit.on_bound.push_back(best_x[i] < 1e-3 || best_x[i] > 1.0 - 1e-3);
-    const auto at_best = model(fit.parameters);
+    std::vector<std::vector<double>> d_model;  // dR_w / dparameter_j at the optimum, from the same pass
+    const auto at_best = model(fit.parameters, &d_model);
     fit.wavelength_nm = wavelengths_nm_;
     fit.measured = measured;
     double sum_sq = 0.0, weighted_sq = 0.0;
@@ -310,17 +311,11 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
     fit.rms = std::sqrt(sum_sq / static_cast<double>(n));
 
     // Standard errors (sandwich form): Cov = A^-1 B A^-1, A = J^T W J, B = J^T W diag(s^2 + m_w^2) W J, with J the
-    // model's Jacobian at the optimum (central differences of the smooth replayed model), s^2 the residual
-    // variance per degree of freedom and m_w the model's Monte Carlo standard error at wavelength w.
+    // model's Jacobian at the optimum (the analytic one of the replayed model), s^2 the residual variance per degree
+    // of freedom and m_w the model's Monte Carlo standard error at wavelength w.
     Eigen::MatrixXd jacobian(n, p);
-    for (std::size_t i = 0; i < p; ++i) {
-        const auto [lo, hi] = bounds_[i];
-        const double h = 1e-3 * std::max(std::abs(fit.parameters[i]), 1e-2 * (hi - lo));
-        auto up = fit.parameters, down = fit.parameters;
-        up[i] = std::min(hi, up[i] + h);
-        down[i] = std::max(lo, down[i] - h);
-        const auto r_up = model(up), r_down = model(down);
-        for (std::size_t w = 0; w < n; ++w) jacobian(static_cast<Eigen::Index>(w), static_cast<Eigen::Index>(i)) = (r_up[w].value - r_down[w].value) / (up[i] - down[i]);
+    for (std::size_t w = 0; w < n; ++w) {
+        for (std::size_t i = 0; i < p; ++i) jacobian(static_cast<Eigen::Index>(w), static_cast<Eigen::Index>(i)) = d_model[w][i];
     }
     const double dof = n > p ? static_cast<double>(n - p) : 1.0;
     const double residual_variance = weighted_sq / (weight_sum / static_cast<double>(n)) / dof;
