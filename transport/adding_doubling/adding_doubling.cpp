@@ -96,42 +96,29 @@ Channels make_channels(const std::vector<double>& indices, const std::vector<dou
     return c;
 }
 
-// One element of the stack in flux channels: reflection and transmission for light from above (top) and below.
+// One element of the stack in flux channels. Fresnel interfaces are diagonal in s (vectors); a homogeneous layer
+// is the same from above and below (r, t); the Lambertian reflector only reflects (r from above).
 struct Element {
-    Matrix r_top, t_down, r_bottom, t_up;
+    enum class Kind { interface, layer, reflector } kind = Kind::interface;
+    Vector r_top_diagonal, r_bottom_diagonal, t_diagonal;  // interface
+    Matrix r, t;                                           // layer (r and t both ways); reflector (r from above)
 };
 
-Element empty_element(std::size_t n) {
-    return {Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)), Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)),
-            Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)), Matrix::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n))};
-}
-
-// A above B (van de Hulst 1980, Eq. 4.25; Prahl 1995, Eq. 5.17-5.20):
-//   R = R_A + T'_A R_B (1 - R'_A R_B)^-1 T_A,  T = T_B (1 - R'_A R_B)^-1 T_A, and the same from below.
-Element add(const Element& a, const Element& b) {
-    const auto n = a.r_top.rows();
-    const Matrix identity = Matrix::Identity(n, n);
-    const Eigen::PartialPivLU<Matrix> down(identity - a.r_bottom * b.r_top);
-    const Eigen::PartialPivLU<Matrix> up(identity - b.r_top * a.r_bottom);
-    const Matrix x = down.solve(a.t_down);
-    const Matrix z = up.solve(b.t_up);
-    return {a.r_top + a.t_up * b.r_top * x, b.t_down * x, b.r_bottom + b.t_down * a.r_bottom * z, a.t_up * z};
-}
-
-// Fresnel interface from index n1 (above) to n2 (below): diagonal in s.
+// Fresnel interface from index n1 (above) to n2 (below).
 Element interface(const Channels& c, double n1, double n2) {
-    auto e = empty_element(c.size());
+    const auto size = static_cast<Eigen::Index>(c.size());
+    Element e{Element::Kind::interface, Vector::Zero(size), Vector::Zero(size), Vector::Zero(size), {}, {}};
     for (std::size_t k = 0; k < c.size(); ++k) {
         const auto kk = static_cast<Eigen::Index>(k);
         const bool above = c.s[k] < n1, below = c.s[k] < n2;
         if (above && below) {
             const double f = fresnel_reflectance(c.cosine(k, n1), n1, n2);
-            e.r_top(kk, kk) = e.r_bottom(kk, kk) = f;
-            e.t_down(kk, kk) = e.t_up(kk, kk) = 1.0 - f;
+            e.r_top_diagonal(kk) = e.r_bottom_diagonal(kk) = f;
+            e.t_diagonal(kk) = 1.0 - f;
         } else if (above) {
-            e.r_top(kk, kk) = 1.0;  // total internal reflection
+            e.r_top_diagonal(kk) = 1.0;  // total internal reflection
         } else if (below) {
-            e.r_bottom(kk, kk) = 1.0;
+            e.r_bottom_diagonal(kk) = 1.0;
         }
     }
     return e;
@@ -139,10 +126,11 @@ Element interface(const Channels& c, double n1, double n2) {
 
 // The ideal Lambertian reflector under a layer of index n: any incident flux leaves upward as c_i.
 Element lambertian_reflector(const Channels& c, double n) {
-    auto e = empty_element(c.size());
+    const auto size = static_cast<Eigen::Index>(c.size());
+    Element e{Element::Kind::reflector, {}, {}, {}, Matrix::Zero(size, size), {}};
     for (std::size_t i = 0; i < c.size(); ++i) {
         for (std::size_t j = 0; j < c.size(); ++j) {
-            if (c.s[j] < n) e.r_top(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c.weight(i, n);
+            if (c.s[j] < n) e.r(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c.weight(i, n);
         }
     }
     return e;
@@ -224,13 +212,14 @@ Element slab(const Channels& c, const RteLayer& layer) {
         // Transmission of thick layers decays towards the subnormal range, where arithmetic is ~100x slower.
         t = (t.array().abs() < 1e-250).select(0.0, t);
     }
-    auto e = empty_element(c.size());
+    const auto size = static_cast<Eigen::Index>(c.size());
+    Element e{Element::Kind::layer, {}, {}, {}, Matrix::Zero(size, size), Matrix::Zero(size, size)};
     for (Eigen::Index i = 0; i < m; ++i) {
         for (Eigen::Index j = 0; j < m; ++j) {
             const auto a = static_cast<Eigen::Index>(live[static_cast<std::size_t>(i)]);
             const auto b = static_cast<Eigen::Index>(live[static_cast<std::size_t>(j)]);
-            e.r_top(a, b) = e.r_bottom(a, b) = r(i, j);
-            e.t_down(a, b) = e.t_up(a, b) = t(i, j);
+            e.r(a, b) = r(i, j);
+            e.t(a, b) = t(i, j);
         }
     }
     return e;
@@ -241,7 +230,47 @@ struct Solution {
     std::vector<double> absorbed;
 };
 
-Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere, bool absorption) {
+// Everything below a level as one reflection operator S (flux from above -> flux back up), built bottom-up by adding
+// one element E on top (van de Hulst 1980, Eq. 4.25; Prahl 1995, Eq. 5.17):
+//   S' = R_E + T'_E S (1 - R'_E S)^-1 T_E,
+// with the factor 1 - R'_E S kept for the fluxes: the downward flux under E is x = (1 - R'_E S)^-1 T_E d for the
+// flux d arriving on E, and S x goes back up through it.
+struct Level {
+    Matrix reflection;                    // S of this element and everything below it
+    Eigen::PartialPivLU<Matrix> factor;   // of 1 - R'_E S_below (empty for the bottom element)
+};
+
+// X M^-1 for the factored M, as (M^T)^-1 X^T transposed.
+Matrix right_solve(const Eigen::PartialPivLU<Matrix>& factor, const Matrix& x) {
+    const Matrix rhs = x.transpose();
+    const Matrix solved = factor.transpose().solve(rhs);
+    return solved.transpose();
+}
+
+Matrix reflection_with(const Element& e, const Matrix& below, Eigen::PartialPivLU<Matrix>& factor) {
+    const auto n = below.rows();
+    if (e.kind == Element::Kind::reflector) return e.r;
+    const Matrix identity = Matrix::Identity(n, n);
+    if (e.kind == Element::Kind::interface) {
+        factor.compute(identity - e.r_bottom_diagonal.asDiagonal() * below);
+        // S (1 - R' S)^-1 by a transposed solve, then the diagonal transmissions on both sides.
+        const Matrix y = right_solve(factor, below);
+        Matrix s = e.t_diagonal.asDiagonal() * y * e.t_diagonal.asDiagonal();
+        s.diagonal() += e.r_top_diagonal;
+        return s;
+    }
+    factor.compute(identity - e.r * below);
+    const Matrix y = right_solve(factor, below);
+    return e.r + e.t * y * e.t;
+}
+
+Vector transmit(const Element& e, const Vector& flux) {
+    if (e.kind == Element::Kind::interface) return e.t_diagonal.cwiseProduct(flux);
+    if (e.kind == Element::Kind::layer) return e.t * flux;
+    return Vector::Zero(flux.size());
+}
+
+Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere) {
     std::vector<double> indices{stack.above_refractive_index};
     for (const auto& l : stack.layers) indices.push_back(l.refractive_index);
     if (!stack.bottom_reflector) indices.push_back(stack.below_refractive_index);
@@ -272,37 +301,30 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
     } else {
         incident(static_cast<Eigen::Index>(channels.incident)) = 1.0;
     }
-    // Prefix composites give R and T; with the suffix composites, the fluxes between any two elements.
+    // Bottom-up: the reflection of every suffix (levels[e] = element e and all below it); nothing returns from
+    // under the last element.
     const std::size_t count = elements.size();
-    std::vector<Element> prefix{elements.front()};
-    for (std::size_t e = 1; e < count; ++e) prefix.push_back(add(prefix.back(), elements[e]));
+    std::vector<Level> levels(count + 1);
+    levels[count].reflection = Matrix::Zero(n, n);
+    for (std::size_t e = count; e-- > 0;) levels[e].reflection = reflection_with(elements[e], levels[e + 1].reflection, levels[e].factor);
 
     Solution out;
-    const Vector reflected = prefix.back().r_top * incident;
-    const Vector transmitted = prefix.back().t_down * incident;
-    const double total_r = reflected.sum();
-    out.specular = (elements.front().r_top * incident).sum();
+    const double total_r = (levels[0].reflection * incident).sum();
+    out.specular = elements.front().r_top_diagonal.cwiseProduct(incident).sum();
     out.diffuse = total_r - out.specular;
-    out.transmittance = stack.bottom_reflector ? 0.0 : transmitted.sum();
-    if (!absorption) return out;
-    std::vector<Element> suffix(count);
-    suffix[count - 1] = elements[count - 1];
-    for (std::size_t e = count - 1; e-- > 0;) suffix[e] = add(elements[e], suffix[e + 1]);
-    // Net downward flux below element e: x = (1 - R'_above R_below)^-1 T_above u, y = R_below x.
-    std::vector<double> net_below(count, 0.0);
-    const Matrix identity = Matrix::Identity(n, n);
-    for (std::size_t e = 0; e + 1 < count; ++e) {
-        const Vector x = (identity - prefix[e].r_bottom * suffix[e + 1].r_top).partialPivLu().solve(prefix[e].t_down * incident);
-        const Vector y = suffix[e + 1].r_top * x;
-        net_below[e] = x.sum() - y.sum();
-    }
-    net_below[count - 1] = out.transmittance;
+    // Top-down: the downward flux under each element and the net flux (down - up) there; A of a layer is the net
+    // flux entering it minus the net flux leaving its bottom.
+    Vector down = incident;
     double net_above = incident.sum() - total_r;
     out.absorbed.assign(stack.layers.size(), 0.0);
     for (std::size_t e = 0; e < count; ++e) {
-        if (layer_of[e] >= 0) out.absorbed[static_cast<std::size_t>(layer_of[e])] = net_above - net_below[e];
-        net_above = net_below[e];
+        const Vector through = transmit(elements[e], down);
+        down = e + 1 < count ? Vector(levels[e].factor.solve(through)) : through;
+        const double net_below = down.sum() - (levels[e + 1].reflection * down).sum();
+        if (layer_of[e] >= 0) out.absorbed[static_cast<std::size_t>(layer_of[e])] = net_above - net_below;
+        net_above = net_below;
     }
+    out.transmittance = stack.bottom_reflector ? 0.0 : net_above;
     return out;
 }
 
@@ -316,7 +338,7 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     if (options.channels < 4 || options.channels > 256) {
         throw InputError("adding-doubling channels " + std::to_string(options.channels) + " is outside [4, 256]");
     }
-    const auto full = solve_with(stack, incidence, options.channels, options.absorption);
+    const auto full = solve_with(stack, incidence, options.channels);
     AdResult result;
     result.specular_reflectance = full.specular;
     result.diffuse_reflectance = full.diffuse;
@@ -325,7 +347,7 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     result.channels = options.channels;
     if (options.accuracy_check) {
         // The quadrature-doubling check: the same stack with twice the channels, whose error is far smaller.
-        const auto fine = solve_with(stack, incidence, 2 * options.channels, options.absorption);
+        const auto fine = solve_with(stack, incidence, 2 * options.channels);
         double change = std::max(std::abs(full.diffuse - fine.diffuse), std::abs(full.transmittance - fine.transmittance));
         for (std::size_t k = 0; k < full.absorbed.size(); ++k) change = std::max(change, std::abs(full.absorbed[k] - fine.absorbed[k]));
         result.accuracy = change;

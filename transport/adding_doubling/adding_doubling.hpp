@@ -27,14 +27,13 @@ struct AdIncidence {
 struct AdOptions {
     std::size_t channels = 24;        // quadrature channels per hemisphere in the densest medium (about)
     bool accuracy_check = true;       // also solve with twice the channels: AdResult::accuracy (8x the work)
-    bool absorption = true;           // A per layer (the fluxes between all elements: about as much work again)
 };
 
 struct AdResult {
     double specular_reflectance = 0.0;  // first-surface reflection
     double diffuse_reflectance = 0.0;   // everything else leaving the top
     double transmittance = 0.0;         // leaving the bottom, unscattered included (0 over a reflector)
-    std::vector<double> absorbed_layers;  // empty without AdOptions::absorption
+    std::vector<double> absorbed_layers;  // per layer (vector solves on the factors the adding keeps: nearly free)
     double accuracy = 0.0;              // the largest change of R_d, T or A with twice the channels
     std::size_t channels = 0;
 };

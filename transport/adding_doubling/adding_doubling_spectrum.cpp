@@ -16,7 +16,6 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
     double accuracy = 0.0;
     const std::size_t total = request.wavelengths.size();
     auto ad = options;
-    ad.absorption = request.quantities.absorptance;
     out.quantities = Quantities{true, request.quantities.transmittance, request.quantities.absorptance, false};
     for (std::size_t w = 0; w < total; ++w) {
         if (request.cancel && request.cancel->load()) {
@@ -33,7 +32,9 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
         row.reflectance = {r.diffuse_reflectance + (excluded ? 0.0 : r.specular_reflectance), 0.0};
         row.specular_reflectance = {r.specular_reflectance, 0.0};
         row.transmittance = {r.transmittance, 0.0};
-        for (const double a : r.absorbed_layers) row.absorptance_layers.push_back({a, 0.0});
+        if (request.quantities.absorptance) {
+            for (const double a : r.absorbed_layers) row.absorptance_layers.push_back({a, 0.0});
+        }
         out.wavelengths.push_back(std::move(row));
         accuracy = std::max(accuracy, r.accuracy);
         if (request.on_progress) request.on_progress(Progress{0, 0, w + 1, total});
