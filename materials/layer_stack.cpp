@@ -45,7 +45,7 @@ BottomBoundary parse_bottom_boundary(std::string_view text, std::string_view wha
 LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsScope scope) const {
     const auto& layer = layers.at(index);
     LayerOptics o{layer.thickness_cm, layer.refractive_index, absorption_per_cm(layer, wavelength_nm, model),
-                  layer.crossing, layer.hg_g, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt};
+                  layer.crossing, layer.hg_g, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, nullptr};
     if (layer.crossing == CrossingScattering::rayleigh_cosine) {
         if (model.dermal_rayleigh) o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
         else o.crossing = CrossingScattering::cosine;
@@ -57,10 +57,16 @@ LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsSc
     if (scope.volumetric && layer.volumetric) {
         const auto& v = *layer.volumetric;
         // mu_s = mu_s' / (1 - g) (the similarity relation, e.g. Jacques 2013, Phys. Med. Biol. 58:R37, Eq. 2).
+        double g = v.g;
+        if (is_measured(v.phase)) {
+            const auto& profile = v.phase == PhaseFunctionKind::measured_stratum_corneum ? MeasuredProfile::stratum_corneum() : MeasuredProfile::epidermis();
+            o.phase_table = std::make_shared<const InverseCdfTable>(profile.inverse_table(wavelength_nm));
+            g = o.phase_table->mean_cos();
+        }
         o.mu_s_per_cm = v.source == VolumetricSource::power_law ? power_law(v.mu_s_per_cm_at_500nm, v.power, wavelength_nm)
-                                                                : reduced() / (1.0 - v.g);
+                                                                : reduced() / (1.0 - g);
         o.phase = v.phase;
-        o.g = v.g;
+        o.g = g;
     }
     if (scope.reduced && layer.reduced) o.mu_s_reduced_per_cm = reduced();
     return o;

@@ -1,12 +1,14 @@
 #pragma once
 // A layer stack: the medium above, ordered tissue layers (top first), the bottom boundary, the surface's
 // fold aspect ratio and the model options. Answers "what are the optics of layer k at wavelength lambda?".
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "materials/tissue_layer.hpp"
+#include "transport/measured_profile.hpp"
 
 namespace skinspec {
 
@@ -29,6 +31,7 @@ struct LayerOptics {
     std::optional<PhaseFunctionKind> phase;
     std::optional<double> g;
     std::optional<double> mu_s_reduced_per_cm;  // reduced scattering, when described
+    std::shared_ptr<const InverseCdfTable> phase_table;  // measured phases: the profile at this wavelength
 };
 
 // Which optional descriptions to evaluate: a solver asks only for what it uses, so e.g. the BioSpec walk

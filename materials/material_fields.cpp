@@ -66,7 +66,7 @@ const std::vector<NumberField<VolumetricScattering>>& volumetric_fields() {
         {"volumetric_mu_s_per_cm_at_500nm", "1/cm", non_negative, &V::mu_s_per_cm_at_500nm, true,
          "volumetric walk: scattering coefficient at 500 nm, mu_s(l) = mu_s(500) (l / 500 nm)^-power"},
         {"volumetric_mu_s_power", "1", power_law_exponent, &V::power, false, "volumetric walk: power-law exponent of mu_s"},
-        {"volumetric_g", "1", anisotropy, &V::g, false, "volumetric walk: HG asymmetry"},
+        {"volumetric_g", "1", anisotropy, &V::g, false, "volumetric solvers: HG asymmetry (not with a measured volumetric_phase)"},
     };
     return fields;
 }
@@ -127,7 +127,8 @@ const std::vector<NamedField>& named_fields() {
         {"layers", "name", "lower-case letters, digits, _", "layer name, unique in the stack"},
         {"layers", "scattering", "measured_stratum_corneum, measured_epidermis, rayleigh_cosine, cosine, henyey_greenstein",
          "BioSpec walk: what a crossing does to a ray's direction"},
-        {"layers", "volumetric_phase", "henyey_greenstein, isotropic, rayleigh", "volumetric walk: phase function"},
+        {"layers", "volumetric_phase", "henyey_greenstein, isotropic, rayleigh, measured_stratum_corneum, measured_epidermis",
+         "volumetric solvers: phase function (measured_*: the Bruls & van der Leun profile as a tabulated phase function, g its mean cosine)"},
         {"layers", "volumetric_scattering", "power_law, from_reduced_scattering",
          "volumetric solvers: mu_s from volumetric_mu_s_* (default), or mu_s = mu_s' / (1 - volumetric_g) from the layer's reduced scattering"},
         {"layers", "reduced_scattering_table", "salomatina_epidermis, salomatina_dermis, salomatina_hypodermis",

@@ -199,6 +199,13 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
     }
     if (volumetric) {
         VolumetricScattering v;
+        v.phase = parse_phase_function(r.string(t, "volumetric_phase", p + "volumetric_phase", "henyey_greenstein"),
+                                       r.where(t.get("volumetric_phase"), p + "volumetric_phase") + "key '" + p +
+                                           "volumetric_phase'");
+        if (is_measured(v.phase) && t.contains("volumetric_g")) {
+            throw InputError(r.where(t.get("volumetric_g"), p + "volumetric_g") + "layer '" + layer.name + "': volumetric_g contradicts volumetric_phase = " +
+                             std::string(to_string(v.phase)) + " (g is the measured profile's mean cosine)");
+        }
         const std::string source_key = p + "volumetric_scattering";
         v.source = parse_volumetric_source(r.string(t, "volumetric_scattering", source_key, "power_law"),
                                            r.where(t.get("volumetric_scattering"), source_key) + "key '" + source_key + "'");
@@ -217,9 +224,6 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
             }
             v.g = r.number(t, "volumetric_g", p + "volumetric_g", FieldRange{-1.0, 1.0, false, true}, 0.0);
         }
-        v.phase = parse_phase_function(r.string(t, "volumetric_phase", p + "volumetric_phase", "henyey_greenstein"),
-                                       r.where(t.get("volumetric_phase"), p + "volumetric_phase") + "key '" + p +
-                                           "volumetric_phase'");
         layer.volumetric = v;
     }
     if (has_table) {
@@ -400,6 +404,7 @@ toml::table stack_table(const LayerStack& s) {
                 t.insert("volumetric_scattering", std::string(to_string(l.volumetric->source)));
                 t.insert("volumetric_g", l.volumetric->g);
             }
+            if (is_measured(l.volumetric->phase)) t.erase("volumetric_g");
             t.insert("volumetric_phase", std::string(to_string(l.volumetric->phase)));
         }
         if (l.reduced && !l.reduced->table.empty()) t.insert("reduced_scattering_table", l.reduced->table);

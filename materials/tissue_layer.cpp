@@ -34,14 +34,21 @@ std::string_view to_string(PhaseFunctionKind kind) {
         case PhaseFunctionKind::henyey_greenstein: return "henyey_greenstein";
         case PhaseFunctionKind::isotropic: return "isotropic";
         case PhaseFunctionKind::rayleigh: return "rayleigh";
+        case PhaseFunctionKind::measured_stratum_corneum: return "measured_stratum_corneum";
+        case PhaseFunctionKind::measured_epidermis: return "measured_epidermis";
     }
     return "?";
+}
+
+bool is_measured(PhaseFunctionKind kind) {
+    return kind == PhaseFunctionKind::measured_stratum_corneum || kind == PhaseFunctionKind::measured_epidermis;
 }
 
 PhaseFunctionKind parse_phase_function(std::string_view text, std::string_view what) {
     return parse_named_choice(text, what,
                        std::array{PhaseFunctionKind::henyey_greenstein, PhaseFunctionKind::isotropic,
-                                  PhaseFunctionKind::rayleigh},
+                                  PhaseFunctionKind::rayleigh, PhaseFunctionKind::measured_stratum_corneum,
+                                  PhaseFunctionKind::measured_epidermis},
                        "a phase function");
 }
 

@@ -22,7 +22,10 @@ enum class CrossingScattering {
 std::string_view to_string(CrossingScattering kind);
 CrossingScattering parse_crossing_scattering(std::string_view text, std::string_view what);
 
-enum class PhaseFunctionKind { henyey_greenstein, isotropic, rayleigh };
+// Volumetric phase functions: HG (volumetric_g), isotropic, Rayleigh, or a measured profile (Bruls & van der Leun
+// 1984) used as a tabulated phase function, whose g is the profile's mean cosine at the wavelength.
+enum class PhaseFunctionKind { henyey_greenstein, isotropic, rayleigh, measured_stratum_corneum, measured_epidermis };
+bool is_measured(PhaseFunctionKind kind);
 std::string_view to_string(PhaseFunctionKind kind);
 PhaseFunctionKind parse_phase_function(std::string_view text, std::string_view what);
 
@@ -38,7 +41,7 @@ struct VolumetricScattering {
     double mu_s_per_cm_at_500nm = 0.0;
     double power = 0.0;
     PhaseFunctionKind phase = PhaseFunctionKind::henyey_greenstein;
-    double g = 0.0;
+    double g = 0.0;  // HG only (a measured phase has its own mean cosine)
     VolumetricSource source = VolumetricSource::power_law;
     bool operator==(const VolumetricScattering&) const = default;
 };

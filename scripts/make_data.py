@@ -376,7 +376,7 @@ scattering = "measured_stratum_corneum"
 carotene_g_per_l = 2.1e-4
 reduced_scattering_table = "salomatina_epidermis"
 volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
-volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)
+volumetric_phase = "measured_stratum_corneum"     # Bruls & van der Leun 1984 profile as the phase function (g 0.95-0.96)
 
 [[layers]]
 name = "epidermis"
@@ -389,7 +389,7 @@ pheomelanin_mg_per_ml = 12
 carotene_g_per_l = 2.1e-4
 reduced_scattering_table = "salomatina_epidermis"
 volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
-volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)
+volumetric_phase = "measured_epidermis"           # Bruls & van der Leun 1984 profile as the phase function (g 0.88-0.90)
 
 [[layers]]
 name = "papillary_dermis"

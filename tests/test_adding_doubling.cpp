@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 
 #include "formats/adding_doubling_reference.hpp"
 #include "spectral/input_error.hpp"
@@ -37,6 +38,21 @@ TEST_CASE("Legendre moments of the phase functions", "[adding_doubling]") {
     const auto ray = legendre_moments(rayleigh, 4);
     CHECK(ray[1] == 0.0);
     CHECK(ray[2] == Approx(0.1));  // <P_2> of 3/8 (1 + mu^2)
+    // A tabulated profile: the moments are the means of P_l over the table's entries (closed forms of P_2, P_3).
+    const auto table = std::make_shared<const InverseCdfTable>(MeasuredProfile::stratum_corneum().inverse_table(450.0));
+    const auto chi = legendre_moments(PhaseFunction{PhaseFunction::Kind::tabulated, 0.0, 0.0, 1.0, table}, 4);
+    double p1 = 0.0, p2 = 0.0, p3 = 0.0;
+    for (std::size_t i = 0; i < table->size(); ++i) {
+        const double x = table->cos_theta(i);
+        p1 += x;
+        p2 += (3.0 * x * x - 1.0) / 2.0;
+        p3 += (5.0 * x * x * x - 3.0 * x) / 2.0;
+    }
+    const double count = static_cast<double>(table->size());
+    CHECK(chi[0] == Approx(1.0).epsilon(1e-14));
+    CHECK(chi[1] == Approx(p1 / count).epsilon(1e-12));
+    CHECK(chi[2] == Approx(p2 / count).epsilon(1e-12));
+    CHECK(chi[3] == Approx(p3 / count).epsilon(1e-12));
 }
 
 namespace {
@@ -102,6 +118,35 @@ TEST_CASE("adding-doubling stress: extreme layers stay finite, in [0, 1] and ene
                             CHECK(v <= 1.0 + 1e-9);
                         }
                         CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-8));
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("adding-doubling stress: the measured forward peaks as tabulated phase functions", "[adding_doubling]") {
+    // The stratum corneum and epidermis profiles (g 0.95 and 0.88, a forward peak within 2.5 deg) at 302 and 546 nm.
+    for (const auto* profile : {&MeasuredProfile::stratum_corneum(), &MeasuredProfile::epidermis()}) {
+        for (const double nm : {302.0, 546.0}) {
+            const auto table = std::make_shared<const InverseCdfTable>(profile->inverse_table(nm));
+            const PhaseFunction phase{PhaseFunction::Kind::tabulated, table->mean_cos(), 0.0, 1.0, table};
+            for (const double albedo : {0.0, 0.5, 1.0}) {
+                for (const double mfp : {1e-6, 1e-2, 1.0, 100.0, 1e3}) {
+                    for (const double angle : {0.0, 89.9}) {
+                        INFO("nm " << nm << " albedo " << albedo << " mfp " << mfp << " angle " << angle);
+                        RteStack stack;
+                        stack.layers.push_back({1.5, 100.0 * (1.0 - albedo), 100.0 * albedo, mfp / 100.0, phase});
+                        AdOptions o;
+                        o.accuracy_check = false;
+                        const auto r = solve_adding_doubling(stack, {false, angle}, o);
+                        for (const double v : {r.specular_reflectance, r.diffuse_reflectance, r.transmittance, r.absorbed_layers[0]}) {
+                            CHECK(std::isfinite(v));
+                            CHECK(v >= -1e-9);
+                            CHECK(v <= 1.0 + 1e-9);
+                        }
+                        CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-8));
+                        if (albedo == 1.0) CHECK(r.absorbed_layers[0] == Approx(0.0).margin(1e-8));
                     }
                 }
             }

@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "materials/layer_stack.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
@@ -59,6 +61,31 @@ TEST_CASE("volumetric scattering follows its power law", "[layer_stack]") {
     CHECK(*stack.optics(3, 1000.0).mu_s_per_cm == Approx(100.0));
     CHECK(*o.g == 0.8);
     CHECK(*o.phase == PhaseFunctionKind::henyey_greenstein);
+}
+
+TEST_CASE("a measured volumetric phase: g is the profile's mean cosine and mu_s' is kept", "[layer_stack]") {
+    const auto stack = preset("biospec-lightly");
+    for (const double nm : {400.0, 500.0, 700.0}) {
+        for (const std::size_t k : {0u, 1u}) {
+            const auto o = stack.optics(k, nm);
+            REQUIRE(o.phase_table);
+            // Independent: <cos> of the piecewise-linear C(theta), int cos dC = sum_k slope_k (sin theta_k+1 - sin theta_k).
+            const auto& profile = k == 0 ? MeasuredProfile::stratum_corneum() : MeasuredProfile::epidermis();
+            const auto angles = profile.angles_deg();
+            const auto c = profile.cumulative(nm);
+            const double rad = 3.14159265358979323846 / 180.0;
+            double mean = 0.0;
+            for (std::size_t i = 1; i < angles.size(); ++i) {
+                const double slope = (c[i] - c[i - 1]) / ((angles[i] - angles[i - 1]) * rad);
+                mean += slope * (std::sin(angles[i] * rad) - std::sin(angles[i - 1] * rad));
+            }
+            mean /= c.back();
+            CHECK(*o.g == Approx(mean).margin(2e-5));  // the 1000-entry table against the exact integral
+            CHECK(*o.g == o.phase_table->mean_cos());
+            // Similarity: mu_s (1 - g) is the layer's reduced scattering (the one the diffusion modes use).
+            CHECK(*o.mu_s_per_cm * (1.0 - *o.g) == Approx(*o.mu_s_reduced_per_cm).epsilon(1e-12));
+        }
+    }
 }
 
 TEST_CASE("wavelengths outside a present chromophore's table are errors, not extrapolations", "[layer_stack]") {

@@ -170,6 +170,9 @@ TEST_CASE("each invalid material file gets its error naming file, line, key, val
         {"from_reduced_mu_s.toml", with("volumetric_scattering = \"from_reduced_scattering\"\nvolumetric_mu_s_per_cm_at_500nm = 100\n"
                                         "reduced_scattering_table = \"salomatina_dermis\"\n"),
          "volumetric_mu_s_per_cm_at_500nm contradicts volumetric_scattering = from_reduced_scattering"},
+        {"measured_g.toml", with("volumetric_scattering = \"from_reduced_scattering\"\nvolumetric_phase = \"measured_epidermis\"\nvolumetric_g = 0.8\n"
+                                 "reduced_scattering_table = \"salomatina_epidermis\"\n"),
+         "layer 'slab': volumetric_g contradicts volumetric_phase = measured_epidermis (g is the measured profile's mean cosine)"},
         {"from_reduced_g1.toml", with("volumetric_scattering = \"from_reduced_scattering\"\nvolumetric_g = 1\nreduced_scattering_table = \"salomatina_dermis\"\n"),
          "key 'slab.volumetric_g' = 1 is outside [-1, 1)"},
         {"bands.toml", "kind = \"homogeneous\"\nname = \"m\"\nrelative_refractive_index = 1.3\nbands = [\"R\", \"G\"]\n"

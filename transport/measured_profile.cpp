@@ -46,6 +46,12 @@ InverseCdfTable::InverseCdfTable(std::span<const double> angles_deg, std::span<c
     }
 }
 
+double InverseCdfTable::mean_cos() const {
+    double sum = 0.0;
+    for (const double c : cos_) sum += c;
+    return sum / static_cast<double>(size_);
+}
+
 MeasuredProfile::MeasuredProfile(const char* file) {
     const auto table = DataTable::read(data_file(file));
     const auto wavelengths = table.column("wavelength_nm");

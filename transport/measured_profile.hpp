@@ -23,6 +23,8 @@ public:
     double sin_theta(std::size_t i) const { return sin_[i]; }
     double theta_deg(std::size_t i) const { return theta_deg_[i]; }
     std::size_t size() const { return size_; }
+    // The mean cosine of the table's distribution (g of the phase function the table samples).
+    double mean_cos() const;
 
 private:
     std::size_t size_;

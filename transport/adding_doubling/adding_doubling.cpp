@@ -136,30 +136,54 @@ Element lambertian_reflector(const Channels& c, double n) {
     return e;
 }
 
-// A homogeneous layer: delta-M scaled phase function, diamond thin layer, doubling. Flux channels.
-Element slab(const Channels& c, const RteLayer& layer) {
-    const double n = layer.refractive_index;
+}  // namespace
+
+// The layer's scattering in the channels it propagates in: delta-M scaled phase function (its fraction f) and the
+// redistribution matrices, which depend on the phase function, the index and the channels only (not on mu_a, mu_s).
+struct AdPhaseCache::Entry {
+    PhaseFunction phase;
+    std::vector<double> table_cosines;  // tabulated phases compare by content (each wavelength has its own table)
+    double n = 0.0;
+    std::vector<double> channel_s;
     std::vector<std::size_t> live;
-    for (std::size_t k = 0; k < c.size(); ++k) {
-        if (c.s[k] < n) live.push_back(k);
+    double f = 0.0;
+    Vector mu, w, cw;
+    Matrix same, opposite;
+};
+
+namespace {
+
+std::vector<double> cosines_of(const PhaseFunction& phase) {
+    std::vector<double> out;
+    if (phase.kind == PhaseFunction::Kind::tabulated) {
+        for (std::size_t i = 0; i < phase.table->size(); ++i) out.push_back(phase.table->cos_theta(i));
     }
-    const auto m = static_cast<Eigen::Index>(live.size());
-    const double mu_t = layer.mu_a_per_cm + layer.mu_s_per_cm;
-    double albedo = mu_t > 0.0 ? layer.mu_s_per_cm / mu_t : 0.0;
-    double depth = mu_t * layer.thickness_cm;
+    return out;
+}
+
+bool same_scattering(const AdPhaseCache::Entry& e, const PhaseFunction& phase, const std::vector<double>& cosines, double n, const Channels& c) {
+    return e.phase.kind == phase.kind && e.phase.g == phase.g && e.phase.g2 == phase.g2 && e.phase.weight == phase.weight && e.n == n &&
+           e.table_cosines == cosines && e.channel_s == c.s;
+}
+
+AdPhaseCache::Entry redistribution(const Channels& c, double n, const PhaseFunction& phase, std::vector<double> cosines) {
+    AdPhaseCache::Entry e{phase, std::move(cosines), n, c.s, {}, 0.0, {}, {}, {}, {}, {}};
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        if (c.s[k] < n) e.live.push_back(k);
+    }
+    const auto m = static_cast<Eigen::Index>(e.live.size());
     // Delta-M with 2m moments kept: f = chi_2m (Wiscombe 1977).
-    const std::size_t moments = 2 * live.size();
-    auto chi = legendre_moments(layer.phase, moments + 1);
+    const std::size_t moments = 2 * e.live.size();
+    auto chi = legendre_moments(phase, moments + 1);
     const double f = chi[moments];
     if (f > 0.0 && f < 1.0) {
-        depth *= 1.0 - albedo * f;
-        albedo = albedo * (1.0 - f) / (1.0 - albedo * f);
+        e.f = f;
         for (std::size_t l = 0; l < moments; ++l) chi[l] = (chi[l] - f) / (1.0 - f);
     }
     chi.resize(moments);
     Vector mu(m), w(m), cw(m);
     for (Eigen::Index i = 0; i < m; ++i) {
-        const auto k = live[static_cast<std::size_t>(i)];
+        const auto k = e.live[static_cast<std::size_t>(i)];
         mu(i) = c.cosine(k, n);
         cw(i) = c.weight(k, n);
         w(i) = cw(i) / (2.0 * mu(i));  // the dmu weight
@@ -186,6 +210,40 @@ Element slab(const Channels& c, const RteLayer& layer) {
         for (Eigen::Index i = 0; i < m; ++i) total += (same(i, j) + opposite(i, j)) * w(i);
         same(j, j) += (1.0 - total) / w(j);
     }
+    e.mu = mu;
+    e.w = w;
+    e.cw = cw;
+    e.same = std::move(same);
+    e.opposite = opposite;
+    return e;
+}
+
+const AdPhaseCache::Entry& cached_redistribution(const Channels& c, double n, const PhaseFunction& phase, AdPhaseCache& cache) {
+    auto cosines = cosines_of(phase);
+    for (const auto& e : cache.entries) {
+        if (same_scattering(*e, phase, cosines, n, c)) return *e;
+    }
+    cache.entries.push_back(std::make_shared<const AdPhaseCache::Entry>(redistribution(c, n, phase, std::move(cosines))));
+    return *cache.entries.back();
+}
+
+// A homogeneous layer: delta-M scaled albedo and depth, diamond thin layer, doubling. Flux channels.
+Element slab(const Channels& c, const RteLayer& layer, const AdPhaseCache::Entry& scattering) {
+    const auto& live = scattering.live;
+    const auto m = static_cast<Eigen::Index>(live.size());
+    const double mu_t = layer.mu_a_per_cm + layer.mu_s_per_cm;
+    double albedo = mu_t > 0.0 ? layer.mu_s_per_cm / mu_t : 0.0;
+    double depth = mu_t * layer.thickness_cm;
+    const double f = scattering.f;
+    if (f > 0.0) {
+        depth *= 1.0 - albedo * f;
+        albedo = albedo * (1.0 - f) / (1.0 - albedo * f);
+    }
+    const Vector& mu = scattering.mu;
+    const Vector& w = scattering.w;
+    const Vector& cw = scattering.cw;
+    const Matrix& same = scattering.same;
+    const Matrix& opposite = scattering.opposite;
     // Thin layer by the diamond difference: with C = M^-1 (1 - a H++ W), S = M^-1 a H+- W, h = depth/2,
     // A = 1 + h C, B = h S: T = (A - B)^-1 + (A + B)^-1 - 1, R = (A - B)^-1 - (A + B)^-1 (radiance operators).
     int doublings = 0;
@@ -270,7 +328,7 @@ Vector transmit(const Element& e, const Vector& flux) {
     return Vector::Zero(flux.size());
 }
 
-Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere) {
+Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere, AdPhaseCache& cache) {
     std::vector<double> indices{stack.above_refractive_index};
     for (const auto& l : stack.layers) indices.push_back(l.refractive_index);
     if (!stack.bottom_reflector) indices.push_back(stack.below_refractive_index);
@@ -288,7 +346,8 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
     for (std::size_t k = 0; k < stack.layers.size(); ++k) {
         elements.push_back(interface(channels, above, stack.layers[k].refractive_index));
         layer_of.push_back(-1);
-        elements.push_back(slab(channels, stack.layers[k]));
+        const auto& layer = stack.layers[k];
+        elements.push_back(slab(channels, layer, cached_redistribution(channels, layer.refractive_index, layer.phase, cache)));
         layer_of.push_back(static_cast<int>(k));
         above = stack.layers[k].refractive_index;
     }
@@ -330,7 +389,7 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
 
 }  // namespace
 
-AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options) {
+AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options, AdPhaseCache* cache) {
     validate(stack);
     if (!incidence.diffuse && !(std::isfinite(incidence.angle_deg) && incidence.angle_deg >= 0.0 && incidence.angle_deg < 90.0)) {
         throw InputError("incidence angle " + format_number(incidence.angle_deg) + " deg is outside [0, 90)");
@@ -338,7 +397,9 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     if (options.channels < 4 || options.channels > 256) {
         throw InputError("adding-doubling channels " + std::to_string(options.channels) + " is outside [4, 256]");
     }
-    const auto full = solve_with(stack, incidence, options.channels);
+    AdPhaseCache own;
+    auto& phases = cache ? *cache : own;
+    const auto full = solve_with(stack, incidence, options.channels, phases);
     AdResult result;
     result.specular_reflectance = full.specular;
     result.diffuse_reflectance = full.diffuse;
@@ -347,7 +408,7 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     result.channels = options.channels;
     if (options.accuracy_check) {
         // The quadrature-doubling check: the same stack with twice the channels, whose error is far smaller.
-        const auto fine = solve_with(stack, incidence, 2 * options.channels);
+        const auto fine = solve_with(stack, incidence, 2 * options.channels, phases);
         double change = std::max(std::abs(full.diffuse - fine.diffuse), std::abs(full.transmittance - fine.transmittance));
         for (std::size_t k = 0; k < full.absorbed.size(); ++k) change = std::max(change, std::abs(full.absorbed[k] - fine.absorbed[k]));
         result.accuracy = change;

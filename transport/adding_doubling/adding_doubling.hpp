@@ -13,6 +13,7 @@
 // diamond-difference thin layer (Wiscombe 1976, JQSRT 16:637) of optical depth <= 2^-8 doubled to its
 // thickness; layers and interfaces are added; A per layer from the net fluxes between them.
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "transport/rte/rte_model.hpp"
@@ -38,7 +39,14 @@ struct AdResult {
     std::size_t channels = 0;
 };
 
+// The layers' redistribution matrices depend on the phase function, the index and the channels only, not on mu_a or
+// mu_s: a spectrum passes one cache through its wavelengths, so each distinct phase function is expanded once.
+struct AdPhaseCache {
+    struct Entry;  // adding_doubling.cpp
+    std::vector<std::shared_ptr<const Entry>> entries;
+};
+
 // InputError for stacks the solver cannot take (validate(RteStack) plus the incidence).
-AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options = {});
+AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options = {}, AdPhaseCache* cache = nullptr);
 
 }  // namespace skinspec

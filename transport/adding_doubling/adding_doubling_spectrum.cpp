@@ -17,6 +17,7 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
     const std::size_t total = request.wavelengths.size();
     auto ad = options;
     out.quantities = Quantities{true, request.quantities.transmittance, request.quantities.absorptance, false};
+    AdPhaseCache phases;
     for (std::size_t w = 0; w < total; ++w) {
         if (request.cancel && request.cancel->load()) {
             out.partial = true;
@@ -25,7 +26,7 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
         const double nm = request.wavelengths[w];
         // The quadrature-doubling check at the first, middle and last wavelength (8x the work of one).
         ad.accuracy_check = options.accuracy_check && (w == 0 || w == total / 2 || w + 1 == total);
-        const auto r = solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, request.incidence_deg}, ad);
+        const auto r = solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, request.incidence_deg}, ad, &phases);
         WavelengthResult row;
         row.wavelength_nm = nm;
         const bool excluded = request.geometry == MeasurementGeometry::sce;

@@ -35,10 +35,25 @@ std::vector<double> legendre_moments(const PhaseFunction& phase, std::size_t cou
             if (count > 2) chi[2] = 0.1;
             break;
         case K::tabulated: {
+            // Bonnet's recurrence per entry, accumulated in place: (l + 1) P_l+1 = (2l + 1) x P_l - l P_l-1.
             const auto& table = *phase.table;
+            std::vector<double> a(count), b(count);
+            for (std::size_t l = 1; l < count; ++l) {
+                const double ll = static_cast<double>(l);
+                a[l] = (2.0 * ll - 1.0) / ll;
+                b[l] = (ll - 1.0) / ll;
+            }
             for (std::size_t i = 0; i < table.size(); ++i) {
-                const auto p = legendre_polynomials(table.cos_theta(i), count);
-                for (std::size_t l = 0; l < count; ++l) chi[l] += p[l];
+                const double x = table.cos_theta(i);
+                double previous = 1.0, current = x;
+                chi[0] += 1.0;
+                if (count > 1) chi[1] += x;
+                for (std::size_t l = 2; l < count; ++l) {
+                    const double next = a[l] * x * current - b[l] * previous;
+                    chi[l] += next;
+                    previous = current;
+                    current = next;
+                }
             }
             for (auto& c : chi) c /= static_cast<double>(table.size());
             break;

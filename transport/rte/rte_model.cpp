@@ -21,6 +21,7 @@ RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
         PhaseFunction phase = PhaseFunction::henyey_greenstein(*o.g);
         if (*o.phase == PhaseFunctionKind::isotropic) phase = PhaseFunction::isotropic();
         if (*o.phase == PhaseFunctionKind::rayleigh) phase.kind = PhaseFunction::Kind::rayleigh;
+        if (o.phase_table) phase = {PhaseFunction::Kind::tabulated, *o.g, 0.0, 1.0, o.phase_table};
         out.layers.push_back({o.refractive_index, o.mu_a_per_cm, *o.mu_s_per_cm, o.thickness_cm, phase});
     }
     return out;
