@@ -138,6 +138,31 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
                                      c.converged ? "" : " (budget spent before the target)");
         }
     }
+    if (!report.skin_modes.empty()) {
+        std::cout << "\nOne skin in every mode: 400-700 nm / 10 nm (SCI), one thread, against adding-doubling (the same mu_a, mu_s and phase):\n";
+        std::cout << fmt::format("  {:<20} {:<16} {:>9} {:>10} {:>11} {:>10} {:>19} {:>9} {:>16}\n", "preset", "solver", "seconds", "rays", "uncertainty",
+                                 "max |dR|", "Rd error %", "dE*ab", "s at AD accuracy");
+        double accuracy = 0.0;
+        for (const auto& r : report.skin_modes) {
+            if (r.solver == "adding-doubling") accuracy = r.uncertainty;
+            // A walk's time to reach adding-doubling's stated accuracy: standard errors fall as rays^-1/2.
+            const bool walk = r.rays > 0 && r.uncertainty > 0.0 && accuracy > 0.0;
+            const std::string extrapolated = walk ? fmt::format("{:.3g}", r.seconds_one_thread * std::pow(r.uncertainty / accuracy, 2.0)) : "";
+            std::cout << fmt::format("  {:<20} {:<16} {:>9.4f} {:>10} {:>11.2g} {:>10.4f} {:>8.1f} .. {:>6.1f} {:>9.2f} {:>16}{}\n", r.material, r.solver,
+                                     r.seconds_one_thread, r.rays, r.uncertainty, r.max_abs_error, 100.0 * r.min_relative_diffuse_error,
+                                     100.0 * r.max_relative_diffuse_error, r.delta_e_ab, extrapolated,
+                                     r.same_skin ? "" : "  (another scattering description: measured profiles + Rayleigh/cosine crossings)");
+        }
+        std::cout << "  (uncertainty: a walk's largest standard error of R; adding-doubling's stated accuracy, the change with twice the channels)\n";
+    }
+    if (!report.walk_agreement.empty()) {
+        std::cout << "\nVolumetric walk against adding-doubling (R, SCI):\n";
+        for (const auto& a : report.walk_agreement) {
+            std::cout << fmt::format("  {:<20} {:.0f} nm, {} photons in {:.1f} s: walk {:.6f} +- {:.6f}, adding-doubling {:.6f}, {:+.2f} sigma\n", a.material,
+                                     a.wavelength_nm, a.photons, a.seconds, a.walk.value, a.walk.stderr, a.adding_doubling,
+                                     (a.walk.value - a.adding_doubling) / a.walk.stderr);
+        }
+    }
     if (report.partial) std::cout << "\nstopped early: the figures above are what finished\n";
 }
 
@@ -189,8 +214,22 @@ Json to_json(const BenchReport& report, const BenchCommandOptions& o) {
     for (const auto& c : report.colours) {
         colours.push_back({{"material", c.material}, {"seconds", c.seconds}, {"rays", c.rays}, {"delta_e_uncertainty", c.delta_e_uncertainty}, {"converged", c.converged}});
     }
+    Json skin = Json::array();
+    for (const auto& r : report.skin_modes) {
+        skin.push_back({{"material", r.material}, {"solver", r.solver}, {"same_skin", r.same_skin}, {"seconds_one_thread", r.seconds_one_thread},
+                        {"rays", r.rays}, {"uncertainty", r.uncertainty}, {"max_abs_error", r.max_abs_error},
+                        {"min_relative_diffuse_error", r.min_relative_diffuse_error}, {"max_relative_diffuse_error", r.max_relative_diffuse_error},
+                        {"delta_e_ab", r.delta_e_ab}});
+    }
+    Json agreement = Json::array();
+    for (const auto& a : report.walk_agreement) {
+        agreement.push_back({{"material", a.material}, {"wavelength_nm", a.wavelength_nm}, {"photons", a.photons}, {"walk", a.walk.value},
+                             {"walk_stderr", a.walk.stderr}, {"adding_doubling", a.adding_doubling}, {"seconds", a.seconds},
+                             {"sigma", (a.walk.value - a.adding_doubling) / a.walk.stderr}});
+    }
     return {{"skinspec_version", version}, {"quick", o.quick}, {"seed", o.seed}, {"tolerance_percent", o.tolerance_percent}, {"partial", report.partial},
-            {"cases", cases}, {"multipole_pair_sweep", pairs}, {"thread_scaling", scaling}, {"time_per_colour", colours}};
+            {"cases", cases}, {"multipole_pair_sweep", pairs}, {"thread_scaling", scaling}, {"time_per_colour", colours},
+            {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}};
 }
 
 // Error against time, log-log: a line per walk and case; a diffusion point as a dashed level from its time on.
@@ -202,7 +241,7 @@ void write_plot(const std::string& file, const BenchReport& report) {
     std::vector<PlotCurve> curves;
     for (std::size_t c = 0; c < report.cases.size(); ++c) {
         const auto colour = palette[c % palette.size()];
-        for (const auto solver : {BenchSolver::biospec_walk, BenchSolver::volumetric_walk, BenchSolver::multipole, BenchSolver::dipole}) {
+        for (const auto solver : {BenchSolver::biospec_walk, BenchSolver::volumetric_walk, BenchSolver::multipole, BenchSolver::dipole, BenchSolver::adding_doubling}) {
             // Colour: the case; marker: the solver; dashed: a deterministic level.
             PlotCurve curve{fmt::format("{}: {}", report.cases[c].name, to_string(solver)), {}, {}, {}, colour, !is_walk(solver),
                             1 + static_cast<int>(solver)};

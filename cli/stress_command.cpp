@@ -29,8 +29,8 @@ int run_stress(const StressCommandOptions& o) {
     std::size_t done = 0;
     options.on_case = [&](const StressOutcome& c) {
         ++done;
-        if (!c.passed) std::cout << fmt::format("FAIL  {:<15} {}: {}\n", c.solver, c.name, c.failure);
-        else if (o.verbose || !c.limit.empty()) std::cout << fmt::format("{}  {:<15} {} ({:.3f} s){}\n", c.limit.empty() ? "ok   " : "limit", c.solver, c.name, c.seconds, c.limit.empty() ? "" : ": " + c.limit);
+        if (!c.passed) std::cout << fmt::format("FAIL  {:<21} {}: {}\n", c.solver, c.name, c.failure);
+        else if (o.verbose || !c.limit.empty()) std::cout << fmt::format("{}  {:<21} {} ({:.3f} s){}\n", c.limit.empty() ? "ok   " : "limit", c.solver, c.name, c.seconds, c.limit.empty() ? "" : ": " + c.limit);
         if (done % 50 == 0) std::cerr << "stress: " << done << " cases\n";
     };
     const auto report = run_stress_grid(options);
@@ -44,7 +44,7 @@ int run_stress(const StressCommandOptions& o) {
         slowest = std::max(slowest, c.seconds);
     }
     std::cout << fmt::format("\nstress grid ({}), seed {}:\n", o.full ? "full" : "short", o.seed);
-    for (const auto& [solver, s] : per_solver) std::cout << fmt::format("  {:<15} {:>4} cases, {} failed, {} met a documented limit\n", solver, s[0], s[1], s[2]);
+    for (const auto& [solver, s] : per_solver) std::cout << fmt::format("  {:<21} {:>4} cases, {} failed, {} met a documented limit\n", solver, s[0], s[1], s[2]);
     std::cout << fmt::format("  {} cases, {} failed; slowest case {:.2f} s (bound {:g} s){}\n", report.outcomes.size(), report.failures(), slowest, o.max_seconds,
                              report.partial ? "; stopped early" : "");
     return report.failures() == 0 ? 0 : 1;

@@ -16,6 +16,8 @@
 #include "formats/adding_doubling_reference.hpp"
 #include "transport/rte/rte_model.hpp"
 #include "appearance/swatch_chart.hpp"
+#include "spectral/colorimetry.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
 #include "materials/material_file.hpp"
 
 namespace skinspec {
@@ -26,6 +28,7 @@ std::string_view to_string(BenchSolver solver) {
         case BenchSolver::volumetric_walk: return "rte";
         case BenchSolver::dipole: return "dipole";
         case BenchSolver::multipole: return "multipole";
+        case BenchSolver::adding_doubling: return "adding-doubling";
     }
     return "?";
 }
@@ -50,6 +53,9 @@ double mean_seconds_per_call(const std::function<void()>& call, double min_secon
 struct Stopped {};
 
 struct Plan {
+    std::vector<std::string> skin_presets;   // one skin in every mode
+    bool skin_volumetric_walk;               // its 31-wavelength spectrum too (tens of seconds per preset)
+    std::uint64_t agreement_photons;         // the volumetric walk against adding-doubling at 550 nm
     std::vector<std::uint64_t> rays;
     int repetitions;
     std::uint64_t reference_rays;
@@ -59,9 +65,9 @@ struct Plan {
 };
 
 Plan plan_of(bool quick) {
-    if (quick) return {{1000, 4000, 16000, 64000, 256000}, 4, 4'000'000, 0.02, 400'000, {"biospec-moderately"}};
-    return {{1000, 3162, 10000, 31623, 100000, 316228, 1'000'000}, 6, 20'000'000, 0.1, 4'000'000,
-            {"biospec-lightly", "biospec-moderately", "biospec-heavily"}};
+    if (quick) return {{"biospec-moderately"}, false, 200'000, {1000, 4000, 16000, 64000, 256000}, 4, 4'000'000, 0.02, 400'000, {"biospec-moderately"}};
+    const std::vector<std::string> presets{"biospec-lightly", "biospec-moderately", "biospec-heavily"};
+    return {presets, true, 10'000'000, {1000, 3162, 10000, 31623, 100000, 316228, 1'000'000}, 6, 20'000'000, 0.1, 4'000'000, presets};
 }
 
 class Benchmark {
@@ -167,6 +173,7 @@ void adding_doubling_cases(Benchmark& bench, const std::vector<AddingDoublingSla
             return entry * Multipole({reduced, layer.mu_a_per_cm, layer.thickness_cm, face, face}).total_reflectance();
         });
         bench.time_deterministic(index, BenchSolver::dipole, [&] { return entry * Dipole({reduced, layer.mu_a_per_cm, n}).total_reflectance(); });
+        bench.time_deterministic(index, BenchSolver::adding_doubling, [&] { return solve_adding_doubling(slab.stack(), {}).diffuse_reflectance; });
     }
 }
 
@@ -269,6 +276,76 @@ void thread_scaling(Benchmark& bench, const AddingDoublingSlab& slab) {
     bench.report().scaling.push_back({BenchSolver::volumetric_walk, "slab a 0.990 b 10.1 g 0.9 n 1.4", rays / 4, time_with(1, rte), time_with(2, rte)});
 }
 
+Lab lab_of(const SpectralResult& result, const TristimulusWeights& weights) {
+    std::vector<double> r;
+    for (const auto& w : result.wavelengths) r.push_back(w.reflectance.value);
+    return xyz_to_lab(weights.integrate(r), weights.white());
+}
+
+// Each preset's spectrum by every solver on one thread, against adding-doubling (the same mu_a, mu_s and phase
+// functions solved exactly); then the volumetric walk against adding-doubling at 550 nm in standard errors.
+void skin_modes(Benchmark& bench) {
+    const auto grid = WavelengthGrid::range(400.0, 700.0, 10.0);
+    const TristimulusWeights weights(grid.nm(), IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
+    std::vector<std::string> solvers{"adding-doubling", "multipole", "dipole", "biospec"};
+    if (bench.plan().skin_volumetric_walk) solvers.push_back("rte");
+    for (const auto& name : bench.plan().skin_presets) {
+        const auto material = load_material(name);
+        SpectralResult exact;
+        for (const auto& solver : solvers) {
+            bench.stage(fmt::format("{}: 400-700 nm by {} on one thread", name, solver));
+            SolverRequest request;
+            request.spectral.wavelengths = grid;
+            request.spectral.cancel = bench.options().cancel;
+            const auto& chosen = find_solver(solver);
+            if (chosen.capabilities().uncertainty) {
+                request.spectral.stderr_target = 0.002;
+                request.spectral.max_rays_per_wavelength = 4'000'000;
+            }
+            SpectralResult result;
+            const auto start = Clock::now();
+            {
+                const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+                result = solve_spectrum(chosen, material, request);
+            }
+            const double seconds = seconds_since(start);
+            bench.check_cancel();
+            if (solver == "adding-doubling") exact = result;
+            SkinModeRow row{name, solver, solver != "biospec", seconds, 0, 0.0, 0.0, 1e300, -1e300, 0.0};
+            for (std::size_t w = 0; w < grid.size(); ++w) {
+                const auto& x = result.wavelengths[w];
+                const auto& e = exact.wavelengths[w];
+                row.rays += x.rays;
+                row.uncertainty = std::max(row.uncertainty, x.reflectance.stderr);
+                row.max_abs_error = std::max(row.max_abs_error, std::abs(x.reflectance.value - e.reflectance.value));
+                const double exact_diffuse = e.reflectance.value - e.specular_reflectance.value;
+                const double relative = (x.reflectance.value - x.specular_reflectance.value - exact_diffuse) / exact_diffuse;
+                row.min_relative_diffuse_error = std::min(row.min_relative_diffuse_error, relative);
+                row.max_relative_diffuse_error = std::max(row.max_relative_diffuse_error, relative);
+            }
+            if (solver == "adding-doubling") row.uncertainty = std::get<double>(result.settings.at("accuracy"));
+            const auto a = lab_of(result, weights), b = lab_of(exact, weights);
+            row.delta_e_ab = std::hypot(a.L - b.L, a.a - b.a, a.b - b.b);
+            bench.report().skin_modes.push_back(row);
+        }
+    }
+    for (const auto& name : bench.plan().skin_presets) {
+        const auto photons = bench.plan().agreement_photons;
+        bench.stage(fmt::format("{}: volumetric walk at 550 nm, {} photons, against adding-doubling", name, photons));
+        const auto material = load_material(name);
+        SolverRequest request;
+        request.fixed_rays_per_wavelength = photons;
+        request.spectral.seed = bench.options().reference_seed;
+        request.spectral.cancel = bench.options().cancel;
+        const auto start = Clock::now();
+        const auto walk = solve_spectrum(find_solver("rte"), material, request);
+        const double seconds = seconds_since(start);
+        bench.check_cancel();
+        const auto exact = solve_spectrum(find_solver("adding-doubling"), material, SolverRequest{});
+        bench.report().walk_agreement.push_back({name, 550.0, photons, walk.wavelengths.front().reflectance, exact.wavelengths.front().reflectance.value, seconds});
+    }
+}
+
 void colour_timings(Benchmark& bench) {
     for (const auto& material : bench.plan().colour_materials) {
         bench.stage(fmt::format("{}: one swatch patch at Delta E <= 0.3", material));
@@ -296,6 +373,7 @@ BenchReport run_benchmark(const BenchOptions& options) {
         pair_sweep(bench, slabs.front());
         thread_scaling(bench, slabs.front());
         colour_timings(bench);
+        skin_modes(bench);
     } catch (const Stopped&) {
         bench.report().partial = true;
     }

@@ -5,7 +5,10 @@
 //     multipole (the finite slab) and the dipole (semi-infinite);
 //   - the lightly/moderately/heavily pigmented presets at 550 nm: R by the BioSpec walk against a long BioSpec
 //     run with a different seed (its standard error is stated), and by both diffusion modes;
-//   - Jensen's skin1 (G band) as a 200-mfp slab: R by the volumetric walk against a long walk, and diffusion.
+//   - Jensen's skin1 (G band) as a 200-mfp slab: R by the volumetric walk against a long walk, and diffusion;
+//   - one skin in every mode: each pigmentation preset's 31-wavelength spectrum (400-700 nm) by every solver on one
+//     thread against adding-doubling (the exact transport of the same mu_a, mu_s, phase), and the volumetric walk
+//     against adding-doubling in standard errors at 550 nm (1e7 photons).
 // The walks sweep their ray budget (several seeds per budget, RMS relative error); diffusion has no budget
 // for totals (closed form), so it gives one point whose error is the model's. The multipole profile's pair
 // tolerance is swept separately against the fully converged image series. Also: thread scaling 1 -> 2 and
@@ -20,7 +23,7 @@
 
 namespace skinspec {
 
-enum class BenchSolver { biospec_walk, volumetric_walk, dipole, multipole };
+enum class BenchSolver { biospec_walk, volumetric_walk, dipole, multipole, adding_doubling };
 std::string_view to_string(BenchSolver solver);
 
 struct BenchCase {
@@ -66,6 +69,30 @@ struct ColourTiming {
     bool converged = true;
 };
 
+// One preset's spectrum (400-700 nm / 10 nm, SCI) by one solver, against adding-doubling.
+struct SkinModeRow {
+    std::string material;
+    std::string solver;                 // registry name
+    bool same_skin = true;              // false for the BioSpec walk: another scattering description (reported as such)
+    double seconds_one_thread = 0.0;    // the whole spectrum
+    std::uint64_t rays = 0;             // walks: over all wavelengths
+    double uncertainty = 0.0;           // walks: largest standard error of R; adding-doubling: its stated accuracy
+    double max_abs_error = 0.0;         // largest |R - R_adding-doubling|
+    double min_relative_diffuse_error = 0.0;  // range of (Rd - Rd_ad) / Rd_ad, Rd = R - R_specular
+    double max_relative_diffuse_error = 0.0;
+    double delta_e_ab = 0.0;            // CIELAB (D65, CIE 1931 2 deg) against adding-doubling
+};
+
+// The volumetric walk against adding-doubling on a preset at one wavelength.
+struct WalkAgreement {
+    std::string material;
+    double wavelength_nm = 0.0;
+    std::uint64_t photons = 0;
+    Estimate walk;                      // R (SCI)
+    double adding_doubling = 0.0;
+    double seconds = 0.0;               // the walk, all threads
+};
+
 struct BenchOptions {
     bool quick = false;                        // under a minute: fewer budgets, seeds and a shorter reference
     std::uint64_t seed = 1;                    // runs use seed, seed + 1, ...
@@ -81,6 +108,8 @@ struct BenchReport {
     std::vector<PairSweepPoint> pair_sweep;
     std::vector<ThreadScaling> scaling;
     std::vector<ColourTiming> colours;
+    std::vector<SkinModeRow> skin_modes;
+    std::vector<WalkAgreement> walk_agreement;
     bool partial = false;  // stopped by the cancel flag: what was finished is kept
 };
 

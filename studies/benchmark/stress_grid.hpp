@@ -15,7 +15,7 @@
 namespace skinspec {
 
 struct StressOutcome {
-    std::string solver;   // rte, biospec, dipole, multipole, diffusion-stack
+    std::string solver;   // rte, biospec, dipole, multipole, diffusion-stack, adding-doubling, adding-doubling-stack
     std::string name;     // the case's parameters
     double seconds = 0.0;
     bool passed = true;

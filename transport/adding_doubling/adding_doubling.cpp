@@ -19,7 +19,10 @@ namespace {
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 
-constexpr double thin_layer_depth = 1.0 / 256.0;  // diamond start, then doubled
+// Diamond start, then doubled: optical depth <= 2^-8 times the collimated beam's cosine in the layer. The diamond
+// difference's error in a beam's exponent is (path depth) (h / mu)^2 / 12 (Wiscombe 1976), so the beam keeps
+// ~1e-6 relative per unit path depth at any incidence; a grazing beam costs a few more doublings.
+constexpr double thin_layer_depth = 1.0 / 256.0;
 
 // The channels: s = n sin(theta) per channel (increasing) and its measure d(s^2).
 struct Channels {
@@ -172,11 +175,12 @@ AdPhaseCache::Entry redistribution(const Channels& c, double n, const PhaseFunct
         if (c.s[k] < n) e.live.push_back(k);
     }
     const auto m = static_cast<Eigen::Index>(e.live.size());
-    // Delta-M with 2m moments kept: f = chi_2m (Wiscombe 1977).
+    // Delta-M with 2m moments kept: f = chi_2m (Wiscombe 1977), for a forward peak only (a backward-peaked phase
+    // function has chi_2m > 0 too, but its truncated part is not light going on unscattered).
     const std::size_t moments = 2 * e.live.size();
-    auto chi = legendre_moments(phase, moments + 1);
+    auto chi = legendre_moments(phase, moments + 2);
     const double f = chi[moments];
-    if (f > 0.0 && f < 1.0) {
+    if (f > 0.0 && f < 1.0 && chi[moments + 1] > 0.0) {
         e.f = f;
         for (std::size_t l = 0; l < moments; ++l) chi[l] = (chi[l] - f) / (1.0 - f);
     }
@@ -228,7 +232,7 @@ const AdPhaseCache::Entry& cached_redistribution(const Channels& c, double n, co
 }
 
 // A homogeneous layer: delta-M scaled albedo and depth, diamond thin layer, doubling. Flux channels.
-Element slab(const Channels& c, const RteLayer& layer, const AdPhaseCache::Entry& scattering) {
+Element slab(const Channels& c, const RteLayer& layer, const AdPhaseCache::Entry& scattering, double beam_cosine) {
     const auto& live = scattering.live;
     const auto m = static_cast<Eigen::Index>(live.size());
     const double mu_t = layer.mu_a_per_cm + layer.mu_s_per_cm;
@@ -248,7 +252,8 @@ Element slab(const Channels& c, const RteLayer& layer, const AdPhaseCache::Entry
     // A = 1 + h C, B = h S: T = (A - B)^-1 + (A + B)^-1 - 1, R = (A - B)^-1 - (A + B)^-1 (radiance operators).
     int doublings = 0;
     double thin = depth;
-    while (thin > thin_layer_depth) {
+    const double thin_limit = thin_layer_depth * beam_cosine;
+    while (thin > thin_limit) {
         thin *= 0.5;
         ++doublings;
     }
@@ -347,7 +352,10 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
         elements.push_back(interface(channels, above, stack.layers[k].refractive_index));
         layer_of.push_back(-1);
         const auto& layer = stack.layers[k];
-        elements.push_back(slab(channels, layer, cached_redistribution(channels, layer.refractive_index, layer.phase, cache)));
+        // The collimated beam's cosine in this layer (Snell: the same s); 1 for diffuse incidence.
+        const double beam = incidence.diffuse || channels.s[channels.incident] >= layer.refractive_index
+                                ? 1.0 : std::max(channels.cosine(channels.incident, layer.refractive_index), 1e-6);
+        elements.push_back(slab(channels, layer, cached_redistribution(channels, layer.refractive_index, layer.phase, cache), beam));
         layer_of.push_back(static_cast<int>(k));
         above = stack.layers[k].refractive_index;
     }
@@ -380,7 +388,12 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
         const Vector through = transmit(elements[e], down);
         down = e + 1 < count ? Vector(levels[e].factor.solve(through)) : through;
         const double net_below = down.sum() - (levels[e + 1].reflection * down).sum();
-        if (layer_of[e] >= 0) out.absorbed[static_cast<std::size_t>(layer_of[e])] = net_above - net_below;
+        if (layer_of[e] >= 0) {
+            // A difference of fluxes: a layer without absorption absorbs exactly nothing, and roundoff (~1e-11 in
+            // thick conservative layers) does not make an absorbing layer's A negative.
+            const auto k = static_cast<std::size_t>(layer_of[e]);
+            out.absorbed[k] = stack.layers[k].mu_a_per_cm == 0.0 ? 0.0 : std::max(0.0, net_above - net_below);
+        }
         net_above = net_below;
     }
     out.transmittance = stack.bottom_reflector ? 0.0 : net_above;
