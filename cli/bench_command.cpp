@@ -153,14 +153,16 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
                                      100.0 * r.max_relative_diffuse_error, r.delta_e_ab, extrapolated,
                                      r.same_skin ? "" : "  (another scattering description: measured profiles + Rayleigh/cosine crossings)");
         }
-        std::cout << "  (uncertainty: a walk's largest standard error of R; adding-doubling's stated accuracy, the change with twice the channels)\n";
+        std::cout << "  (uncertainty: a walk's largest standard error of R; adding-doubling's stated accuracy, twice the change with twice the channels)\n";
     }
     if (!report.walk_agreement.empty()) {
         std::cout << "\nVolumetric walk against adding-doubling (R, SCI):\n";
         for (const auto& a : report.walk_agreement) {
-            std::cout << fmt::format("  {:<20} {:.0f} nm, {} photons in {:.1f} s: walk {:.6f} +- {:.6f}, adding-doubling {:.6f}, {:+.2f} sigma\n", a.material,
-                                     a.wavelength_nm, a.photons, a.seconds, a.walk.value, a.walk.stderr, a.adding_doubling,
-                                     (a.walk.value - a.adding_doubling) / a.walk.stderr);
+            std::cout << fmt::format("  {:<20} {:.0f} nm, {} photons in {:.1f} s: walk {:.6f} +- {:.6f}; adding-doubling {:.6f} (accuracy {:.1e}), "
+                                     "walk {:+.2f} sigma; with {} channels {:.6f}, walk {:+.2f} sigma\n",
+                                     a.material, a.wavelength_nm, a.photons, a.seconds, a.walk.value, a.walk.stderr, a.adding_doubling,
+                                     a.adding_doubling_accuracy, (a.walk.value - a.adding_doubling) / a.walk.stderr, a.fine_channels,
+                                     a.adding_doubling_fine, (a.walk.value - a.adding_doubling_fine) / a.walk.stderr);
         }
     }
     if (report.partial) std::cout << "\nstopped early: the figures above are what finished\n";
@@ -224,8 +226,10 @@ Json to_json(const BenchReport& report, const BenchCommandOptions& o) {
     Json agreement = Json::array();
     for (const auto& a : report.walk_agreement) {
         agreement.push_back({{"material", a.material}, {"wavelength_nm", a.wavelength_nm}, {"photons", a.photons}, {"walk", a.walk.value},
-                             {"walk_stderr", a.walk.stderr}, {"adding_doubling", a.adding_doubling}, {"seconds", a.seconds},
-                             {"sigma", (a.walk.value - a.adding_doubling) / a.walk.stderr}});
+                             {"walk_stderr", a.walk.stderr}, {"adding_doubling", a.adding_doubling},
+                             {"adding_doubling_accuracy", a.adding_doubling_accuracy}, {"sigma", (a.walk.value - a.adding_doubling) / a.walk.stderr},
+                             {"fine_channels", a.fine_channels}, {"adding_doubling_fine", a.adding_doubling_fine},
+                             {"sigma_fine", (a.walk.value - a.adding_doubling_fine) / a.walk.stderr}, {"seconds", a.seconds}});
     }
     return {{"skinspec_version", version}, {"quick", o.quick}, {"seed", o.seed}, {"tolerance_percent", o.tolerance_percent}, {"partial", report.partial},
             {"cases", cases}, {"multipole_pair_sweep", pairs}, {"thread_scaling", scaling}, {"time_per_colour", colours},

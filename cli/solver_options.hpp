@@ -16,6 +16,7 @@ struct SolverOptions {
     std::string fold_into_skin;  // "" = unset
     std::string boundaries;      // "" = unset
     double roughness = 0.0;      // 0 = unset (smooth)
+    std::size_t channels = 0;    // 0 = unset (the solver's default)
     std::string geometry = "sci";
 };
 

@@ -18,7 +18,7 @@ public:
             .band_materials = false,
             .uncertainty = false,
             .radial_profiles = false,
-            .switches = {},
+            .switches = {SolverSwitch::channels},
             .replay_fields = {},
             .material_needs = "volumetric_mu_s_per_cm_at_500nm (and volumetric_g / volumetric_phase) in every layer",
             .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce},
@@ -26,7 +26,9 @@ public:
         return caps;
     }
     SpectralResult solve(const Material& material, const SolverRequest& request) const override {
-        return solve_adding_doubling_spectrum(std::get<LayerStack>(material), request.spectral);
+        AdOptions options;
+        if (request.switches.quadrature_channels) options.channels = *request.switches.quadrature_channels;
+        return solve_adding_doubling_spectrum(std::get<LayerStack>(material), request.spectral, options);
     }
 };
 

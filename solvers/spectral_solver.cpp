@@ -74,6 +74,7 @@ std::string_view to_string(SolverSwitch s) {
         case SolverSwitch::roughness: return "roughness";
         case SolverSwitch::boundaries: return "boundaries";
         case SolverSwitch::thin_layer_phase: return "thin-layer-phase";
+        case SolverSwitch::channels: return "channels";
     }
     return "?";
 }
@@ -85,6 +86,7 @@ std::vector<SolverSwitch> SolverSwitches::set() const {
     if (surface_roughness) out.push_back(SolverSwitch::roughness);
     if (boundaries) out.push_back(SolverSwitch::boundaries);
     if (thin_layer_hg) out.push_back(SolverSwitch::thin_layer_phase);
+    if (quadrature_channels) out.push_back(SolverSwitch::channels);
     return out;
 }
 

@@ -21,7 +21,7 @@ namespace skinspec {
 
 // Options that are not properties of the skin. Unset: the solver's default. Set for a solver that does not
 // declare the switch: refused.
-enum class SolverSwitch { estimator, fold_into_skin, roughness, boundaries, thin_layer_phase };
+enum class SolverSwitch { estimator, fold_into_skin, roughness, boundaries, thin_layer_phase, channels };
 std::string_view to_string(SolverSwitch s);
 
 struct SolverSwitches {
@@ -30,6 +30,7 @@ struct SolverSwitches {
     std::optional<double> surface_roughness;       // diffusion: Beckmann RMS slope of a rough top surface
     std::optional<BoundaryMode> boundaries;        // volumetric walk: all-or-none or split Fresnel boundaries
     std::optional<ThinLayerHg> thin_layer_hg;      // BioSpec walk: HG in place of the measured thin-layer profiles
+    std::optional<std::size_t> quadrature_channels;  // adding-doubling: channels per hemisphere
     std::vector<SolverSwitch> set() const;
 };
 

@@ -89,7 +89,10 @@ struct WalkAgreement {
     double wavelength_nm = 0.0;
     std::uint64_t photons = 0;
     Estimate walk;                      // R (SCI)
-    double adding_doubling = 0.0;
+    double adding_doubling = 0.0;       // default channels
+    double adding_doubling_accuracy = 0.0;  // its stated accuracy
+    std::size_t fine_channels = 0;
+    double adding_doubling_fine = 0.0;  // with fine_channels
     double seconds = 0.0;               // the walk, all threads
 };
 

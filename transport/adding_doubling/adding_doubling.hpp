@@ -35,7 +35,7 @@ struct AdResult {
     double diffuse_reflectance = 0.0;   // everything else leaving the top
     double transmittance = 0.0;         // leaving the bottom, unscattered included (0 over a reflector)
     std::vector<double> absorbed_layers;  // per layer (vector solves on the factors the adding keeps: nearly free)
-    double accuracy = 0.0;              // the largest change of R_d, T or A with twice the channels
+    double accuracy = 0.0;              // twice the largest change of R_d, T or A with twice the channels
     std::size_t channels = 0;
 };
 

@@ -45,7 +45,7 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
                     {"bottom", std::string(to_string(stack.bottom))},
                     {"quadrature_channels", std::uint64_t{options.channels}},
                     {"accuracy", accuracy},
-                    {"accuracy_meaning", std::string("largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength")}};
+                    {"accuracy_meaning", std::string("twice the largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength")}};
     return out;
 }
 
