@@ -60,7 +60,7 @@ LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsSc
         double g = v.g;
         if (is_measured(v.phase)) {
             const auto& profile = v.phase == PhaseFunctionKind::measured_stratum_corneum ? MeasuredProfile::stratum_corneum() : MeasuredProfile::epidermis();
-            o.phase_table = std::make_shared<const InverseCdfTable>(profile.inverse_table(wavelength_nm));
+            o.phase_table = profile.shared_inverse_table(wavelength_nm);
             g = o.phase_table->mean_cos();
         }
         o.mu_s_per_cm = v.source == VolumetricSource::power_law ? power_law(v.mu_s_per_cm_at_500nm, v.power, wavelength_nm)

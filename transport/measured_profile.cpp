@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numbers>
 #include <string>
 
@@ -52,7 +54,7 @@ double InverseCdfTable::mean_cos() const {
     return sum / static_cast<double>(size_);
 }
 
-MeasuredProfile::MeasuredProfile(const char* file) {
+MeasuredProfile::MeasuredProfile(const char* file) : end_tables_(std::make_shared<EndTables>()) {
     const auto table = DataTable::read(data_file(file));
     const auto wavelengths = table.column("wavelength_nm");
     wavelengths_nm_.assign(wavelengths.begin(), wavelengths.end());
@@ -97,6 +99,20 @@ double MeasuredProfile::pdf_theta(double wavelength_nm, double theta_deg) const 
 
 InverseCdfTable MeasuredProfile::inverse_table(double wavelength_nm, std::size_t entries) const {
     return InverseCdfTable(angles_deg_, cumulative(wavelength_nm), entries);
+}
+
+struct MeasuredProfile::EndTables {
+    std::mutex mutex;
+    std::map<std::pair<bool, std::size_t>, std::shared_ptr<const InverseCdfTable>> tables;  // (upper end, entries)
+};
+
+std::shared_ptr<const InverseCdfTable> MeasuredProfile::shared_inverse_table(double wavelength_nm, std::size_t entries) const {
+    const bool below = wavelength_nm <= wavelengths_nm_.front(), above = wavelength_nm >= wavelengths_nm_.back();
+    if (!below && !above) return std::make_shared<const InverseCdfTable>(inverse_table(wavelength_nm, entries));
+    const std::lock_guard lock(end_tables_->mutex);
+    auto& table = end_tables_->tables[{above, entries}];
+    if (!table) table = std::make_shared<const InverseCdfTable>(inverse_table(above ? wavelengths_nm_.back() : wavelengths_nm_.front(), entries));
+    return table;
 }
 
 }  // namespace skinspec

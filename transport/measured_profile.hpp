@@ -4,6 +4,7 @@
 // wavelengths (data/scattering/bruls_vanderleun_*.csv), and their randomized table look-up sampler
 // (Baranoski, Krishnaswamy & Kimmel 2005, seed 000 Sec. 4).
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -49,12 +50,17 @@ public:
     // Density of theta in 1/deg (derivative of the piecewise-linear C).
     double pdf_theta(double wavelength_nm, double theta_deg) const;
     InverseCdfTable inverse_table(double wavelength_nm, std::size_t entries = 1000) const;
+    // The same table, shared: outside the tabulated wavelengths the profile is the nearest end's (above 546 nm for
+    // these data), so every such wavelength gets one table built once; inside, a table of its own.
+    std::shared_ptr<const InverseCdfTable> shared_inverse_table(double wavelength_nm, std::size_t entries = 1000) const;
 
 private:
     explicit MeasuredProfile(const char* file);
     std::vector<double> angles_deg_;
     std::vector<double> wavelengths_nm_;
     std::vector<TabulatedSpectrum> by_angle_;  // cumulative fraction at each angle, as a function of wavelength
+    struct EndTables;
+    std::shared_ptr<EndTables> end_tables_;    // the clamped ends' tables by entry count, built on first use
 };
 
 }  // namespace skinspec

@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <numbers>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "transport/biospec/biospec_walk.hpp"
@@ -16,6 +18,32 @@
 
 namespace skinspec {
 namespace {
+
+// The set-up of the wavelength each worker is on, built when the worker moves to another wavelength: memory is
+// O(workers), not O(wavelengths) (a request may have 1e6), and a wavelength's batches, adjacent in a round, share
+// it. Tables that are the same for many wavelengths are shared between set-ups (MeasuredProfile::shared_inverse_table).
+template <class Setup>
+class PerWorkerSetup {
+public:
+    explicit PerWorkerSetup(std::function<std::unique_ptr<Setup>(std::size_t)> make) : make_(std::move(make)) {}
+    const Setup& at(std::size_t wavelength) {
+        auto& slot = current_.local();
+        if (!slot.setup || slot.wavelength != wavelength) {
+            slot.setup.reset();
+            slot.setup = make_(wavelength);
+            slot.wavelength = wavelength;
+        }
+        return *slot.setup;
+    }
+
+private:
+    struct Slot {
+        std::size_t wavelength = 0;
+        std::unique_ptr<Setup> setup;
+    };
+    std::function<std::unique_ptr<Setup>(std::size_t)> make_;
+    tbb::enumerable_thread_specific<Slot> current_;
+};
 
 void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOptions& o) {
     if (stack.layers.empty()) throw InputError("material '" + stack.name + "': no layers to simulate");
@@ -98,17 +126,18 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
     const BiospecChannels channels(request.quantities, first.layers.size(), bins);
     const std::size_t sets = stacks.size();
 
-    std::vector<std::unique_ptr<BiospecWavelength>> setups;
-    for (const double nm : request.wavelengths.nm()) {
-        setups.push_back(std::make_unique<BiospecWavelength>(stacks, nm, request.incidence_deg, request.geometry, options, channels, edges));
-    }
+    const auto make = [&](std::size_t w) {
+        return std::make_unique<BiospecWavelength>(stacks, request.wavelengths[w], request.incidence_deg, request.geometry, options, channels, edges);
+    };
+    make(0);  // the sets' compatibility is checked before any ray is traced
+    PerWorkerSetup<BiospecWavelength> setups(make);
     std::vector<std::size_t> targets;
     if (channels.reflectance >= 0) targets.push_back(static_cast<std::size_t>(channels.reflectance));
     if (channels.transmittance >= 0) targets.push_back(static_cast<std::size_t>(channels.transmittance));
 
     const auto outcome = run_batches(request, channels.count * sets, targets,
                                      [&](std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
-                                         setups[w]->trace(random, rays, tally);
+                                         setups.at(w).trace(random, rays, tally);
                                      },
                                      sets);
 
@@ -171,8 +200,8 @@ namespace skinspec {
 std::optional<std::vector<ExitPaths>> record_biospec_paths(const LayerStack& stack, const SpectralRequest& request, const BiospecOptions& options) {
     validate(stack, request, options);
     const auto& nm = request.wavelengths.nm();
-    std::vector<std::unique_ptr<BiospecWavelength>> setups;
-    for (const double w : nm) setups.push_back(std::make_unique<BiospecWavelength>(stack, w, request.incidence_deg, request.geometry, options));
+    PerWorkerSetup<BiospecWavelength> setups(
+        [&](std::size_t w) { return std::make_unique<BiospecWavelength>(stack, nm[w], request.incidence_deg, request.geometry, options); });
     const std::uint64_t per_batch = request.rays_per_batch;
     const std::uint64_t batches = (request.max_rays_per_wavelength + per_batch - 1) / per_batch;
     std::vector<ExitPaths> parts(nm.size() * batches);
@@ -186,7 +215,7 @@ std::optional<std::vector<ExitPaths>> record_biospec_paths(const LayerStack& sta
         const std::uint64_t b = task % batches;
         const std::uint64_t rays = std::min(per_batch, request.max_rays_per_wavelength - b * per_batch);
         auto random = RandomStream::for_batch(request.seed, nm[w], b);
-        setups[w]->record(random, rays, parts[task]);
+        setups.at(w).record(random, rays, parts[task]);
     });
     if (stopped) return std::nullopt;
     std::vector<ExitPaths> out(nm.size());

@@ -146,14 +146,14 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
         const InverseCdfTable* profile = nullptr;
         if (o.crossing == CrossingScattering::measured_stratum_corneum) {
             if (!stratum_corneum_table_) {
-                stratum_corneum_table_ = MeasuredProfile::stratum_corneum().inverse_table(wavelength_nm, options.profile_table_entries);
+                stratum_corneum_table_ = MeasuredProfile::stratum_corneum().shared_inverse_table(wavelength_nm, options.profile_table_entries);
             }
-            profile = &*stratum_corneum_table_;
+            profile = stratum_corneum_table_.get();
         } else if (o.crossing == CrossingScattering::measured_epidermis) {
             if (!epidermis_table_) {
-                epidermis_table_ = MeasuredProfile::epidermis().inverse_table(wavelength_nm, options.profile_table_entries);
+                epidermis_table_ = MeasuredProfile::epidermis().shared_inverse_table(wavelength_nm, options.profile_table_entries);
             }
-            profile = &*epidermis_table_;
+            profile = epidermis_table_.get();
         }
         layers_.push_back({o.thickness_cm, o.refractive_index, o.rayleigh_per_cm, o.hg_g, o.crossing, profile});
         mu_a_per_cm_.push_back(o.mu_a_per_cm);

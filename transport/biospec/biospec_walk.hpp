@@ -15,6 +15,7 @@
 // that leaves the top into the measurement geometry, its path length in each layer, so that R for any absorption
 // is the mean of exp(-sum_k mu_a,k L_k) over the recorded rays (ExitPaths::reflectance), a smooth function of mu_a.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -95,8 +96,8 @@ private:
     std::vector<Layer> layers_;
     std::size_t sets_ = 1;
     std::vector<double> mu_a_per_cm_;  // [layer * sets + set]
-    std::optional<InverseCdfTable> stratum_corneum_table_;
-    std::optional<InverseCdfTable> epidermis_table_;
+    std::shared_ptr<const InverseCdfTable> stratum_corneum_table_;  // shared with every wavelength that has the same profile
+    std::shared_ptr<const InverseCdfTable> epidermis_table_;
     double n_above_;
     double n_below_;
     bool reflector_;
