@@ -185,7 +185,9 @@ void adding_doubling_cases(Grid& grid) {
     const std::vector<double> depths = full ? std::vector<double>{1e-6, 1e-2, 1.0, 30.0, 1e3} : std::vector<double>{1e-6, 30.0, 1e3};
     const std::vector<double> indices = full ? std::vector<double>{1.0, 1.4, 2.0, 4.0} : std::vector<double>{1.0, 2.0};
     const std::vector<double> incidences = full ? std::vector<double>{0.0, 60.0, 89.9} : std::vector<double>{0.0, 89.9};
-    for (const auto& [phase_name, phase] : phases) {
+    for (const auto& entry : phases) {
+        const auto& phase_name = entry.first;
+        const auto& phase = entry.second;  // a named variable: lambdas below capture it (clang 14: not a structured binding)
         for (const double b : depths) {
             for (const double n : indices) {
                 for (const double incidence : incidences) {
