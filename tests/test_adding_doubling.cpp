@@ -63,6 +63,20 @@ RteStack one_layer(double n, double mu_a, double mu_s, double g, double d) {
     return s;
 }
 
+// A stress case (no accuracy check): every value finite and in [0, 1], R + T + A = 1 to 1e-8.
+AdResult solve_stressed(const RteStack& stack, double angle_deg) {
+    AdOptions o;
+    o.accuracy_check = false;
+    const auto r = solve_adding_doubling(stack, {false, angle_deg}, o);
+    for (const double v : {r.specular_reflectance, r.diffuse_reflectance, r.transmittance, r.absorbed_layers[0]}) {
+        CHECK(std::isfinite(v));
+        CHECK(v >= -1e-9);
+        CHECK(v <= 1.0 + 1e-9);
+    }
+    CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-8));
+    return r;
+}
+
 }  // namespace
 
 TEST_CASE("adding-doubling reproduces Prahl's slabs within 1e-4", "[adding_doubling]") {
@@ -109,15 +123,7 @@ TEST_CASE("adding-doubling stress: extreme layers stay finite, in [0, 1] and ene
                         INFO("g " << g << " albedo " << albedo << " mfp " << mfp << " n " << n << " angle " << angle);
                         const double mu_t = 100.0;
                         auto stack = one_layer(n, mu_t * (1.0 - albedo), mu_t * albedo, g, mfp / mu_t);
-                        AdOptions o;
-                        o.accuracy_check = false;
-                        const auto r = solve_adding_doubling(stack, {false, angle}, o);
-                        for (const double v : {r.specular_reflectance, r.diffuse_reflectance, r.transmittance, r.absorbed_layers[0]}) {
-                            CHECK(std::isfinite(v));
-                            CHECK(v >= -1e-9);
-                            CHECK(v <= 1.0 + 1e-9);
-                        }
-                        CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-8));
+                        const auto r = solve_stressed(stack, angle);
                     }
                 }
             }
@@ -137,15 +143,7 @@ TEST_CASE("adding-doubling stress: the measured forward peaks as tabulated phase
                         INFO("nm " << nm << " albedo " << albedo << " mfp " << mfp << " angle " << angle);
                         RteStack stack;
                         stack.layers.push_back({1.5, 100.0 * (1.0 - albedo), 100.0 * albedo, mfp / 100.0, phase});
-                        AdOptions o;
-                        o.accuracy_check = false;
-                        const auto r = solve_adding_doubling(stack, {false, angle}, o);
-                        for (const double v : {r.specular_reflectance, r.diffuse_reflectance, r.transmittance, r.absorbed_layers[0]}) {
-                            CHECK(std::isfinite(v));
-                            CHECK(v >= -1e-9);
-                            CHECK(v <= 1.0 + 1e-9);
-                        }
-                        CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-8));
+                        const auto r = solve_stressed(stack, angle);
                         if (albedo == 1.0) CHECK(r.absorbed_layers[0] == Approx(0.0).margin(1e-8));
                     }
                 }

@@ -223,12 +223,20 @@ AdPhaseCache::Entry redistribution(const Channels& c, double n, const PhaseFunct
 }
 
 const AdPhaseCache::Entry& cached_redistribution(const Channels& c, double n, const PhaseFunction& phase, AdPhaseCache& cache) {
+    // Least recently used last out: a spectrum's tabulated phases inside 400-546 nm differ at every wavelength, so an
+    // unbounded cache would grow with the wavelength count.
+    constexpr std::size_t capacity = 16;
     auto cosines = cosines_of(phase);
-    for (const auto& e : cache.entries) {
-        if (same_scattering(*e, phase, cosines, n, c)) return *e;
+    auto& entries = cache.entries;
+    for (auto it = entries.begin(); it != entries.end(); ++it) {
+        if (same_scattering(**it, phase, cosines, n, c)) {
+            std::rotate(it, it + 1, entries.end());
+            return *entries.back();
+        }
     }
-    cache.entries.push_back(std::make_shared<const AdPhaseCache::Entry>(redistribution(c, n, phase, std::move(cosines))));
-    return *cache.entries.back();
+    if (entries.size() == capacity) entries.erase(entries.begin());
+    entries.push_back(std::make_shared<const AdPhaseCache::Entry>(redistribution(c, n, phase, std::move(cosines))));
+    return *entries.back();
 }
 
 // A homogeneous layer: delta-M scaled albedo and depth, diamond thin layer, doubling. Flux channels.
