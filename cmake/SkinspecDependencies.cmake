@@ -17,6 +17,8 @@ find_package(OpenImageIO REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 # PLplot's own CMake config references every optional binding; its pkg-config file is the reliable entry.
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot-c++)
+# SIMD packets of the Monte Carlo walks, dispatched at run time (Google Highway, libhwy-dev)
+pkg_check_modules(HWY REQUIRED IMPORTED_TARGET libhwy)
 pkg_check_modules(NLOPT REQUIRED IMPORTED_TARGET nlopt)
 pkg_check_modules(FFTW REQUIRED IMPORTED_TARGET fftw3)
 

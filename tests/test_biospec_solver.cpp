@@ -453,6 +453,7 @@ TEST_CASE("Rayleigh turn rules: sampled depth, whole crossing, no absorption aga
         INFO(to_string(rule) << ": expected " << expected);
         stack.model.rayleigh_turn = rule;
         const auto w = solve_biospec(stack, all_quantities({nm}, 400'000)).wavelengths.front();
+        INFO("got " << w.reflectance.value << " +- " << w.reflectance.stderr << " T " << w.transmittance.value);
         CHECK(within(w.reflectance, expected, 4.0, 1e-4));
         CHECK(energy(w) == Approx(1.0).margin(1e-12));
     }

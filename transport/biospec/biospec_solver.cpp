@@ -3,6 +3,7 @@
 #include <cmath>
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <numbers>
@@ -71,7 +72,9 @@ void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOp
         }
     }
     if (o.profile_table_entries < 1) throw InputError("profile table entries 0 is outside [1, inf)");
-    if (o.max_events_per_ray < 1) throw InputError("maximum events per ray 0 is outside [1, inf)");
+    if (o.max_events_per_ray < 1 || o.max_events_per_ray > std::numeric_limits<std::int32_t>::max()) {
+        throw InputError("maximum events per ray " + std::to_string(o.max_events_per_ray) + " is outside [1, 2147483647]");
+    }
 }
 
 std::map<std::string, SettingValue> settings(const LayerStack& stack, const SpectralRequest& r, const BiospecOptions& o) {

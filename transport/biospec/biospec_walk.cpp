@@ -1,14 +1,12 @@
 #include "transport/biospec/biospec_walk.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-#include "transport/cosine_hemisphere.hpp"
 #include "transport/fresnel.hpp"
-#include "transport/henyey_greenstein.hpp"
-#include "transport/rayleigh_phase.hpp"
 #include "transport/skin_fold.hpp"
 #include "spectral/input_error.hpp"
 
@@ -74,12 +72,24 @@ BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::s
     count = static_cast<std::size_t>(next);
 }
 
-// Per-ray state of the absorption sets, reused from ray to ray, in dense arrays so that the per-crossing update
-// of every set vectorises: optical depth tau, log of the roulette boosts, and the depth beyond which the set
-// plays roulette (+inf once it has lost: its weight exp(boost - tau) is then 0 and it is skipped).
-struct BiospecWavelength::RayState {
-    std::vector<double> tau, boost_log, limit;
-    std::size_t alive = 0;
+// The walk-side bookkeeping of a packet's lanes, in double precision: each ray's key, the log of its sets' roulette
+// boosts, the weight its per-layer absorptance was last charged to, how many of its sets are still alive, and its
+// per-ray score (channels a ray reaches more than once).
+struct BiospecWavelength::Lanes {
+    static constexpr std::size_t count = BiospecPacket::lanes;
+    Lanes(std::size_t sets, std::size_t channels) : packet(sets), boost_log(sets * count), charged(sets * count), scores(count, RayScore(channels)) {}
+    BiospecPacket packet;
+    std::uint64_t key[count] = {};
+    std::vector<double> boost_log;  // [set * count + lane]
+    std::vector<double> charged;    // [set * count + lane]
+    std::size_t alive[count] = {};
+    std::vector<RayScore> scores;
+    std::vector<double> path_cm;  // recording: one exit's paths per layer
+
+    double weight(std::size_t set, std::size_t lane) const {
+        return std::exp(boost_log[set * count + lane] - static_cast<double>(packet.tau[set * count + lane]));
+    }
+    bool alive_set(std::size_t set, std::size_t lane) const { return packet.limit[set * count + lane] != dead_limit; }
 };
 
 BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
@@ -87,10 +97,11 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
     : BiospecWavelength(stack, wavelength_nm, incidence_deg, geometry, options, BiospecChannels(Quantities{}, stack.layers.size(), 0), {}) {
     if (options.estimator != AbsorptionEstimator::weighted) throw InputError("path recording needs the weighted estimator");
     // One indicator "absorption set" per layer: set s's optical depth is the ray's path length in layer s.
-    sets_ = layers_.size();
-    mu_a_per_cm_.assign(sets_ * sets_, 0.0);
-    for (std::size_t k = 0; k < sets_; ++k) mu_a_per_cm_[k * sets_ + k] = 1.0;
+    sets_ = layers_;
+    packet_.mu_a_per_cm.assign(sets_ * layers_, 0.0f);
+    for (std::size_t k = 0; k < sets_; ++k) packet_.mu_a_per_cm[k * layers_ + k] = 1.0f;
     recording_ = true;
+    finish_model();
 }
 
 BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg,
@@ -101,23 +112,24 @@ BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets,
     if (sets_ > 1 && options.estimator != AbsorptionEstimator::weighted) {
         throw InputError("absorption replay needs the weighted estimator (the random test makes paths depend on absorption)");
     }
-    mu_a_per_cm_.assign(layers_.size() * sets_, 0.0);
+    packet_.mu_a_per_cm.assign(layers_ * sets_, 0.0f);
     for (std::size_t s = 0; s < sets_; ++s) {
         if (const auto why = biospec_path_difference(*sets.front(), *sets[s]); !why.empty()) {
             throw InputError("absorption sets '" + sets.front()->name + "' and '" + sets[s]->name + "' differ in " + why +
                              ", which changes paths (trace them separately)");
         }
-        for (std::size_t k = 0; k < layers_.size(); ++k) {
-            mu_a_per_cm_[k * sets_ + s] = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
+        for (std::size_t k = 0; k < layers_; ++k) {
+            packet_.mu_a_per_cm[s * layers_ + k] = static_cast<float>(absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model));
         }
     }
+    finish_model();
 }
-
 
 BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
                                      const BiospecOptions& options, const BiospecChannels& channels,
                                      std::vector<double> edges_deg)
-    : n_above_(stack.above_refractive_index),
+    : layers_(stack.layers.size()),
+      n_above_(stack.above_refractive_index),
       n_below_(stack.below_refractive_index),
       reflector_(stack.bottom == BottomBoundary::diffuse_reflector),
       fold_sigma_(stack.fold_aspect_ratio),
@@ -134,7 +146,10 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
         // A perfect diffuser sends sin^2 hi - sin^2 lo = cos^2 lo - cos^2 hi of its light into the band.
         band_factor_ = 1.0 / (band_cos_hi_ * band_cos_hi_ - band_cos_lo_ * band_cos_lo_);
     }
-    for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+    auto& m = packet_;
+    m.layers = static_cast<std::int32_t>(layers_);
+    std::vector<double> n;
+    for (std::size_t k = 0; k < layers_; ++k) {
         auto o = stack.optics(k, wavelength_nm, OpticsScope{false, false});
         if (options.thin_layer_hg && o.crossing == CrossingScattering::measured_stratum_corneum) {
             o.crossing = CrossingScattering::henyey_greenstein;
@@ -155,29 +170,73 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
             }
             profile = epidermis_table_.get();
         }
-        layers_.push_back({o.thickness_cm, o.refractive_index, o.rayleigh_per_cm, o.hg_g, o.crossing, profile});
-        mu_a_per_cm_.push_back(o.mu_a_per_cm);
+        PacketScattering kind = PacketScattering::cosine;
+        switch (o.crossing) {
+            case CrossingScattering::measured_stratum_corneum:
+            case CrossingScattering::measured_epidermis: kind = PacketScattering::table; break;
+            case CrossingScattering::henyey_greenstein: kind = PacketScattering::henyey_greenstein; break;
+            case CrossingScattering::rayleigh_cosine: kind = PacketScattering::rayleigh_cosine; break;
+            case CrossingScattering::cosine: kind = PacketScattering::cosine; break;
+        }
+        m.scattering.push_back(static_cast<std::int32_t>(kind));
+        // Authors' behaviour 4: their SC keeps a perturbation that reverses the travel sense.
+        m.redraw.push_back(o.crossing != CrossingScattering::measured_stratum_corneum || model_.redraw_reversals_in_stratum_corneum ? 1 : 0);
+        m.table_offset.push_back(static_cast<std::int32_t>(m.table_cos.size()));
+        m.table_size.push_back(profile ? static_cast<std::int32_t>(profile->size()) : 1);
+        if (profile) {
+            for (std::size_t i = 0; i < profile->size(); ++i) {
+                m.table_cos.push_back(static_cast<float>(profile->cos_theta(i)));
+                m.table_sin.push_back(static_cast<float>(profile->sin_theta(i)));
+            }
+        } else {
+            m.table_cos.push_back(1.0f);
+            m.table_sin.push_back(0.0f);
+        }
+        m.thickness_cm.push_back(static_cast<float>(o.thickness_cm));
+        m.rayleigh_mean_free_path_cm.push_back(o.rayleigh_per_cm > 0.0 ? static_cast<float>(1.0 / o.rayleigh_per_cm)
+                                                                        : std::numeric_limits<float>::infinity());
+        m.hg_g.push_back(static_cast<float>(o.hg_g));
+        n.push_back(o.refractive_index);
     }
+    n_top_ = n.front();
+    entry_reflectance_ = fresnel_reflectance(incident_.z, n_above_, n_top_);
+    entry_direction_ = refract(incident_, n_above_, n_top_).value_or(incident_);  // unused under total reflection (Fresnel 1)
+    for (std::size_t k = 0; k < layers_; ++k) {
+        const double below = k + 1 == layers_ ? n_below_ : n[k + 1];
+        const double above = k == 0 ? n_above_ : n[k - 1];
+        const bool swap = model_.swapped_upward_indices;
+        m.eta_down.push_back(static_cast<float>(n[k] / below));
+        m.inverse_eta_down.push_back(static_cast<float>(below / n[k]));
+        m.eta_up.push_back(static_cast<float>(swap ? above / n[k] : n[k] / above));
+        m.inverse_eta_up.push_back(static_cast<float>(swap ? n[k] / above : above / n[k]));
+    }
+}
+
+void BiospecWavelength::finish_model() {
+    auto& m = packet_;
+    m.sets = static_cast<std::int32_t>(sets_);
+    m.reflector = reflector_;
+    m.bottom_exit_fresnel = model_.bottom_exit_fresnel;
+    m.weighted = options_.estimator == AbsorptionEstimator::weighted;
+    m.roulette = !recording_;
+    m.flag_every_event = channels_.absorptance_first_layer >= 0 && m.weighted;
+    m.rayleigh_turn = model_.rayleigh_turn;
+    m.max_events = options_.max_events_per_ray;
+    m.roulette_every = roulette_every;
+    m.pad();
 }
 
 void BiospecWavelength::trace(RandomStream& random, std::uint64_t rays, RayTally& tally) const {
     if (recording_) throw InputError("a path-recording walk records paths (BiospecWavelength::record)");
-    RayState state{std::vector<double>(sets_), std::vector<double>(sets_), std::vector<double>(sets_), 0};
-    RayScore score(channels_.count * sets_);
-    for (std::uint64_t i = 0; i < rays; ++i) {
-        trace_one(random.bits64(), score, tally, state, nullptr);
-        tally.add_ray(score);
-    }
+    walk(random, rays, tally, nullptr);
 }
 
 void BiospecWavelength::record(RandomStream& random, std::uint64_t rays, ExitPaths& paths) const {
     if (!recording_) throw InputError("only a path-recording walk records paths");
-    RayState state{std::vector<double>(sets_), std::vector<double>(sets_), std::vector<double>(sets_), 0};
-    RayScore score(channels_.count * sets_);
     RayTally unused(channels_.count * sets_);
-    paths.resize_layers(layers_.size());
+    paths.resize_layers(layers_);
     paths.factor = geometry_ == MeasurementGeometry::zero_45 ? band_factor_ : 1.0;
-    for (std::uint64_t i = 0; i < rays; ++i) trace_one(random.bits64(), score, unused, state, &paths);
+    walk(random, rays, unused, &paths);
     paths.rays += rays;
 }
 
@@ -197,86 +256,40 @@ std::size_t BiospecWavelength::exit_bin(double cos_exit) const {
     return upper == 0 ? 0 : std::min(upper - 1, bin_edges_cos_.size() - 2);
 }
 
-// Step 2/3 of the specification: the direction change on one crossing of `layer`, and the path it is charged.
-BiospecWavelength::Crossing BiospecWavelength::scatter(const Layer& layer, const Direction& d, RandomStream& random) const {
-    const bool down = d.z > 0.0;
-    const auto whole = [&](const Direction& out) { return Crossing{out, layer.thickness_cm / std::max(std::abs(out.z), 1e-12), false}; };
-    const bool redraw = layer.crossing != CrossingScattering::measured_stratum_corneum || model_.redraw_reversals_in_stratum_corneum;
-    const auto same_hemisphere = [&](auto&& draw_cos_sin) {
-        for (int attempt = 0; attempt < max_redraws; ++attempt) {
-            const auto [cos_t, sin_t] = draw_cos_sin();
-            const Direction out = deflect(d, cos_t, sin_t, sample_azimuth(random));
-            if ((out.z > 0.0) == down && out.z != 0.0) return whole(out);
-            // Authors' behaviour 4: the SC keeps a reversing perturbation (the caller handles the reversal).
-            if (!redraw && out.z != 0.0) return Crossing{out, 0.0, true};
+void BiospecWavelength::walk(RandomStream& random, std::uint64_t rays, RayTally& tally, ExitPaths* paths) const {
+    Lanes lanes(sets_, channels_.count * sets_);
+    auto& packet = lanes.packet;
+    std::uint64_t started = 0;
+    std::size_t active = 0;
+    // A lane whose ray ended takes the next ray (rays that end at the surface are tallied on the way).
+    const auto refill = [&](std::size_t lane) {
+        while (started < rays) {
+            ++started;
+            if (enter(lane, random.bits64(), lanes, tally, paths)) return true;
         }
-        return whole(d);
+        packet.active[lane] = 0;
+        return false;
     };
-    switch (layer.crossing) {
-        case CrossingScattering::measured_stratum_corneum:
-        case CrossingScattering::measured_epidermis:
-            return same_hemisphere([&] {
-                const auto i = layer.profile->index(random.uniform());
-                return std::pair{layer.profile->cos_theta(i), layer.profile->sin_theta(i)};
-            });
-        case CrossingScattering::henyey_greenstein:
-            return same_hemisphere([&] {
-                const double c = hg_sample_cos(layer.hg_g, random.uniform());
-                return std::pair{c, std::sqrt(std::max(0.0, 1.0 - c * c))};
-            });
-        case CrossingScattering::rayleigh_cosine:
-            if (down) {
-                const double cos_in = std::max(std::abs(d.z), 1e-12);
-                const double u = random.uniform();
-                const double beta = layer.rayleigh_per_cm;
-                if (u < -std::expm1(-beta * layer.thickness_cm / cos_in)) {
-                    const double c = rayleigh_sample_cos(random.uniform());
-                    const Direction out = deflect(d, c, std::sqrt(std::max(0.0, 1.0 - c * c)), sample_azimuth(random));
-                    const double cos_out = std::max(std::abs(out.z), 1e-12);
-                    switch (model_.rayleigh_turn) {
-                        case RayleighTurn::sampled_depth: {
-                            // Shared spec 2026-12: free path s ~ Exp(beta) (the same u decides whether it falls inside
-                            // the layer), turn at depth z = s cos_in, then on to the top or the bottom.
-                            const double s_cm = -std::log1p(-u) / beta;
-                            const double z_cm = std::min(s_cm * cos_in, layer.thickness_cm);
-                            const double rest_cm = out.z < 0.0 ? z_cm : layer.thickness_cm - z_cm;
-                            return Crossing{out, s_cm + rest_cm / cos_out, false};
-                        }
-                        case RayleighTurn::whole_crossing: return whole(out);
-                        case RayleighTurn::no_absorption: return out.z < 0.0 ? Crossing{out, 0.0, false} : whole(out);
-                    }
-                }
-            }
-            [[fallthrough]];
-        case CrossingScattering::cosine: {
-            const double u = random.uniform();
-            return whole(sample_cosine_hemisphere(u, sample_azimuth(random), down));
+    for (std::size_t lane = 0; lane < Lanes::count; ++lane) active += refill(lane) ? 1 : 0;
+    while (active > 0) {
+        for (std::uint64_t flags = step_biospec_packet(packet_, packet); flags != 0; flags &= flags - 1) {
+            const auto lane = static_cast<std::size_t>(std::countr_zero(flags));
+            if (!settle(lane, lanes, tally, paths)) continue;
+            if (!paths) tally.add_ray(lanes.scores[lane]);
+            if (!refill(lane)) --active;
         }
     }
-    return whole(d);
 }
 
-void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RayTally& tally, RayState& state, ExitPaths* paths) const {
-    auto random = RandomStream::for_ray(ray_key);
-    const auto add = [&](std::size_t set, int channel, double value) {
-        if (channel >= 0) score.add(set * channels_.count + static_cast<std::size_t>(channel), value);
+bool BiospecWavelength::enter(std::size_t lane, std::uint64_t key, Lanes& lanes, RayTally& tally, ExitPaths* paths) const {
+    auto random = RandomStream::for_ray(key);
+    auto& score = lanes.scores[lane];
+    const auto ended = [&] {
+        if (!paths) tally.add_ray(score);
+        return false;
     };
-    const bool absorptance = channels_.absorptance_first_layer >= 0;
-    const auto absorb = [&](std::size_t set, std::size_t layer, double value) {
-        if (absorptance) add(set, channels_.absorptance_first_layer + static_cast<int>(layer), value);
-    };
-    const auto weight = [&](std::size_t set) { return std::exp(state.boost_log[set] - state.tau[set]); };
-    // Exits reach each channel once per ray: straight into the tally.
-    const auto leave = [&](std::size_t set, int channel, double w) {
-        if (channel >= 0) tally.add_single(set * channels_.count + static_cast<std::size_t>(channel), w);
-    };
-    const auto bin = [&](std::size_t set, int first_bin, double cos_exit, double w) {
-        if (first_bin >= 0) leave(set, first_bin + static_cast<int>(exit_bin(cos_exit)), w);
-    };
-
     // Step 1: air -> stratum corneum. Reflection is perturbed by the skin-fold distribution.
-    const double n_top = layers_.front().n;
-    if (random.uniform() < fresnel_reflectance(incident_.z, n_above_, n_top)) {
+    if (random.uniform() < entry_reflectance_) {
         for (int attempt = 0; attempt < max_redraws; ++attempt) {
             const double u = random.uniform();
             const double c = model_.fold_formula == FoldFormula::biospec_2004 ? skin_fold_sample_cos(fold_sigma_, u)
@@ -286,142 +299,128 @@ void BiospecWavelength::trace_one(std::uint64_t ray_key, RayScore& score, RayTal
                 const double f = geometry_factor(-out.z, true);
                 if (paths) {
                     if (f > 0.0) ++paths->surface_exits;
-                    return;
+                    return false;
                 }
                 for (std::size_t s = 0; s < sets_; ++s) {
-                    leave(s, channels_.reflectance, f);
-                    leave(s, channels_.specular, 1.0);
-                    bin(s, channels_.brdf_first_bin, -out.z, 1.0);
+                    const std::size_t offset = s * channels_.count;
+                    if (channels_.reflectance >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.reflectance), f);
+                    if (channels_.specular >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.specular), 1.0);
+                    if (channels_.brdf_first_bin >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.brdf_first_bin) + exit_bin(-out.z), 1.0);
                 }
-                return;
+                return ended();
             }
             if (options_.fold_into_skin == FoldIntoSkin::drop) break;
         }
-        for (std::size_t s = 0; s < sets_; ++s) add(s, channels_.absorptance_surface, 1.0);
+        if (channels_.absorptance_surface >= 0) {
+            for (std::size_t s = 0; s < sets_; ++s) score.add(s * channels_.count + static_cast<std::size_t>(channels_.absorptance_surface), 1.0);
+        }
+        return ended();
+    }
+    const Direction& d = entry_direction_;
+    auto& p = lanes.packet;
+    p.dx[lane] = static_cast<float>(d.x);
+    p.dy[lane] = static_cast<float>(d.y);
+    p.dz[lane] = static_cast<float>(d.z);
+    p.layer[lane] = 0;
+    p.event[lane] = 0;
+    p.attempts[lane] = 0;
+    p.active[lane] = 1;
+    p.seed_lane(lane, key);
+    for (std::size_t s = 0; s < sets_; ++s) {
+        const std::size_t i = s * Lanes::count + lane;
+        p.tau[i] = 0.0f;
+        p.limit[i] = static_cast<float>(roulette_depth);
+        lanes.boost_log[i] = 0.0;
+        lanes.charged[i] = 1.0;
+    }
+    lanes.key[lane] = key;
+    lanes.alive[lane] = sets_;
+    return true;
+}
+
+void BiospecWavelength::leave_top(std::size_t lane, double cos_exit, Lanes& lanes, RayTally& tally, ExitPaths* paths) const {
+    const double f = geometry_factor(cos_exit, false);
+    if (paths) {
+        if (f > 0.0) {
+            lanes.path_cm.resize(sets_);
+            for (std::size_t s = 0; s < sets_; ++s) lanes.path_cm[s] = lanes.packet.tau[s * Lanes::count + lane];
+            paths->add_exit(lanes.path_cm);
+        }
         return;
     }
-    Direction d = *refract(incident_, n_above_, n_top);  // Fresnel was below 1, so the refracted ray exists
-    std::size_t k = 0;
-    const std::size_t last = layers_.size() - 1;
-    std::fill(state.tau.begin(), state.tau.end(), 0.0);
-    std::fill(state.boost_log.begin(), state.boost_log.end(), 0.0);
-    std::fill(state.limit.begin(), state.limit.end(), roulette_depth);
-    state.alive = sets_;
-    const auto alive = [&](std::size_t set) { return state.limit[set] != dead_limit; };
-    const bool weighted = options_.estimator == AbsorptionEstimator::weighted;
-    // A ray leaving the top with |cos| = cos_exit: into R (or the recorded paths) as the geometry accepts it.
-    const auto leave_top = [&](double cos_exit) {
-        const double f = geometry_factor(cos_exit, false);
-        if (paths) {
-            if (f > 0.0) paths->add_exit(state.tau);
-            return;
-        }
-        for (std::size_t s = 0; s < sets_; ++s) {
-            if (!alive(s)) continue;
-            const double w = weight(s);
-            leave(s, channels_.reflectance, w * f);
-            bin(s, channels_.brdf_first_bin, cos_exit, w);
+    for (std::size_t s = 0; s < sets_; ++s) {
+        if (!lanes.alive_set(s, lane)) continue;
+        const double w = lanes.weight(s, lane);
+        const std::size_t offset = s * channels_.count;
+        if (channels_.reflectance >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.reflectance), w * f);
+        if (channels_.brdf_first_bin >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.brdf_first_bin) + exit_bin(cos_exit), w);
+    }
+}
+
+bool BiospecWavelength::settle(std::size_t lane, Lanes& lanes, RayTally& tally, ExitPaths* paths) const {
+    auto& p = lanes.packet;
+    auto& score = lanes.scores[lane];
+    const auto absorb = [&](std::size_t set, std::size_t layer, double value) {
+        if (channels_.absorptance_first_layer >= 0) {
+            score.add(set * channels_.count + static_cast<std::size_t>(channels_.absorptance_first_layer) + layer, value);
         }
     };
-
-    for (std::uint32_t event = 0;; ++event) {
-        const Layer& layer = layers_[k];
-        if (event >= options_.max_events_per_ray) {
-            if (paths) return;
-            for (std::size_t s = 0; s < sets_; ++s) {
-                if (!alive(s)) continue;
-                absorb(s, k, weight(s));
-                add(s, channels_.truncated, 1.0);
-            }
-            return;
-        }
-        // Steps 2-3: direction change on this crossing; step 4: absorption along it, per set.
-        const bool was_down = d.z > 0.0;
-        const Crossing crossing = scatter(layer, d, random);
-        d = crossing.d;
-        if (crossing.reversed && was_down) {
-            // Authors' behaviour 4: a down-going SC ray turned upward leaves as reflectance, no Fresnel, no absorption.
-            leave_top(-d.z);
-            return;
-        }
-        const double path_cm = crossing.path_cm;
-        const double* mu_a = &mu_a_per_cm_[k * sets_];
-        if (weighted) {
-            double* __restrict tau = state.tau.data();
-            if (absorptance) {
-                for (std::size_t s = 0; s < sets_; ++s) {
-                    const double before = tau[s];
-                    tau[s] += mu_a[s] * path_cm;
-                    if (alive(s) && mu_a[s] > 0.0) absorb(s, k, std::exp(state.boost_log[s] - before) - weight(s));
-                }
-            } else {
-                for (std::size_t s = 0; s < sets_; ++s) tau[s] += mu_a[s] * path_cm;  // the hot loop of a replay
-            }
-            // Russian roulette, every roulette_every crossings, for the sets whose weight fell below roulette_weight,
-            // conserving each ray's energy exactly: a survivor's added weight is taken back from this layer's
-            // absorption, a loser's weight is absorbed; both unbiased. Recorded paths carry no absorption.
-            if (!paths && event % roulette_every == roulette_every - 1) {
-                for (std::size_t s = 0; s < sets_; ++s) {
-                    if (!(tau[s] > state.limit[s])) continue;  // also skips the sets that lost (limit inf)
-                    const double w = weight(s);
-                    if (RandomStream::keyed_uniform(ray_key, event) < roulette_survival) {
-                        state.boost_log[s] += boost_log;
-                        state.limit[s] += boost_log;
-                        absorb(s, k, w - weight(s));
-                    } else {
-                        absorb(s, k, w);
-                        state.limit[s] = dead_limit;
-                        --state.alive;
-                    }
-                }
-                if (state.alive == 0) return;
-            }
-        } else if (mu_a[0] > 0.0 && random.uniform() >= std::exp(-mu_a[0] * path_cm)) {
-            absorb(0, k, 1.0);
-            return;
-        }
-        // Steps 5-6: the interface the ray now meets.
-        const bool down = d.z > 0.0;
-        if (down && k == last && reflector_) {
-            const double u = random.uniform();
-            d = sample_cosine_hemisphere(u, sample_azimuth(random), false);
-            continue;
-        }
-        const double n_next = down ? (k == last ? n_below_ : layers_[k + 1].n) : (k == 0 ? n_above_ : layers_[k - 1].n);
-        const bool bottom_exit = down && k == last;
-        if (!(bottom_exit && !model_.bottom_exit_fresnel)) {
-            // Authors' behaviour 1: upward crossings evaluate the interface with its indices swapped.
-            const bool swap = !down && model_.swapped_upward_indices;
-            const double n_from = swap ? n_next : layer.n;
-            const double n_to = swap ? layer.n : n_next;
-            const double reflect = fresnel_reflectance(d.z, n_from, n_to);
-            const auto transmitted = refract(d, n_from, n_to);
-            if (!transmitted || (reflect > 0.0 && random.uniform() < reflect)) {
-                d = mirror(d);
-                continue;
-            }
-            d = *transmitted;
-        }
-        if (down) {
-            if (k == last) {
-                if (paths) return;
-                for (std::size_t s = 0; s < sets_; ++s) {
-                    if (!alive(s)) continue;
-                    const double w = weight(s);
-                    leave(s, channels_.transmittance, w);
-                    bin(s, channels_.btdf_first_bin, d.z, w);
-                }
-                return;
-            }
-            ++k;
-        } else {
-            if (k == 0) {
-                leave_top(-d.z);
-                return;
-            }
-            --k;
+    const auto k = static_cast<std::size_t>(p.crossing_layer[lane]);
+    // Step 4's absorptance: the weight lost on this crossing, from the depths the packet step accumulated.
+    if (packet_.flag_every_event) {
+        for (std::size_t s = 0; s < sets_; ++s) {
+            if (!lanes.alive_set(s, lane)) continue;
+            const double w = lanes.weight(s, lane);
+            absorb(s, k, lanes.charged[s * Lanes::count + lane] - w);
+            lanes.charged[s * Lanes::count + lane] = w;
         }
     }
+    // Russian roulette for the sets whose weight fell below roulette_weight, conserving each ray's energy exactly:
+    // a survivor's added weight is taken back from this layer's absorption, a loser's weight is absorbed; both
+    // unbiased. One number per (ray, event) for all sets.
+    if (p.roulette_due[lane]) {
+        const double u = RandomStream::keyed_uniform(lanes.key[lane], p.event[lane] - 1);
+        for (std::size_t s = 0; s < sets_; ++s) {
+            const std::size_t i = s * Lanes::count + lane;
+            if (!(p.tau[i] > p.limit[i])) continue;  // also skips the sets that lost (limit inf)
+            const double w = lanes.weight(s, lane);
+            if (u < roulette_survival) {
+                lanes.boost_log[i] += boost_log;
+                p.limit[i] += static_cast<float>(boost_log);
+                lanes.charged[i] = lanes.weight(s, lane);
+                absorb(s, k, w - lanes.charged[i]);
+            } else {
+                absorb(s, k, w);
+                p.limit[i] = dead_limit;
+                --lanes.alive[lane];
+            }
+        }
+        if (lanes.alive[lane] == 0) return true;
+    }
+    switch (static_cast<LaneStatus>(p.status[lane])) {
+        case LaneStatus::walking: return false;
+        case LaneStatus::left_top: leave_top(lane, p.exit_cos[lane], lanes, tally, paths); return true;
+        case LaneStatus::left_bottom:
+            if (paths) return true;
+            for (std::size_t s = 0; s < sets_; ++s) {
+                if (!lanes.alive_set(s, lane)) continue;
+                const double w = lanes.weight(s, lane);
+                const std::size_t offset = s * channels_.count;
+                if (channels_.transmittance >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.transmittance), w);
+                if (channels_.btdf_first_bin >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.btdf_first_bin) + exit_bin(p.exit_cos[lane]), w);
+            }
+            return true;
+        case LaneStatus::absorbed: absorb(0, k, 1.0); return true;
+        case LaneStatus::truncated:
+            if (paths) return true;
+            for (std::size_t s = 0; s < sets_; ++s) {
+                if (!lanes.alive_set(s, lane)) continue;
+                absorb(s, static_cast<std::size_t>(p.layer[lane]), lanes.weight(s, lane));
+                score.add(s * channels_.count + static_cast<std::size_t>(channels_.truncated), 1.0);
+            }
+            return true;
+    }
+    return true;
 }
 
 }  // namespace skinspec

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "transport/biospec/biospec_options.hpp"
+#include "transport/biospec/biospec_packet.hpp"
 #include "transport/biospec/exit_paths.hpp"
 #include "transport/direction.hpp"
 #include "transport/measured_profile.hpp"
@@ -69,33 +70,25 @@ private:
     BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
                       const BiospecOptions& options, const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
 
-    struct Layer {
-        double thickness_cm;
-        double n;
-        double rayleigh_per_cm;
-        double hg_g;
-        CrossingScattering crossing;
-        const InverseCdfTable* profile;
-    };
-
-    // One crossing's outcome: the new direction, the path [cm] absorption is charged over, and whether an SC
-    // perturbation reversed the travel sense (kept only with model.redraw_reversals_in_stratum_corneum off).
-    struct Crossing {
-        Direction d;
-        double path_cm;
-        bool reversed;
-    };
-
-    struct RayState;
-    void trace_one(std::uint64_t ray_key, RayScore& score, RayTally& tally, RayState& state, ExitPaths* paths) const;
-    Crossing scatter(const Layer& layer, const Direction& d, RandomStream& random) const;
+    struct Lanes;
+    // Traces `rays` rays in packets: into `tally`, or (recording) their exits into `paths`.
+    void walk(RandomStream& random, std::uint64_t rays, RayTally& tally, ExitPaths* paths) const;
+    // Step 1 for a new ray in `lane`: false when it ends at the surface (tallied), else the lane is set walking.
+    bool enter(std::size_t lane, std::uint64_t key, Lanes& lanes, RayTally& tally, ExitPaths* paths) const;
+    // What the packet step flagged in `lane`: absorptance, roulette, an end. True when the ray has ended.
+    bool settle(std::size_t lane, Lanes& lanes, RayTally& tally, ExitPaths* paths) const;
+    void leave_top(std::size_t lane, double cos_exit, Lanes& lanes, RayTally& tally, ExitPaths* paths) const;
+    void finish_model();
     std::size_t exit_bin(double cos_exit) const;
     // What a ray leaving the top with |cos| = cos_exit adds to R per unit weight in the geometry (0 outside it).
     double geometry_factor(double cos_exit, bool first_surface) const;
 
-    std::vector<Layer> layers_;
+    BiospecPacketModel packet_;        // the per-layer constants of the packet step
+    std::size_t layers_ = 0;
+    double n_top_ = 1.0;
+    double entry_reflectance_ = 0.0;  // Fresnel of the incident beam at the top (step 1), the same for every ray
+    Direction entry_direction_;       // the refracted beam
     std::size_t sets_ = 1;
-    std::vector<double> mu_a_per_cm_;  // [layer * sets + set]
     std::shared_ptr<const InverseCdfTable> stratum_corneum_table_;  // shared with every wavelength that has the same profile
     std::shared_ptr<const InverseCdfTable> epidermis_table_;
     double n_above_;

@@ -1,0 +1,433 @@
+// The BioSpec walk's per-event step on SIMD packets (see biospec_packet.hpp). Compiled once per instruction set by
+// Highway's foreach_target and dispatched at run time; each formula is the one of the scalar specification
+// (shared biospec-model.md, "One ray"), in lane-parallel form.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "transport/biospec/biospec_packet.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/contrib/math/math-inl.h>
+#include <hwy/highway.h>
+
+#include <cstring>
+#include <numbers>
+
+#include "transport/biospec/biospec_packet.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace skinspec {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using DU = hn::RebindToUnsigned<DF>;
+using VF = hn::Vec<DF>;
+using VI = hn::Vec<DI>;
+using VU = hn::Vec<DU>;
+using MF = hn::Mask<DF>;
+
+constexpr int max_redraws = 1000;  // same-hemisphere re-draws before keeping the unperturbed direction (as the scalar spec)
+
+// xoshiro128+ (Blackman & Vigna 2018), one stream per lane, advanced only in the lanes of `draw`: uniform in
+// [0, 1) from the top 24 bits.
+struct LaneRandom {
+    VU s0, s1, s2, s3;
+
+    // Every lane draws (the streams of lanes without a ray are re-seeded before use).
+    VF uniform() {
+        const VU result = hn::Add(s0, s3);
+        const VU t = hn::ShiftLeft<9>(s1);
+        s2 = hn::Xor(s2, s0);
+        s3 = hn::Xor(s3, s1);
+        s1 = hn::Xor(s1, s2);
+        s0 = hn::Xor(s0, s3);
+        s2 = hn::Xor(s2, t);
+        s3 = hn::RotateRight<21>(s3);  // rotl(., 11)
+        return to_unit(result);
+    }
+    // Only the lanes of `draw` draw.
+    VF uniform(MF draw) {
+        const auto m = hn::RebindMask(DU(), draw);
+        const LaneRandom before = *this;
+        const VF u = uniform();
+        s0 = hn::IfThenElse(m, s0, before.s0);
+        s1 = hn::IfThenElse(m, s1, before.s1);
+        s2 = hn::IfThenElse(m, s2, before.s2);
+        s3 = hn::IfThenElse(m, s3, before.s3);
+        return u;
+    }
+    static VF to_unit(VU bits) {
+        const DF df;
+        return hn::Mul(hn::ConvertTo(df, hn::BitCast(DI(), hn::ShiftRight<8>(bits))), hn::Set(df, 0x1.0p-24f));
+    }
+};
+
+// A uniform azimuth as (cos phi, sin phi) from u in [0, 1): phi = 2 pi u - pi, sin phi = sign(phi) sqrt(1 - cos^2).
+HWY_INLINE void Azimuth(VF u, VF& cos_phi, VF& sin_phi) {
+    const DF df;
+    const VF phi = hn::MulAdd(u, hn::Set(df, static_cast<float>(2.0 * std::numbers::pi)), hn::Set(df, static_cast<float>(-std::numbers::pi)));
+    cos_phi = hn::Cos(df, phi);
+    sin_phi = hn::Sin(df, phi);
+}
+
+// 1/x and 1/sqrt(x) to about 1 ulp: the hardware estimate and one Newton-Raphson step (x > 0, finite).
+HWY_INLINE VF Inverse(VF x) {
+    const DF df;
+    const VF r = hn::ApproximateReciprocal(x);
+    return hn::Mul(r, hn::NegMulAdd(x, r, hn::Set(df, 2.0f)));
+}
+HWY_INLINE VF InverseSqrt(VF x) {
+    const DF df;
+    const VF r = hn::ApproximateReciprocalSqrt(x);
+    return hn::Mul(hn::Mul(r, hn::Set(df, 0.5f)), hn::NegMulAdd(hn::Mul(x, r), r, hn::Set(df, 3.0f)));
+}
+
+// `d` turned by theta (cos c, sin s) at azimuth phi about itself (Witt 1977; MCML's SpinTheta, Wang, Jacques &
+// Zheng 1995 Eq. 3.24-3.26), with sqrt(1 - d_z^2) taken as |(d_x, d_y)|, which single precision keeps accurate
+// near the normal.
+HWY_INLINE void Deflect(VF dx, VF dy, VF dz, VF c, VF s, VF cos_phi, VF sin_phi, VF& ox, VF& oy, VF& oz) {
+    const DF df;
+    const VF t2 = hn::MulAdd(dx, dx, hn::Mul(dy, dy));
+    const MF axial = t2 < hn::Set(df, 1e-10f);
+    const VF inv_t = InverseSqrt(hn::Max(t2, hn::Set(df, 1e-10f)));
+    const VF t = hn::Mul(t2, inv_t);
+    const VF a = hn::Mul(s, cos_phi);
+    const VF b = hn::Mul(s, sin_phi);
+    const VF x = hn::MulAdd(hn::MulSub(hn::Mul(a, dz), dx, hn::Mul(b, dy)), inv_t, hn::Mul(dx, c));
+    const VF y = hn::MulAdd(hn::MulAdd(hn::Mul(a, dz), dy, hn::Mul(b, dx)), inv_t, hn::Mul(dy, c));
+    const VF z = hn::MulAdd(dz, c, hn::Neg(hn::Mul(a, t)));
+    ox = hn::IfThenElse(axial, a, x);
+    oy = hn::IfThenElse(axial, b, y);
+    oz = hn::IfThenElse(axial, hn::Mul(c, hn::CopySign(hn::Set(df, 1.0f), dz)), z);
+}
+
+// Henyey-Greenstein cos theta (seed 000 Eq. 5), 1 - 2u near g = 0.
+HWY_INLINE VF HgCos(VF g, VF u) {
+    const DF df;
+    const VF one = hn::Set(df, 1.0f);
+    const VF g2 = hn::Mul(g, g);
+    const VF q = hn::Div(hn::Sub(one, g2), hn::MulAdd(hn::Add(g, g), u, hn::Sub(one, g)));
+    const VF c = hn::Div(hn::NegMulAdd(q, q, hn::Add(one, g2)), hn::Add(g, g));
+    const VF isotropic = hn::NegMulAdd(hn::Set(df, 2.0f), u, one);
+    const VF clamped = hn::Min(hn::Max(c, hn::Set(df, -1.0f)), one);
+    return hn::IfThenElse(hn::Abs(g) < hn::Set(df, 1e-6f), isotropic, clamped);
+}
+
+// Rayleigh cos theta by Cardano's formula on the CDF (Chandrasekhar 1960 Eq. I.(26); rayleigh_phase.hpp):
+// mu = a - 1/a, a = cbrt(r), r = q + sqrt(q^2 + 1) in [0.23, 4.3], q = 4u - 2. The cube root by Newton's iteration
+// a <- (2a + r / a^2) / 3 from a0 = 0.6 + 0.4 r: four steps leave a relative error below 1.3e-8 on this range.
+HWY_INLINE VF RayleighCos(VF u) {
+    const DF df;
+    const VF q = hn::MulAdd(u, hn::Set(df, 4.0f), hn::Set(df, -2.0f));
+    const VF r = hn::Add(q, hn::Sqrt(hn::MulAdd(q, q, hn::Set(df, 1.0f))));
+    VF a = hn::MulAdd(r, hn::Set(df, 0.4f), hn::Set(df, 0.6f));
+    for (int i = 0; i < 4; ++i) {
+        const VF inverse_a = Inverse(a);
+        a = hn::Mul(hn::MulAdd(r, hn::Mul(inverse_a, inverse_a), hn::Add(a, a)), hn::Set(df, 1.0f / 3.0f));
+    }
+    return hn::Sub(a, Inverse(a));
+}
+
+// A per-layer constant for each lane's layer k: a lane permute when the layers fit in one vector (the model pads
+// its per-layer arrays to BiospecPacketModel::layer_stride), else a gather.
+template <class D>
+struct PerLayer {
+    using T = hn::TFromD<D>;
+    hn::Vec<D> at(VI k) const {
+        const D d;
+        if (permute) return hn::TableLookupLanes(hn::LoadU(d, data), hn::IndicesFromVec(d, k));
+        return hn::GatherIndex(d, data, k);
+    }
+    const T* data;
+    bool permute;
+};
+
+HWY_INLINE MF FromInt(hn::Mask<DI> m) { return hn::RebindMask(DF(), m); }
+
+std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
+    const DF df;
+    const DI di;
+    const DU du;
+    const std::size_t n = hn::Lanes(df);
+    const VF zero = hn::Zero(df);
+    const VF one = hn::Set(df, 1.0f);
+    const VF tiny_cos = hn::Set(df, 1e-12f);
+    const VI last = hn::Set(di, model.layers - 1);
+    const MF none = hn::FirstN(df, 0);
+    const auto sets = static_cast<std::size_t>(model.sets);
+    std::uint64_t flags = 0;
+    const bool permute = static_cast<std::size_t>(model.layers) <= n;
+    const PerLayer<DI> scattering{model.scattering.data(), permute}, redraw{model.redraw.data(), permute},
+        table_offsets{model.table_offset.data(), permute}, table_sizes{model.table_size.data(), permute};
+    const PerLayer<DF> thicknesses{model.thickness_cm.data(), permute}, hg{model.hg_g.data(), permute},
+        rayleigh_mfp{model.rayleigh_mean_free_path_cm.data(), permute}, eta_down{model.eta_down.data(), permute},
+        eta_up{model.eta_up.data(), permute}, inverse_eta_down{model.inverse_eta_down.data(), permute},
+        inverse_eta_up{model.inverse_eta_up.data(), permute};
+    const auto mu_a_of = [&](std::size_t set) { return PerLayer<DF>{model.mu_a_per_cm.data() + set * model.layer_stride, permute}; };
+
+    for (std::size_t base = 0; base < BiospecPacket::lanes; base += n) {
+        const MF active = FromInt(hn::LoadU(di, p.active + base) != hn::Zero(di));
+        if (hn::AllFalse(df, active)) continue;
+        LaneRandom random{hn::LoadU(du, p.rng[0] + base), hn::LoadU(du, p.rng[1] + base), hn::LoadU(du, p.rng[2] + base),
+                          hn::LoadU(du, p.rng[3] + base)};
+        const VF dx = hn::LoadU(df, p.dx + base);
+        const VF dy = hn::LoadU(df, p.dy + base);
+        const VF dz = hn::LoadU(df, p.dz + base);
+        const VI k = hn::LoadU(di, p.layer + base);
+        const VI event = hn::LoadU(di, reinterpret_cast<const std::int32_t*>(p.event) + base);
+        const VI kind = scattering.at(k);
+        const VF thickness = thicknesses.at(k);
+        const MF was_down = dz > zero;
+        const MF is_table = hn::And(active, FromInt(kind == hn::Set(di, static_cast<int>(PacketScattering::table))));
+        const MF is_hg = hn::And(active, FromInt(kind == hn::Set(di, static_cast<int>(PacketScattering::henyey_greenstein))));
+        const MF is_rayleigh = hn::And(active, FromInt(kind == hn::Set(di, static_cast<int>(PacketScattering::rayleigh_cosine))));
+        const MF is_cosine = hn::And(active, FromInt(kind == hn::Set(di, static_cast<int>(PacketScattering::cosine))));
+        const MF redraw_allowed = FromInt(redraw.at(k) != hn::Zero(di));
+        const VI table_offset = table_offsets.at(k);
+        const VF table_size = hn::ConvertTo(df, table_sizes.at(k));
+        const VF hg_g = hg.at(k);
+
+        // Steps 2-3: the crossing's direction change. The polar angle of a perturbing layer (table look-up, HG) ...
+        const bool any_table = !hn::AllFalse(df, is_table);
+        const bool any_hg = !hn::AllFalse(df, is_hg);
+        const auto polar = [&](VF u, VF& c, VF& s) {
+            c = one;
+            s = zero;
+            if (any_table) {
+                const VI index = hn::Add(hn::ConvertTo(di, hn::Min(hn::Mul(u, table_size), hn::Sub(table_size, one))), table_offset);
+                c = hn::GatherIndex(df, model.table_cos.data(), index);
+                s = hn::GatherIndex(df, model.table_sin.data(), index);
+            }
+            if (any_hg) {
+                const VF hg = HgCos(hg_g, u);
+                c = hn::IfThenElse(is_hg, hg, c);
+                s = hn::IfThenElse(is_hg, hn::Sqrt(hn::Max(zero, hn::NegMulAdd(hg, hg, one))), s);
+            }
+        };
+        const VF u = random.uniform();
+        // ... the Rayleigh test of a downward crossing and its angle: a free path s = -ln(1 - u) / beta that ends
+        // inside the layer (s |cos_in| < d, probability 1 - exp(-beta d / |cos_in|)) turns the ray ...
+        const VF cos_in = hn::Max(hn::Abs(dz), tiny_cos);
+        const MF rayleigh_test = hn::And(is_rayleigh, was_down);
+        MF rayleigh_turn = none;
+        VF free_path_cm = zero;
+        if (!hn::AllFalse(df, rayleigh_test)) {
+            free_path_cm = hn::Mul(hn::Neg(hn::Log1p(df, hn::Neg(u))), rayleigh_mfp.at(k));
+            rayleigh_turn = hn::And(rayleigh_test, hn::Mul(free_path_cm, cos_in) < thickness);
+        }
+        const VF u2 = random.uniform(is_rayleigh);
+        VF c, s;
+        polar(u, c, s);
+        const bool any_turn = !hn::AllFalse(df, rayleigh_turn);
+        if (any_turn) {
+            const VF c_rayleigh = RayleighCos(u2);
+            c = hn::IfThenElse(rayleigh_turn, c_rayleigh, c);
+            s = hn::IfThenElse(rayleigh_turn, hn::Sqrt(hn::Max(zero, hn::NegMulAdd(c_rayleigh, c_rayleigh, one))), s);
+        }
+        VF cos_phi, sin_phi;
+        Azimuth(random.uniform(), cos_phi, sin_phi);
+        VF ox, oy, oz;
+        Deflect(dx, dy, dz, c, s, cos_phi, sin_phi, ox, oy, oz);
+        // ... or a cosine-distributed direction in the travel hemisphere (cos = sqrt(1 - u) > 0, never grazing).
+        const MF cosine_now = hn::Or(is_cosine, hn::AndNot(rayleigh_turn, is_rayleigh));
+        const VF u_cosine = hn::IfThenElse(is_cosine, u, u2);
+        const VF sin_cosine = hn::Sqrt(u_cosine);
+        ox = hn::IfThenElse(cosine_now, hn::Mul(sin_cosine, cos_phi), ox);
+        oy = hn::IfThenElse(cosine_now, hn::Mul(sin_cosine, sin_phi), oy);
+        oz = hn::IfThenElse(cosine_now, hn::CopySign(hn::Sqrt(hn::Sub(one, u_cosine)), dz), oz);
+
+        // Same-hemisphere rule for the perturbing layers: re-draw a perturbation that reverses the travel sense (or
+        // grazes); an SC that keeps reversals (authors' behaviour 4) reports them instead.
+        const MF perturbing = hn::Or(is_table, is_hg);
+        const MF grazing = oz == zero;
+        const MF turned = hn::And(perturbing, hn::Or(hn::Xor(oz > zero, was_down), grazing));
+        const MF reversed = hn::AndNot(grazing, hn::AndNot(redraw_allowed, turned));
+        // A lane that re-draws does not loop here (that would hold the whole packet): it keeps its direction and layer
+        // and draws again at the next step, with the other lanes' next events; after max_redraws attempts it keeps
+        // the unperturbed direction.
+        const MF redrawing = hn::And(turned, hn::Or(redraw_allowed, grazing));
+        const VI attempts = hn::LoadU(di, p.attempts + base);
+        const MF give_up = hn::And(redrawing, FromInt(attempts == hn::Set(di, max_redraws - 1)));
+        const MF retry = hn::AndNot(give_up, redrawing);
+        hn::StoreU(hn::IfThenElse(hn::RebindMask(di, retry), hn::Add(attempts, hn::Set(di, 1)), hn::Zero(di)), di, p.attempts + base);
+        ox = hn::IfThenElse(redrawing, dx, ox);
+        oy = hn::IfThenElse(redrawing, dy, oy);
+        oz = hn::IfThenElse(redrawing, dz, oz);
+        const MF crossed = hn::AndNot(retry, active);  // the lanes whose crossing is done this step
+
+        // The path the crossing is charged: the whole layer along the new direction, or the Rayleigh turn rule.
+        const VF cos_out = hn::Max(hn::Abs(oz), tiny_cos);
+        const VF inverse_cos_out = Inverse(cos_out);
+        const VF whole = hn::Mul(thickness, inverse_cos_out);
+        VF turn_path = whole;
+        if (any_turn && model.rayleigh_turn == RayleighTurn::sampled_depth) {
+            // Shared spec 2026-12: the free path s that decided the turn, turn at depth s cos_in.
+            const VF z_cm = hn::Min(hn::Mul(free_path_cm, cos_in), thickness);
+            const VF rest = hn::IfThenElse(oz < zero, z_cm, hn::Sub(thickness, z_cm));
+            turn_path = hn::MulAdd(rest, inverse_cos_out, free_path_cm);
+        } else if (any_turn && model.rayleigh_turn == RayleighTurn::no_absorption) {
+            turn_path = hn::IfThenElse(oz < zero, zero, whole);
+        }
+        VF path = hn::IfThenElse(rayleigh_turn, turn_path, whole);
+        path = hn::IfThenElseZero(hn::AndNot(hn::Or(reversed, retry), crossed), path);
+        const MF leaves_reversed = hn::And(reversed, was_down);  // leaves as reflectance, no Fresnel, no absorption
+
+        // Step 4: absorption along the crossing, per set (weighted), or the per-crossing test (random).
+        MF absorbed = none;
+        MF over_limit = absorbed;
+        if (model.weighted) {
+            for (std::size_t set = 0; set < sets; ++set) {
+                float* tau_ptr = p.tau.data() + set * BiospecPacket::lanes + base;
+                const VF mu_a = mu_a_of(set).at(k);
+                const VF tau = hn::MulAdd(mu_a, path, hn::LoadU(df, tau_ptr));
+                hn::StoreU(tau, df, tau_ptr);
+                over_limit = hn::Or(over_limit, tau > hn::LoadU(df, p.limit.data() + set * BiospecPacket::lanes + base));
+            }
+        } else {
+            const VF mu_a = mu_a_of(0).at(k);
+            const MF testing = hn::AndNot(leaves_reversed, hn::And(crossed, mu_a > zero));
+            const VF survive = hn::Exp(df, hn::Neg(hn::Mul(mu_a, path)));
+            absorbed = hn::And(testing, random.uniform(testing) >= survive);
+        }
+        const VI every = hn::Set(di, static_cast<int>(model.roulette_every - 1));
+        const MF look = FromInt(hn::And(event, every) == every);
+        const MF roulette_due = model.weighted && model.roulette ? hn::AndNot(leaves_reversed, hn::And(crossed, hn::And(look, over_limit)))
+                                                                 : none;
+
+        // Steps 5-6: the interface the ray now meets.
+        const MF going = hn::AndNot(hn::Or(leaves_reversed, absorbed), crossed);
+        const MF down = oz > zero;
+        const MF at_last = FromInt(k == last);
+        const MF at_first = FromInt(k == hn::Zero(di));
+        const MF bounce = model.reflector ? hn::And(going, hn::And(down, at_last)) : none;
+        if (!hn::AllFalse(df, bounce)) {  // the Lambertian reflector: a cosine-distributed upward direction
+            const VF u_bounce = random.uniform(bounce);
+            Azimuth(random.uniform(bounce), cos_phi, sin_phi);
+            const VF sin_bounce = hn::Sqrt(u_bounce);
+            ox = hn::IfThenElse(bounce, hn::Mul(sin_bounce, cos_phi), ox);
+            oy = hn::IfThenElse(bounce, hn::Mul(sin_bounce, sin_phi), oy);
+            oz = hn::IfThenElse(bounce, hn::Neg(hn::Sqrt(hn::Sub(one, u_bounce))), oz);
+        }
+
+        const MF bare_exit = model.bottom_exit_fresnel ? none : hn::And(down, at_last);
+        const MF at_interface = hn::AndNot(hn::Or(bounce, bare_exit), going);
+        // The relative index n_from / n_to of the interface ahead (authors' behaviour 1, upward crossings with the
+        // indices swapped, is in the model's eta_up) and m = n_to / n_from.
+        const VF eta = hn::IfThenElse(down, eta_down.at(k), eta_up.at(k));
+        const VF m = hn::IfThenElse(down, inverse_eta_down.at(k), inverse_eta_up.at(k));
+        const MF same_index = eta == one;
+        // Fresnel's unpolarised reflectance (Born & Wolf Sec. 1.5.2; fresnel.cpp), numerators and denominators divided
+        // by n_from, and Snell's refraction.
+        const VF cos_i = hn::Min(hn::Abs(oz), one);
+        const VF sin2_t = hn::Mul(hn::Mul(eta, eta), hn::Mul(hn::Sub(one, cos_i), hn::Add(one, cos_i)));
+        const MF total = sin2_t >= one;
+        const VF cos_t = hn::Sqrt(hn::Max(zero, hn::Sub(one, sin2_t)));
+        const VF s_den = hn::MulAdd(m, cos_t, cos_i);
+        const VF p_den = hn::MulAdd(m, cos_i, cos_t);
+        const VF inverse_den = Inverse(hn::Max(hn::Mul(s_den, p_den), hn::Set(df, 1e-30f)));
+        const VF rs = hn::Mul(hn::Mul(hn::NegMulAdd(m, cos_t, cos_i), p_den), inverse_den);
+        const VF rp = hn::Mul(hn::Mul(hn::NegMulAdd(m, cos_i, cos_t), s_den), inverse_den);
+        const VF reflectance = hn::Mul(hn::Set(df, 0.5f), hn::MulAdd(rs, rs, hn::Mul(rp, rp)));
+        const MF fresnel = hn::AndNot(same_index, at_interface);
+        const MF test = hn::AndNot(total, hn::And(fresnel, reflectance > zero));
+        const MF reflected = hn::And(fresnel, hn::Or(total, hn::And(test, random.uniform(test) < reflectance)));
+        const MF refracted = hn::AndNot(reflected, fresnel);
+        const MF moving = hn::AndNot(hn::Or(bounce, reflected), going);
+        ox = hn::IfThenElse(refracted, hn::Mul(eta, ox), ox);
+        oy = hn::IfThenElse(refracted, hn::Mul(eta, oy), oy);
+        oz = hn::IfThenElse(reflected, hn::Neg(oz), hn::IfThenElse(refracted, hn::CopySign(cos_t, oz), oz));
+
+        const MF leaves_bottom = hn::And(moving, hn::And(down, at_last));
+        const MF leaves_top = hn::Or(leaves_reversed, hn::And(moving, hn::AndNot(down, at_first)));
+        const auto dmask = [&](MF m) { return hn::RebindMask(di, m); };
+        VI next_k = hn::IfThenElse(dmask(hn::AndNot(at_last, hn::And(moving, down))), hn::Add(k, hn::Set(di, 1)), k);
+        next_k = hn::IfThenElse(dmask(hn::AndNot(at_first, hn::AndNot(down, moving))), hn::Sub(k, hn::Set(di, 1)), next_k);
+        const VI next_event = hn::IfThenElse(dmask(crossed), hn::Add(event, hn::Set(di, 1)), event);
+
+        VI status = hn::Zero(di);
+        status = hn::IfThenElse(dmask(leaves_top), hn::Set(di, static_cast<int>(LaneStatus::left_top)), status);
+        status = hn::IfThenElse(dmask(leaves_bottom), hn::Set(di, static_cast<int>(LaneStatus::left_bottom)), status);
+        status = hn::IfThenElse(dmask(absorbed), hn::Set(di, static_cast<int>(LaneStatus::absorbed)), status);
+        const MF walking = hn::And(crossed, FromInt(status == hn::Zero(di)));
+        const MF truncated = hn::And(walking, FromInt(next_event > hn::Set(di, static_cast<int>(model.max_events) - 1)));
+        status = hn::IfThenElse(dmask(truncated), hn::Set(di, static_cast<int>(LaneStatus::truncated)), status);
+        const VF exit_cos = hn::IfThenElse(leaves_bottom, oz, hn::Neg(oz));
+
+        hn::StoreU(ox, df, p.dx + base);
+        hn::StoreU(oy, df, p.dy + base);
+        hn::StoreU(oz, df, p.dz + base);
+        hn::StoreU(exit_cos, df, p.exit_cos + base);
+        hn::StoreU(next_k, di, p.layer + base);
+        hn::StoreU(k, di, p.crossing_layer + base);
+        hn::StoreU(status, di, p.status + base);
+        hn::StoreU(hn::IfThenElseZero(dmask(roulette_due), hn::Set(di, 1)), di, p.roulette_due + base);
+        hn::StoreU(next_event, di, reinterpret_cast<std::int32_t*>(p.event) + base);
+        hn::StoreU(random.s0, du, p.rng[0] + base);
+        hn::StoreU(random.s1, du, p.rng[1] + base);
+        hn::StoreU(random.s2, du, p.rng[2] + base);
+        hn::StoreU(random.s3, du, p.rng[3] + base);
+
+        const MF attention = model.flag_every_event
+                                 ? crossed
+                                 : hn::And(crossed, hn::Or(roulette_due, FromInt(status != hn::Zero(di))));
+        std::uint8_t bits[8] = {};
+        hn::StoreMaskBits(df, attention, bits);
+        std::uint64_t chunk = 0;
+        std::memcpy(&chunk, bits, sizeof(bits));
+        if (n < 64) chunk &= (std::uint64_t{1} << n) - 1;
+        flags |= chunk << base;
+    }
+    return flags;
+}
+
+const char* TargetImpl() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace skinspec
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace skinspec {
+
+HWY_EXPORT(StepImpl);
+HWY_EXPORT(TargetImpl);
+
+std::uint64_t step_biospec_packet(const BiospecPacketModel& model, BiospecPacket& packet) {
+    return HWY_DYNAMIC_DISPATCH(StepImpl)(model, packet);
+}
+
+const char* biospec_packet_target() { return HWY_DYNAMIC_DISPATCH(TargetImpl)(); }
+
+void BiospecPacketModel::pad() {
+    layer_stride = (static_cast<std::size_t>(layers) + widest_vector - 1) / widest_vector * widest_vector;
+    for (auto* v : {&scattering, &redraw, &table_offset, &table_size}) v->resize(layer_stride, 0);
+    for (auto* v : {&thickness_cm, &eta_down, &eta_up, &inverse_eta_down, &inverse_eta_up, &rayleigh_mean_free_path_cm, &hg_g}) {
+        v->resize(layer_stride, 0.0f);
+    }
+    const auto rows = static_cast<std::size_t>(sets);
+    std::vector<float> mu_a(rows * layer_stride, 0.0f);
+    for (std::size_t s = 0; s < rows; ++s) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(layers); ++k) mu_a[s * layer_stride + k] = mu_a_per_cm[s * static_cast<std::size_t>(layers) + k];
+    }
+    mu_a_per_cm = std::move(mu_a);
+}
+
+void BiospecPacket::seed_lane(std::size_t lane, std::uint64_t key) {
+    // SplitMix64 (Steele, Lea & Flood 2014) of the key: two 64-bit outputs make the four 32-bit words.
+    const auto next = [&key] {
+        std::uint64_t z = (key += 0x9e3779b97f4a7c15ULL);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return z ^ (z >> 31);
+    };
+    const std::uint64_t a = next();
+    const std::uint64_t b = next();
+    rng[0][lane] = static_cast<std::uint32_t>(a);
+    rng[1][lane] = static_cast<std::uint32_t>(a >> 32);
+    rng[2][lane] = static_cast<std::uint32_t>(b);
+    rng[3][lane] = static_cast<std::uint32_t>(b >> 32);
+    if ((a | b) == 0) rng[0][lane] = 1;
+}
+
+}  // namespace skinspec
+#endif

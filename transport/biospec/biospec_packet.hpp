@@ -1,0 +1,93 @@
+#pragma once
+// The BioSpec walk's inner loop on packets of rays in SIMD lanes (Google Highway, dispatched at run time to the
+// widest instruction set of the machine). One call advances every active lane of a packet by one event: the
+// crossing's scattering (measured profile table, Henyey-Greenstein, Rayleigh + cosine, cosine; same-hemisphere
+// re-draws), the optical depth of every absorption set along the crossing, and the interface the ray then meets
+// (bottom reflector, Fresnel reflection or refraction, moving on or leaving). What happens once per ray or rarely
+// (entry, exits, Russian roulette, the event limit, tallies) stays with the caller (biospec_walk.cpp), per lane.
+//
+// Precision: directions, path lengths and optical depths in single precision (relative error ~1e-7 per event, far
+// below the Monte Carlo error); weights, tallies and energy bookkeeping in double, by the caller.
+// Random numbers: every lane has its own xoshiro128+ stream (Blackman & Vigna 2018, "Scrambled linear pseudorandom
+// number generators"), seeded from the ray's key and advanced only when that lane draws, so a ray's path depends on
+// its key alone (not on the packet width, the other rays in the packet or the thread).
+#include <cstdint>
+#include <vector>
+
+#include "materials/model_options.hpp"
+
+namespace skinspec {
+
+// How a layer changes a crossing ray's direction.
+enum class PacketScattering : std::int32_t { table = 0, henyey_greenstein = 1, rayleigh_cosine = 2, cosine = 3 };
+
+// What an event did to a lane (BiospecPacket::status).
+enum class LaneStatus : std::int32_t {
+    walking = 0,      // still in the skin
+    left_top = 1,     // left through the top, |cos| in exit_cos (R)
+    left_bottom = 2,  // left through the bottom, |cos| in exit_cos (T)
+    absorbed = 3,     // random estimator: absorbed in crossing_layer
+    truncated = 4,    // reached the event limit in `layer`
+};
+
+// The per-wavelength constants of one walk, per layer (index k) in single precision. The per-layer arrays hold
+// layer_stride entries (the layers, then zeros), so that a vector load of them never reads past their end.
+struct BiospecPacketModel {
+    static constexpr std::size_t widest_vector = 16;  // floats in an AVX-512 vector
+    std::int32_t layers = 0;
+    std::size_t layer_stride = widest_vector;  // a multiple of widest_vector, >= layers
+    std::int32_t sets = 1;
+    std::vector<std::int32_t> scattering;    // PacketScattering
+    std::vector<std::int32_t> redraw;        // 1: re-draw perturbations that reverse the travel sense; 0: keep them
+    std::vector<std::int32_t> table_offset;  // the layer's profile table in table_cos / table_sin
+    std::vector<std::int32_t> table_size;
+    std::vector<float> thickness_cm, hg_g;
+    std::vector<float> rayleigh_mean_free_path_cm;  // 1 / the Rayleigh coefficient (inf without Rayleigh)
+    // n_from / n_to at the interface a downward (upward) crossing meets, and n_to / n_from; with
+    // model.swapped_upward_indices the upward ones have the indices swapped (authors' behaviour 1).
+    std::vector<float> eta_down, eta_up, inverse_eta_down, inverse_eta_up;
+    std::vector<float> table_cos, table_sin;  // the measured-profile inverse-CDF tables, concatenated
+    std::vector<float> mu_a_per_cm;           // [set * layer_stride + layer]
+
+    // Sets layer_stride for `layers` and pads every per-layer array to it (mu_a_per_cm: `sets` rows of it).
+    void pad();
+    bool reflector = false;
+    bool bottom_exit_fresnel = true;
+    bool weighted = true;            // weighted estimator (else the random per-crossing absorption test)
+    bool roulette = true;            // flag lanes for Russian roulette (off when recording paths)
+    bool flag_every_event = false;   // hand every lane to the caller after every event (per-layer absorptance)
+    RayleighTurn rayleigh_turn = RayleighTurn::sampled_depth;
+    std::uint32_t max_events = 0;
+    std::uint32_t roulette_every = 8;  // events between two roulette looks (a power of 2)
+};
+
+// A packet's lanes in structure-of-arrays form; the caller fills and empties lanes between events.
+struct BiospecPacket {
+    static constexpr std::size_t lanes = 64;  // a multiple of every target's lane count (AVX-512: 16 floats)
+    explicit BiospecPacket(std::size_t sets) : tau(sets * lanes, 0.0f), limit(sets * lanes, 0.0f) {}
+
+    alignas(64) float dx[lanes] = {}, dy[lanes] = {}, dz[lanes] = {};
+    alignas(64) float exit_cos[lanes] = {};
+    alignas(64) std::int32_t layer[lanes] = {};
+    alignas(64) std::int32_t crossing_layer[lanes] = {};  // the layer of the event's crossing (absorption charged there)
+    alignas(64) std::int32_t status[lanes] = {};          // LaneStatus after the event
+    alignas(64) std::int32_t active[lanes] = {};          // 1 while the lane holds a ray
+    alignas(64) std::int32_t roulette_due[lanes] = {};    // 1 when a set's depth passed its limit at a roulette look
+    alignas(64) std::uint32_t event[lanes] = {};          // events so far (the roulette key of the last one is event - 1)
+    alignas(64) std::int32_t attempts[lanes] = {};        // same-hemisphere re-draws of the current crossing so far
+    alignas(64) std::uint32_t rng[4][lanes] = {};         // xoshiro128+ state
+    std::vector<float> tau;    // [set * lanes + lane]: optical depth of each absorption set
+    std::vector<float> limit;  // [set * lanes + lane]: depth beyond which the set plays roulette (+inf: lost)
+
+    // Seeds lane `lane`'s stream from a ray key (SplitMix64 of the key; never the all-zero state).
+    void seed_lane(std::size_t lane, std::uint64_t key);
+};
+
+// Advances every active lane by one event; returns the lanes the caller must look at (bit i: lane i), i.e. those
+// whose status is not `walking`, that are due for roulette, or all active lanes with flag_every_event.
+std::uint64_t step_biospec_packet(const BiospecPacketModel& model, BiospecPacket& packet);
+
+// The name of the instruction set the walk's packets run on here (e.g. "AVX3", "AVX2").
+const char* biospec_packet_target();
+
+}  // namespace skinspec
