@@ -4,8 +4,6 @@
 #include <cmath>
 #include <unistd.h>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -19,53 +17,59 @@ namespace {
 constexpr float background_linear = 0.18f;  // neutral mid grey between patches
 constexpr const char* label_font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
-OIIO::ImageSpec chart_spec(const ChartLayout& layout, OIIO::TypeDesc format) {
-    const int width = layout.left_px + static_cast<int>(layout.columns) * (layout.patch_px + layout.gap_px) + layout.gap_px;
-    const int height = layout.top_px + static_cast<int>(layout.rows) * (layout.patch_px + layout.gap_px) + layout.gap_px;
-    return OIIO::ImageSpec(width, height, 3, format);
+struct ChartSize {
+    int width;
+    int height;
+};
+
+ChartSize chart_size(const ChartLayout& layout) {
+    return {layout.left_px + static_cast<int>(layout.columns) * (layout.patch_px + layout.gap_px) + layout.gap_px,
+            layout.top_px + static_cast<int>(layout.rows) * (layout.patch_px + layout.gap_px) + layout.gap_px};
 }
 
-OIIO::ROI patch_roi(const ChartLayout& layout, std::size_t index) {
+PixelRect patch_rect(const ChartLayout& layout, std::size_t index) {
     const int column = static_cast<int>(index % layout.columns);
     const int row = static_cast<int>(index / layout.columns);
     const int x = layout.left_px + layout.gap_px + column * (layout.patch_px + layout.gap_px);
     const int y = layout.top_px + layout.gap_px + row * (layout.patch_px + layout.gap_px);
-    return OIIO::ROI(x, x + layout.patch_px, y, y + layout.patch_px, 0, 1, 0, 3);
+    return {x, y, x + layout.patch_px, y + layout.patch_px};
 }
 
-OIIO::ImageBuf filled_chart(const ChartLayout& layout, const std::vector<RGB>& colours, const float background[3]) {
-    OIIO::ImageBuf buf(chart_spec(layout, OIIO::TypeDesc::FLOAT));
-    OIIO::ImageBufAlgo::fill(buf, {background[0], background[1], background[2]});
-    for (std::size_t i = 0; i < colours.size(); ++i) {
-        const float c[3] = {static_cast<float>(colours[i][0]), static_cast<float>(colours[i][1]), static_cast<float>(colours[i][2])};
-        OIIO::ImageBufAlgo::fill(buf, {c[0], c[1], c[2]}, patch_roi(layout, i));
+DataImage rgb_image(int width, int height, const std::array<float, 3>& fill) {
+    DataImage image{width, height, 3, std::vector<float>(static_cast<std::size_t>(width) * height * 3), true, {}};
+    for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p) std::copy(fill.begin(), fill.end(), &image.values[p * 3]);
+    return image;
+}
+
+void fill_rect(DataImage& image, const PixelRect& rect, const std::array<float, 3>& colour) {
+    for (int y = std::max(0, rect.y0); y < std::min(image.height, rect.y1); ++y) {
+        for (int x = std::max(0, rect.x0); x < std::min(image.width, rect.x1); ++x) {
+            std::copy(colour.begin(), colour.end(), &image.values[(static_cast<std::size_t>(y) * image.width + x) * 3]);
+        }
     }
-    return buf;
 }
 
-void set_metadata(OIIO::ImageBuf& buf, const ImageMetadata& metadata) {
-    for (const auto& [key, value] : metadata) buf.specmod().attribute(key, value);
+std::array<float, 3> to_float(const RGB& c) { return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])}; }
+
+DataImage filled_chart(const ChartLayout& layout, const std::vector<RGB>& colours, const std::array<float, 3>& background) {
+    const auto size = chart_size(layout);
+    auto image = rgb_image(size.width, size.height, background);
+    for (std::size_t i = 0; i < colours.size(); ++i) fill_rect(image, patch_rect(layout, i), to_float(colours[i]));
+    return image;
 }
 
-void write(OIIO::ImageBuf& buf, const std::filesystem::path& file, OIIO::TypeDesc format) {
-    buf.set_write_format(format);
-    write_atomically(file, [&](const std::filesystem::path& temporary) {
-        if (!buf.write(temporary.string())) throw InputError(file.string() + ": cannot be written (" + buf.geterror() + ")");
-    });
+void write(const DataImage& image, const std::filesystem::path& file, PixelFormat format, const ImageAttributes& attributes) {
+    write_atomically(file, [&](const std::filesystem::path& temporary) { write_image_file(temporary, image, format, attributes, file); });
 }
 
-// Draws `label` (lines separated by '\n') at the top-left of `roi`, in black or white for contrast.
-void draw_label(OIIO::ImageBuf& buf, const OIIO::ROI& roi, const std::string& label, int font_px, double background_luma) {
+// Draws `label` (lines separated by '\n') at the top-left of `rect`, in black or white for contrast.
+void draw_label(DataImage& image, const PixelRect& rect, const std::string& label, int font_px, double background_luma) {
     const float ink = background_luma > 0.5 ? 0.0f : 1.0f;
-    const float colour[3] = {ink, ink, ink};
     std::size_t line_start = 0;
     for (int line = 0;; ++line) {
         const auto end = label.find('\n', line_start);
-        const auto text = label.substr(line_start, end - line_start);
-        if (!OIIO::ImageBufAlgo::render_text(buf, roi.xbegin + 4, roi.ybegin + 4 + font_px * (line + 1), text, font_px,
-                                             label_font, colour)) {
-            throw InputError("cannot draw labels: " + buf.geterror() + " (install fonts-dejavu-core)");
-        }
+        render_text(image, rect.x0 + 4, rect.y0 + 4 + font_px * (line + 1), label.substr(line_start, end - line_start), font_px, label_font,
+                    {ink, ink, ink});
         if (end == std::string::npos) break;
         line_start = end + 1;
     }
@@ -87,10 +91,10 @@ std::array<float, 8> space_chromaticities(std::string_view space) {
 }
 
 void check_chart_size(const ChartLayout& layout) {
-    const auto spec = chart_spec(layout, OIIO::TypeDesc::FLOAT);
+    const auto size = chart_size(layout);
     const double pixels = static_cast<double>(layout.columns) * (layout.patch_px + layout.gap_px) *
                           static_cast<double>(layout.rows) * (layout.patch_px + layout.gap_px);
-    if (pixels > max_chart_pixels || spec.width <= 0 || spec.height <= 0) {
+    if (pixels > max_chart_pixels || size.width <= 0 || size.height <= 0) {
         throw InputError(fmt::format("a chart of {} x {} patches at {} px is {:.3g} pixels, more than the {:.3g} an image may have "
                                      "(use a smaller --patch-size or fewer steps)", layout.columns, layout.rows, layout.patch_px, pixels,
                                      max_chart_pixels));
@@ -111,30 +115,30 @@ void check_output_path(const std::filesystem::path& file, bool overwrite, const 
 }
 
 // Scene-linear output: chromaticities and colour-space name of `space`, the metadata, half or float.
-void write_scene_linear(OIIO::ImageBuf& buf, const std::filesystem::path& file, std::string_view working_space, bool half_float,
+void write_scene_linear(const DataImage& image, const std::filesystem::path& file, std::string_view working_space, bool half_float,
                         const ImageMetadata& metadata, const ColorManagement& cm) {
     const std::string space = cm.canonical_space(working_space, "--space");
-    const auto chromaticities = space_chromaticities(space);
-    buf.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
-    buf.specmod().attribute("oiio:ColorSpace", space);
-    buf.specmod().attribute("colorspace", space);
-    set_metadata(buf, metadata);
-    write(buf, file, half_float ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+    ImageAttributes attributes{{{"oiio:ColorSpace", space}, {"colorspace", space}}, space_chromaticities(space)};
+    attributes.strings.insert(attributes.strings.end(), metadata.begin(), metadata.end());
+    write(image, file, half_float ? PixelFormat::half : PixelFormat::float32, attributes);
+}
+
+// Display-referred output: the display's name and the metadata, 8-bit PNG or 16-bit TIFF.
+void write_display_referred(const DataImage& image, const std::filesystem::path& file, std::string_view display, const ImageMetadata& metadata) {
+    ImageAttributes attributes{{{"oiio:ColorSpace", std::string(display)}}, std::nullopt};
+    attributes.strings.insert(attributes.strings.end(), metadata.begin(), metadata.end());
+    write(image, file, file.extension() == ".png" ? PixelFormat::uint8 : PixelFormat::uint16, attributes);
 }
 
 void write_linear_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
                         std::string_view working_space, bool half_float, const ImageMetadata& metadata, const ColorManagement& cm) {
-    const float grey[3] = {background_linear, background_linear, background_linear};
-    auto buf = filled_chart(layout, patches, grey);
-    write_scene_linear(buf, file, working_space, half_float, metadata, cm);
+    write_scene_linear(filled_chart(layout, patches, {background_linear, background_linear, background_linear}), file, working_space, half_float,
+                       metadata, cm);
 }
 
 void write_linear_image(const std::filesystem::path& file, const LinearImage& image, std::string_view working_space, bool half_float,
                         const ImageMetadata& metadata, const ColorManagement& cm) {
-    OIIO::ImageBuf buf(OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT), const_cast<float*>(image.rgb.data()));
-    OIIO::ImageBuf copy;
-    copy.copy(buf);
-    write_scene_linear(copy, file, working_space, half_float, metadata, cm);
+    write_scene_linear(DataImage{image.width, image.height, 3, image.rgb, true, {}}, file, working_space, half_float, metadata, cm);
 }
 
 void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
@@ -147,8 +151,7 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
         for (auto& c : e) c = std::clamp(c, 0.0, 1.0);  // display-referred: the display cannot show more
         encoded.push_back(e);
     }
-    const auto grey = cm.display_view({background_linear, background_linear, background_linear}, space, display, view);
-    const float background[3] = {static_cast<float>(grey[0]), static_cast<float>(grey[1]), static_cast<float>(grey[2])};
+    const auto background = to_float(cm.display_view({background_linear, background_linear, background_linear}, space, display, view));
     // Margins for the axes: the titles and the column values on top, the row values on the left.
     auto framed = layout;
     const int axis_px = std::max(12, layout.patch_px / 8);
@@ -157,57 +160,34 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
     std::size_t widest = 0;
     for (const auto& v : axes.row_values) widest = std::max(widest, v.size());
     if (widest > 0) framed.left_px = static_cast<int>(std::ceil(0.62 * axis_px * static_cast<double>(widest))) + layout.gap_px;
-    auto buf = filled_chart(framed, encoded, background);
+    auto image = filled_chart(framed, encoded, background);
     const double background_luma = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
     std::string titles;
     if (!axes.column_title.empty()) titles += "columns: " + axes.column_title;
     if (!axes.row_title.empty()) titles += (titles.empty() ? "" : "\n") + std::string("rows: ") + axes.row_title;
-    if (!titles.empty()) draw_label(buf, OIIO::ROI(0, buf.spec().width, 0, framed.top_px), titles, axis_px, background_luma);
+    if (!titles.empty()) draw_label(image, PixelRect{0, 0, image.width, framed.top_px}, titles, axis_px, background_luma);
     for (std::size_t c = 0; c < axes.column_values.size() && c < layout.columns; ++c) {
-        const auto roi = patch_roi(framed, c);
-        draw_label(buf, OIIO::ROI(roi.xbegin - 4, roi.xend, framed.top_px - axis_px - axis_px / 3, framed.top_px), axes.column_values[c],
-                   axis_px, background_luma);
+        const auto rect = patch_rect(framed, c);
+        draw_label(image, PixelRect{rect.x0 - 4, framed.top_px - axis_px - axis_px / 3, rect.x1, framed.top_px}, axes.column_values[c], axis_px,
+                   background_luma);
     }
     for (std::size_t r = 0; r < axes.row_values.size() && r < layout.rows; ++r) {
-        const auto roi = patch_roi(framed, r * layout.columns);
-        draw_label(buf, OIIO::ROI(0, framed.left_px, roi.ybegin + layout.patch_px / 2 - axis_px, roi.yend), axes.row_values[r], axis_px,
+        const auto rect = patch_rect(framed, r * layout.columns);
+        draw_label(image, PixelRect{0, rect.y0 + layout.patch_px / 2 - axis_px, framed.left_px, rect.y1}, axes.row_values[r], axis_px,
                    background_luma);
     }
     const int font_px = std::max(9, layout.patch_px / 9);
     for (std::size_t i = 0; i < labels.size() && i < encoded.size(); ++i) {
         const double luma = 0.2126 * encoded[i][0] + 0.7152 * encoded[i][1] + 0.0722 * encoded[i][2];
-        draw_label(buf, patch_roi(framed, i), labels[i], font_px, luma);
+        draw_label(image, patch_rect(framed, i), labels[i], font_px, luma);
     }
-    buf.specmod().attribute("oiio:ColorSpace", std::string(display));
-    set_metadata(buf, metadata);
-    const bool png = file.extension() == ".png";
-    write(buf, file, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
+    write_display_referred(image, file, display, metadata);
 }
 
-DataImage read_data_image(const std::filesystem::path& file) {
-    if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
-    // ImageInput, not ImageBuf: an ImageBuf reads through OIIO's shared image cache, which keeps the first spec it
-    // saw for a file name; a file rewritten with another size under the same name then overflowed the pixel
-    // buffer (found by fuzz_fit_images, docs/STABILITY.md).
-    auto in = OIIO::ImageInput::open(file.string());
-    if (!in) throw InputError(file.string() + ": cannot be read as an image (" + OIIO::geterror() + ")");
-    const auto spec = in->spec();
-    if (spec.width < 2 || spec.height < 2 || spec.nchannels < 1) throw InputError(file.string() + ": image smaller than 2 x 2 pixels");
-    DataImage out{spec.width, spec.height, spec.nchannels, std::vector<float>(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels),
-                  spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF, spec.channelnames};
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.values.data())) {
-        throw InputError(file.string() + ": cannot be read as an image (" + in->geterror() + ")");
-    }
-    return out;
-}
+DataImage read_data_image(const std::filesystem::path& file) { return read_image_file(file); }
 
 void write_data_image(const std::filesystem::path& file, const DataImage& image, const ImageMetadata& metadata) {
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
-    if (!image.channel_names.empty()) spec.channelnames = image.channel_names;
-    OIIO::ImageBuf buf(spec);
-    buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.values.data());
-    set_metadata(buf, metadata);
-    write(buf, file, OIIO::TypeDesc::FLOAT);
+    write(image, file, PixelFormat::float32, ImageAttributes{metadata, std::nullopt});
 }
 
 LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm) {
@@ -226,9 +206,7 @@ void write_image_grid(const std::filesystem::path& file, const std::vector<Linea
     if (panels.empty()) throw InputError(file.string() + ": no panels");
     const int w = panels.front().width, h = panels.front().height, gap = 8;
     const auto rows = (panels.size() + columns - 1) / columns;
-    OIIO::ImageBuf buf(OIIO::ImageSpec(static_cast<int>(columns) * (w + gap) + gap, static_cast<int>(rows) * (h + gap) + gap, 3,
-                                       OIIO::TypeDesc::FLOAT));
-    OIIO::ImageBufAlgo::fill(buf, {0.5f, 0.5f, 0.5f});
+    auto image = rgb_image(static_cast<int>(columns) * (w + gap) + gap, static_cast<int>(rows) * (h + gap) + gap, {0.5f, 0.5f, 0.5f});
     for (std::size_t i = 0; i < panels.size(); ++i) {
         auto pixels = panels[i].rgb;
         cm.display_view_pixels(pixels, working_space, display, view);
@@ -237,17 +215,15 @@ void write_image_grid(const std::filesystem::path& file, const std::vector<Linea
         double luma = 0.0;
         for (int y = 0; y < h; ++y) {
             for (int x = 0; x < w; ++x) {
-                float* p = &pixels[(static_cast<std::size_t>(y) * w + x) * 3];
-                for (int c = 0; c < 3; ++c) p[c] = std::clamp(p[c], 0.0f, 1.0f);
-                buf.setpixel(x0 + x, y0 + y, p, 3);
-                if (y < 40 && x < 120) luma += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / (40.0 * 120.0);
+                const float* p = &pixels[(static_cast<std::size_t>(y) * w + x) * 3];
+                float* q = &image.values[(static_cast<std::size_t>(y0 + y) * image.width + x0 + x) * 3];
+                for (int c = 0; c < 3; ++c) q[c] = std::clamp(p[c], 0.0f, 1.0f);
+                if (y < 40 && x < 120) luma += (0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2]) / (40.0 * 120.0);
             }
         }
-        if (i < labels.size()) draw_label(buf, OIIO::ROI(x0, x0 + w, y0, y0 + h), labels[i], 13, luma);
+        if (i < labels.size()) draw_label(image, PixelRect{x0, y0, x0 + w, y0 + h}, labels[i], 13, luma);
     }
-    buf.specmod().attribute("oiio:ColorSpace", std::string(display));
-    set_metadata(buf, metadata);
-    write(buf, file, file.extension() == ".png" ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
+    write_display_referred(image, file, display, metadata);
 }
 
 }  // namespace skinspec

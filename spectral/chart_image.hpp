@@ -1,5 +1,5 @@
 #pragma once
-// Colour-chart images through OpenImageIO: a grid of flat patches. Two renderings of the same patches:
+// Colour-chart images (spectral/image_files.hpp, OpenImageIO): a grid of flat patches. Two renderings of the same patches:
 //  - scene-linear OpenEXR in a named working space (half or float), with the OpenEXR `chromaticities`
 //    attribute and the colour-space name set, no labels;
 //  - display-referred PNG (8-bit) or TIFF (16-bit) through the OpenColorIO display/view transform, with a
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "spectral/color_management.hpp"
+#include "spectral/image_files.hpp"
 
 namespace skinspec {
 
@@ -33,8 +34,6 @@ struct ChartAxes {
     std::string row_title;
     std::vector<std::string> row_values;
 };
-
-using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
 // Largest chart written (pixels, margins excluded): 1e8 pixels is 1.2 GB as float RGB in memory.
 inline constexpr double max_chart_pixels = 1e8;
@@ -58,14 +57,6 @@ struct LinearImage {
 
 // The stored values of any image OpenImageIO reads, as floats (8/16-bit integers scaled to [0, 1]), no colour
 // conversion: for data such as irradiance maps and masks. InputError for a missing or unreadable file.
-struct DataImage {
-    int width = 0;
-    int height = 0;
-    int channels = 0;
-    std::vector<float> values;  // row-major, channels interleaved
-    bool floating_point = false;
-    std::vector<std::string> channel_names;
-};
 DataImage read_data_image(const std::filesystem::path& file);
 // Float data (no colour tagging) as OpenEXR, with the metadata.
 void write_data_image(const std::filesystem::path& file, const DataImage& image, const ImageMetadata& metadata);

@@ -54,7 +54,7 @@ double InverseCdfTable::mean_cos() const {
     return sum / static_cast<double>(size_);
 }
 
-MeasuredProfile::MeasuredProfile(const char* file) : end_tables_(std::make_shared<EndTables>()) {
+MeasuredProfile::MeasuredProfile(const char* file) : tabulated_tables_(std::make_shared<TabulatedTables>()) {
     const auto table = DataTable::read(data_file(file));
     const auto wavelengths = table.column("wavelength_nm");
     wavelengths_nm_.assign(wavelengths.begin(), wavelengths.end());
@@ -101,18 +101,30 @@ InverseCdfTable MeasuredProfile::inverse_table(double wavelength_nm, std::size_t
     return InverseCdfTable(angles_deg_, cumulative(wavelength_nm), entries);
 }
 
-struct MeasuredProfile::EndTables {
+struct MeasuredProfile::TabulatedTables {
     std::mutex mutex;
-    std::map<std::pair<bool, std::size_t>, std::shared_ptr<const InverseCdfTable>> tables;  // (upper end, entries)
+    std::map<std::pair<std::size_t, std::size_t>, std::shared_ptr<const InverseCdfTable>> tables;  // (index, entries)
 };
 
-std::shared_ptr<const InverseCdfTable> MeasuredProfile::shared_inverse_table(double wavelength_nm, std::size_t entries) const {
-    const bool below = wavelength_nm <= wavelengths_nm_.front(), above = wavelength_nm >= wavelengths_nm_.back();
-    if (!below && !above) return std::make_shared<const InverseCdfTable>(inverse_table(wavelength_nm, entries));
-    const std::lock_guard lock(end_tables_->mutex);
-    auto& table = end_tables_->tables[{above, entries}];
-    if (!table) table = std::make_shared<const InverseCdfTable>(inverse_table(above ? wavelengths_nm_.back() : wavelengths_nm_.front(), entries));
+std::shared_ptr<const InverseCdfTable> MeasuredProfile::tabulated_inverse_table(std::size_t index, std::size_t entries) const {
+    const std::lock_guard lock(tabulated_tables_->mutex);
+    auto& table = tabulated_tables_->tables[{index, entries}];
+    if (!table) table = std::make_shared<const InverseCdfTable>(inverse_table(wavelengths_nm_.at(index), entries));
     return table;
+}
+
+std::shared_ptr<const InverseCdfTable> MeasuredProfile::shared_inverse_table(double wavelength_nm, std::size_t entries) const {
+    if (wavelength_nm <= wavelengths_nm_.front()) return tabulated_inverse_table(0, entries);
+    if (wavelength_nm >= wavelengths_nm_.back()) return tabulated_inverse_table(wavelengths_nm_.size() - 1, entries);
+    return std::make_shared<const InverseCdfTable>(inverse_table(wavelength_nm, entries));
+}
+
+MeasuredProfile::Mixture MeasuredProfile::mixture(double wavelength_nm) const {
+    const auto& w = wavelengths_nm_;
+    if (wavelength_nm <= w.front()) return {0, 0, 0.0};
+    if (wavelength_nm >= w.back()) return {w.size() - 1, w.size() - 1, 0.0};
+    const auto upper = static_cast<std::size_t>(std::upper_bound(w.begin(), w.end(), wavelength_nm) - w.begin());
+    return {upper - 1, upper, (wavelength_nm - w[upper - 1]) / (w[upper] - w[upper - 1])};
 }
 
 }  // namespace skinspec

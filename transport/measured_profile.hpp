@@ -54,13 +54,25 @@ public:
     // these data), so every such wavelength gets one table built once; inside, a table of its own.
     std::shared_ptr<const InverseCdfTable> shared_inverse_table(double wavelength_nm, std::size_t entries = 1000) const;
 
+    // The profile at a wavelength as a mixture of two tabulated ones: C = (1 - w) C(lower) + w C(upper), since the
+    // cumulative fractions are linear in wavelength between tabulated profiles (lower = upper, w = 0, at and beyond
+    // the ends). Sampling the mixture (the upper table with probability w) samples the profile exactly.
+    struct Mixture {
+        std::size_t lower = 0;  // indices into wavelengths_nm()
+        std::size_t upper = 0;
+        double upper_weight = 0.0;
+    };
+    Mixture mixture(double wavelength_nm) const;
+    // The table of tabulated wavelength `index`, built once per entry count.
+    std::shared_ptr<const InverseCdfTable> tabulated_inverse_table(std::size_t index, std::size_t entries = 1000) const;
+
 private:
     explicit MeasuredProfile(const char* file);
     std::vector<double> angles_deg_;
     std::vector<double> wavelengths_nm_;
     std::vector<TabulatedSpectrum> by_angle_;  // cumulative fraction at each angle, as a function of wavelength
-    struct EndTables;
-    std::shared_ptr<EndTables> end_tables_;    // the clamped ends' tables by entry count, built on first use
+    struct TabulatedTables;
+    std::shared_ptr<TabulatedTables> tabulated_tables_;  // by (tabulated wavelength, entry count), built on first use
 };
 
 }  // namespace skinspec

@@ -47,3 +47,10 @@ skinspec_cli_test("fit-spectrum json" 0 "\"fits\": \\[\n *\\{\n *\"name\": \"lig
 skinspec_cli_test("spectrum authors-code variant" 0 "variant.*biospec-authors-code" spectrum --variant biospec-authors-code --wavelengths 550 --rays 1000 --json)
 skinspec_cli_test("spectrum 0-45" 0 "\"geometry\": \"0-45\"" spectrum --geometry 0-45 --wavelengths 550 --rays 1000 --json)
 skinspec_cli_test("swatch geometry sce" 0 "2 patches" swatch --geometry sce --vary epidermis.melanosome_fraction=0.01:0.2:2 --delta-e 2 --max-rays 20000)
+
+# Image support is a module loaded on first use: the program itself does not link OpenImageIO, and a broken
+# module is a clear error (exit 1), not a crash.
+add_test(NAME "images: the program does not link OpenImageIO"
+         COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:skinspec> -P "${CMAKE_CURRENT_SOURCE_DIR}/cli/no_image_library.cmake")
+skinspec_cli_test("swatch with a broken image module" 1 "image module .*broken_module.so cannot be loaded" swatch --material white_reflector.toml -o ${CMAKE_CURRENT_BINARY_DIR}/broken.png --overwrite)
+set_property(TEST "cli: swatch with a broken image module" APPEND PROPERTY ENVIRONMENT "SKINSPEC_IMAGE_MODULE=${CMAKE_CURRENT_SOURCE_DIR}/inputs/broken_module.so")

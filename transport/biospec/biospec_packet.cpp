@@ -158,9 +158,10 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
     std::uint64_t flags = 0;
     const bool permute = static_cast<std::size_t>(model.layers) <= n;
     const PerLayer<DI> scattering{model.scattering.data(), permute}, redraw{model.redraw.data(), permute},
-        table_offsets{model.table_offset.data(), permute}, table_sizes{model.table_size.data(), permute};
+        table_offsets{model.table_offset.data(), permute}, table_offsets_upper{model.table_offset_upper.data(), permute},
+        table_sizes{model.table_size.data(), permute};
     const PerLayer<DF> thicknesses{model.thickness_cm.data(), permute}, hg{model.hg_g.data(), permute},
-        rayleigh_mfp{model.rayleigh_mean_free_path_cm.data(), permute}, eta_down{model.eta_down.data(), permute},
+        table_weights{model.table_upper_weight.data(), permute}, rayleigh_mfp{model.rayleigh_mean_free_path_cm.data(), permute}, eta_down{model.eta_down.data(), permute},
         eta_up{model.eta_up.data(), permute}, inverse_eta_down{model.inverse_eta_down.data(), permute},
         inverse_eta_up{model.inverse_eta_up.data(), permute};
     const auto mu_a_of = [&](std::size_t set) { return PerLayer<DF>{model.mu_a_per_cm.data() + set * model.layer_stride, permute}; };
@@ -184,6 +185,9 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         const MF is_cosine = hn::And(active, FromInt(kind == hn::Set(di, static_cast<int>(PacketScattering::cosine))));
         const MF redraw_allowed = FromInt(redraw.at(k) != hn::Zero(di));
         const VI table_offset = table_offsets.at(k);
+        const VI table_offset_upper = table_offsets_upper.at(k);
+        const VF table_weight = table_weights.at(k);
+        const bool mixed = !hn::AllFalse(df, table_weight > zero);
         const VF table_size = hn::ConvertTo(df, table_sizes.at(k));
         const VF hg_g = hg.at(k);
 
@@ -194,9 +198,18 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
             c = one;
             s = zero;
             if (any_table) {
-                const VI index = hn::Add(hn::ConvertTo(di, hn::Min(hn::Mul(u, table_size), hn::Sub(table_size, one))), table_offset);
-                c = hn::GatherIndex(df, model.table_cos.data(), index);
-                s = hn::GatherIndex(df, model.table_sin.data(), index);
+                // The mixture's table by the same u: u < w picks the upper table with u / w, else the lower with
+                // (u - w) / (1 - w), each again uniform in [0, 1).
+                VF v = u;
+                VI offset = table_offset;
+                if (mixed) {
+                    const MF upper = u < table_weight;
+                    v = hn::IfThenElse(upper, hn::Div(u, table_weight), hn::Div(hn::Sub(u, table_weight), hn::Sub(one, table_weight)));
+                    offset = hn::IfThenElse(hn::RebindMask(di, upper), table_offset_upper, table_offset);
+                }
+                const VI index = hn::Add(hn::ConvertTo(di, hn::Min(hn::Mul(v, table_size), hn::Sub(table_size, one))), offset);
+                c = hn::GatherIndex(df, model.table_cos, index);
+                s = hn::GatherIndex(df, model.table_sin, index);
             }
             if (any_hg) {
                 const VF hg = HgCos(hg_g, u);
@@ -400,8 +413,8 @@ const char* biospec_packet_target() { return HWY_DYNAMIC_DISPATCH(TargetImpl)();
 
 void BiospecPacketModel::pad() {
     layer_stride = (static_cast<std::size_t>(layers) + widest_vector - 1) / widest_vector * widest_vector;
-    for (auto* v : {&scattering, &redraw, &table_offset, &table_size}) v->resize(layer_stride, 0);
-    for (auto* v : {&thickness_cm, &eta_down, &eta_up, &inverse_eta_down, &inverse_eta_up, &rayleigh_mean_free_path_cm, &hg_g}) {
+    for (auto* v : {&scattering, &redraw, &table_offset, &table_offset_upper, &table_size}) v->resize(layer_stride, 0);
+    for (auto* v : {&thickness_cm, &eta_down, &eta_up, &inverse_eta_down, &inverse_eta_up, &rayleigh_mean_free_path_cm, &hg_g, &table_upper_weight}) {
         v->resize(layer_stride, 0.0f);
     }
     const auto rows = static_cast<std::size_t>(sets);

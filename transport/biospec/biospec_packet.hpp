@@ -39,14 +39,18 @@ struct BiospecPacketModel {
     std::int32_t sets = 1;
     std::vector<std::int32_t> scattering;    // PacketScattering
     std::vector<std::int32_t> redraw;        // 1: re-draw perturbations that reverse the travel sense; 0: keep them
-    std::vector<std::int32_t> table_offset;  // the layer's profile table in table_cos / table_sin
+    // A measured profile is a mixture of two tabulated tables (MeasuredProfile::Mixture): the upper one with
+    // probability table_upper_weight. Offsets into table_cos / table_sin.
+    std::vector<std::int32_t> table_offset, table_offset_upper;
     std::vector<std::int32_t> table_size;
+    std::vector<float> table_upper_weight;
     std::vector<float> thickness_cm, hg_g;
     std::vector<float> rayleigh_mean_free_path_cm;  // 1 / the Rayleigh coefficient (inf without Rayleigh)
     // n_from / n_to at the interface a downward (upward) crossing meets, and n_to / n_from; with
     // model.swapped_upward_indices the upward ones have the indices swapped (authors' behaviour 1).
     std::vector<float> eta_down, eta_up, inverse_eta_down, inverse_eta_up;
-    std::vector<float> table_cos, table_sin;  // the measured-profile inverse-CDF tables, concatenated
+    const float* table_cos = nullptr;  // the measured-profile inverse-CDF tables, concatenated (owned by the walk)
+    const float* table_sin = nullptr;
     std::vector<float> mu_a_per_cm;           // [set * layer_stride + layer]
 
     // Sets layer_stride for `layers` and pads every per-layer array to it (mu_a_per_cm: `sets` rows of it).

@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <numbers>
 
 #include "transport/fresnel.hpp"
@@ -92,6 +94,35 @@ struct BiospecWavelength::Lanes {
     bool alive_set(std::size_t set, std::size_t lane) const { return packet.limit[set * count + lane] != dead_limit; }
 };
 
+// Single-precision copies of the SC and epidermis profile tables at every tabulated wavelength, concatenated.
+struct BiospecWavelength::ProfileArena {
+    std::vector<float> cos, sin;
+    std::vector<std::int32_t> offset[2];  // [0: SC, 1: epidermis][tabulated wavelength]
+};
+
+std::shared_ptr<const BiospecWavelength::ProfileArena> BiospecWavelength::profile_arena(std::size_t entries) {
+    static std::mutex mutex;
+    static std::map<std::size_t, std::shared_ptr<const ProfileArena>> arenas;
+    const std::lock_guard lock(mutex);
+    auto& arena = arenas[entries];
+    if (!arena) {
+        auto built = std::make_shared<ProfileArena>();
+        const MeasuredProfile* profiles[2] = {&MeasuredProfile::stratum_corneum(), &MeasuredProfile::epidermis()};
+        for (std::size_t p = 0; p < 2; ++p) {
+            for (std::size_t i = 0; i < profiles[p]->wavelengths_nm().size(); ++i) {
+                const auto table = profiles[p]->tabulated_inverse_table(i, entries);
+                built->offset[p].push_back(static_cast<std::int32_t>(built->cos.size()));
+                for (std::size_t e = 0; e < table->size(); ++e) {
+                    built->cos.push_back(static_cast<float>(table->cos_theta(e)));
+                    built->sin.push_back(static_cast<float>(table->sin_theta(e)));
+                }
+            }
+        }
+        arena = std::move(built);
+    }
+    return arena;
+}
+
 BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
                                      const BiospecOptions& options)
     : BiospecWavelength(stack, wavelength_nm, incidence_deg, geometry, options, BiospecChannels(Quantities{}, stack.layers.size(), 0), {}) {
@@ -158,18 +189,7 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
             o.crossing = CrossingScattering::henyey_greenstein;
             o.hg_g = options.thin_layer_hg->epidermis_g(wavelength_nm);
         }
-        const InverseCdfTable* profile = nullptr;
-        if (o.crossing == CrossingScattering::measured_stratum_corneum) {
-            if (!stratum_corneum_table_) {
-                stratum_corneum_table_ = MeasuredProfile::stratum_corneum().shared_inverse_table(wavelength_nm, options.profile_table_entries);
-            }
-            profile = stratum_corneum_table_.get();
-        } else if (o.crossing == CrossingScattering::measured_epidermis) {
-            if (!epidermis_table_) {
-                epidermis_table_ = MeasuredProfile::epidermis().shared_inverse_table(wavelength_nm, options.profile_table_entries);
-            }
-            profile = epidermis_table_.get();
-        }
+        const bool measured = o.crossing == CrossingScattering::measured_stratum_corneum || o.crossing == CrossingScattering::measured_epidermis;
         PacketScattering kind = PacketScattering::cosine;
         switch (o.crossing) {
             case CrossingScattering::measured_stratum_corneum:
@@ -181,16 +201,19 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
         m.scattering.push_back(static_cast<std::int32_t>(kind));
         // Authors' behaviour 4: their SC keeps a perturbation that reverses the travel sense.
         m.redraw.push_back(o.crossing != CrossingScattering::measured_stratum_corneum || model_.redraw_reversals_in_stratum_corneum ? 1 : 0);
-        m.table_offset.push_back(static_cast<std::int32_t>(m.table_cos.size()));
-        m.table_size.push_back(profile ? static_cast<std::int32_t>(profile->size()) : 1);
-        if (profile) {
-            for (std::size_t i = 0; i < profile->size(); ++i) {
-                m.table_cos.push_back(static_cast<float>(profile->cos_theta(i)));
-                m.table_sin.push_back(static_cast<float>(profile->sin_theta(i)));
-            }
+        if (measured) {
+            if (!arena_) arena_ = profile_arena(options.profile_table_entries);
+            const std::size_t which = o.crossing == CrossingScattering::measured_stratum_corneum ? 0 : 1;
+            const auto mixture = (which == 0 ? MeasuredProfile::stratum_corneum() : MeasuredProfile::epidermis()).mixture(wavelength_nm);
+            m.table_offset.push_back(arena_->offset[which][mixture.lower]);
+            m.table_offset_upper.push_back(arena_->offset[which][mixture.upper]);
+            m.table_upper_weight.push_back(static_cast<float>(mixture.upper_weight));
+            m.table_size.push_back(static_cast<std::int32_t>(options.profile_table_entries));
         } else {
-            m.table_cos.push_back(1.0f);
-            m.table_sin.push_back(0.0f);
+            m.table_offset.push_back(0);
+            m.table_offset_upper.push_back(0);
+            m.table_upper_weight.push_back(0.0f);
+            m.table_size.push_back(1);
         }
         m.thickness_cm.push_back(static_cast<float>(o.thickness_cm));
         m.rayleigh_mean_free_path_cm.push_back(o.rayleigh_per_cm > 0.0 ? static_cast<float>(1.0 / o.rayleigh_per_cm)
@@ -198,6 +221,9 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
         m.hg_g.push_back(static_cast<float>(o.hg_g));
         n.push_back(o.refractive_index);
     }
+    if (!arena_) arena_ = profile_arena(1);  // the step's table pointers are valid even without a measured layer
+    m.table_cos = arena_->cos.data();
+    m.table_sin = arena_->sin.data();
     n_top_ = n.front();
     entry_reflectance_ = fresnel_reflectance(incident_.z, n_above_, n_top_);
     entry_direction_ = refract(incident_, n_above_, n_top_).value_or(incident_);  // unused under total reflection (Fresnel 1)

@@ -89,8 +89,10 @@ private:
     double entry_reflectance_ = 0.0;  // Fresnel of the incident beam at the top (step 1), the same for every ray
     Direction entry_direction_;       // the refracted beam
     std::size_t sets_ = 1;
-    std::shared_ptr<const InverseCdfTable> stratum_corneum_table_;  // shared with every wavelength that has the same profile
-    std::shared_ptr<const InverseCdfTable> epidermis_table_;
+    struct ProfileArena;
+    // The measured profiles' tables at their tabulated wavelengths, for every wavelength and walk (per entry count).
+    static std::shared_ptr<const ProfileArena> profile_arena(std::size_t entries);
+    std::shared_ptr<const ProfileArena> arena_;
     double n_above_;
     double n_below_;
     bool reflector_;

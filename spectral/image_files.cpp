@@ -1,0 +1,73 @@
+#include "spectral/image_files.hpp"
+
+#include <cstdlib>
+#include <dlfcn.h>
+#include <stdexcept>
+
+#include "spectral/input_error.hpp"
+
+namespace skinspec {
+namespace {
+
+// Where the module may be: $SKINSPEC_IMAGE_MODULE, next to the running program, or where the build put it.
+std::vector<std::filesystem::path> module_candidates() {
+    std::vector<std::filesystem::path> out;
+    if (const char* env = std::getenv("SKINSPEC_IMAGE_MODULE"); env && *env) out.emplace_back(env);
+    std::error_code error;
+    const auto program = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error) {
+        out.push_back(program.parent_path() / "libskinspec_images.so");
+        out.push_back(program.parent_path().parent_path() / "lib" / "skinspec" / "libskinspec_images.so");
+    }
+    out.emplace_back(SKINSPEC_IMAGE_MODULE_PATH);
+    return out;
+}
+
+const ImageModuleFunctions& load_module() {
+    std::string tried;
+    for (const auto& candidate : module_candidates()) {
+        tried += (tried.empty() ? "" : ", ") + candidate.string();
+        if (!std::filesystem::is_regular_file(candidate)) continue;
+        void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) throw std::runtime_error("image module " + candidate.string() + " cannot be loaded: " + dlerror());
+        using Entry = const ImageModuleFunctions* (*)();
+        const auto entry = reinterpret_cast<Entry>(dlsym(handle, "skinspec_image_module"));
+        if (!entry) throw std::runtime_error("image module " + candidate.string() + " has no entry point skinspec_image_module");
+        const ImageModuleFunctions* functions = entry();
+        if (functions->interface_version != image_module_interface_version) {
+            throw std::runtime_error("image module " + candidate.string() + " has interface " + std::to_string(functions->interface_version) +
+                                     ", this program needs " + std::to_string(image_module_interface_version) + " (rebuild)");
+        }
+        return *functions;
+    }
+    throw std::runtime_error("image support (libskinspec_images.so) not found; looked in: " + tried);
+}
+
+const ImageModuleFunctions& module() {
+    static const ImageModuleFunctions& functions = load_module();
+    return functions;
+}
+
+}  // namespace
+
+DataImage read_image_file(const std::filesystem::path& file) {
+    if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
+    DataImage out;
+    if (const auto error = module().read(file.string(), out); !error.empty()) throw InputError(file.string() + ": " + error);
+    return out;
+}
+
+void write_image_file(const std::filesystem::path& file, const DataImage& image, PixelFormat format, const ImageAttributes& attributes,
+                      const std::filesystem::path& reported_name) {
+    if (const auto error = module().write(file.string(), image, format, attributes); !error.empty()) {
+        throw InputError(reported_name.string() + ": cannot be written (" + error + ")");
+    }
+}
+
+void render_text(DataImage& image, int x, int y, const std::string& text, int font_px, const std::string& font, const std::array<float, 3>& colour) {
+    if (const auto error = module().render_text(image, x, y, text, font_px, font, colour); !error.empty()) {
+        throw InputError("cannot draw labels: " + error + " (install fonts-dejavu-core)");
+    }
+}
+
+}  // namespace skinspec
