@@ -79,7 +79,9 @@ BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::s
 // per-ray score (channels a ray reaches more than once).
 struct BiospecWavelength::Lanes {
     static constexpr std::size_t count = BiospecPacket::lanes;
-    Lanes(std::size_t sets, std::size_t channels) : packet(sets), boost_log(sets * count), charged(sets * count), scores(count, RayScore(channels)) {}
+    Lanes(std::size_t sets, std::size_t channels)
+        : sets(sets), channels(channels), packet(sets), boost_log(sets * count), charged(sets * count), scores(count, RayScore(channels)) {}
+    std::size_t sets, channels;
     BiospecPacket packet;
     std::uint64_t key[count] = {};
     std::vector<double> boost_log;  // [set * count + lane]
@@ -283,7 +285,13 @@ std::size_t BiospecWavelength::exit_bin(double cos_exit) const {
 }
 
 void BiospecWavelength::walk(RandomStream& random, std::uint64_t rays, RayTally& tally, ExitPaths* paths) const {
-    Lanes lanes(sets_, channels_.count * sets_);
+    // The lanes' buffers are this thread's, kept from batch to batch (a spectrum of many wavelengths with few rays
+    // each would otherwise spend its time allocating them); every lane is empty between two walks.
+    thread_local std::unique_ptr<Lanes> scratch;
+    if (!scratch || scratch->sets != sets_ || scratch->channels != channels_.count * sets_) {
+        scratch = std::make_unique<Lanes>(sets_, channels_.count * sets_);
+    }
+    Lanes& lanes = *scratch;
     auto& packet = lanes.packet;
     std::uint64_t started = 0;
     std::size_t active = 0;
@@ -296,14 +304,19 @@ void BiospecWavelength::walk(RandomStream& random, std::uint64_t rays, RayTally&
         packet.active[lane] = 0;
         return false;
     };
-    for (std::size_t lane = 0; lane < Lanes::count; ++lane) active += refill(lane) ? 1 : 0;
-    while (active > 0) {
-        for (std::uint64_t flags = step_biospec_packet(packet_, packet); flags != 0; flags &= flags - 1) {
-            const auto lane = static_cast<std::size_t>(std::countr_zero(flags));
-            if (!settle(lane, lanes, tally, paths)) continue;
-            if (!paths) tally.add_ray(lanes.scores[lane]);
-            if (!refill(lane)) --active;
+    try {
+        for (std::size_t lane = 0; lane < Lanes::count; ++lane) active += refill(lane) ? 1 : 0;
+        while (active > 0) {
+            for (std::uint64_t flags = step_biospec_packet(packet_, packet); flags != 0; flags &= flags - 1) {
+                const auto lane = static_cast<std::size_t>(std::countr_zero(flags));
+                if (!settle(lane, lanes, tally, paths)) continue;
+                if (!paths) tally.add_ray(lanes.scores[lane]);
+                if (!refill(lane)) --active;
+            }
         }
+    } catch (...) {
+        scratch.reset();  // lanes left mid-ray are not reused
+        throw;
     }
 }
 
