@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/bench_command.hpp"
+#include "spectral/image_files.hpp"
 #include "cli/stress_command.hpp"
 #include "cli/color_command.hpp"
 #include "cli/materials_command.hpp"
@@ -92,6 +93,9 @@ int main(int argc, char** argv) {
     } catch (const skinspec::InputError& e) {
         std::cerr << "skinspec: error: " << e.what() << '\n';
         return 2;
+    } catch (const skinspec::ImageModuleError& e) {
+        std::cerr << "skinspec: error: " << e.what() << " (rebuild with ./scripts/setup.sh, or set SKINSPEC_IMAGE_MODULE)\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "skinspec: internal error: " << e.what() << '\n';
         return 1;

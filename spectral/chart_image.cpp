@@ -164,7 +164,10 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
     const double background_luma = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
     std::string titles;
     if (!axes.column_title.empty()) titles += "columns: " + axes.column_title;
-    if (!axes.row_title.empty()) titles += (titles.empty() ? "" : "\n") + std::string("rows: ") + axes.row_title;
+    if (!axes.row_title.empty()) {
+        if (!titles.empty()) titles += '\n';
+        titles += "rows: " + axes.row_title;
+    }
     if (!titles.empty()) draw_label(image, PixelRect{0, 0, image.width, framed.top_px}, titles, axis_px, background_luma);
     for (std::size_t c = 0; c < axes.column_values.size() && c < layout.columns; ++c) {
         const auto rect = patch_rect(framed, c);

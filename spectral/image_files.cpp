@@ -2,7 +2,6 @@
 
 #include <cstdlib>
 #include <dlfcn.h>
-#include <stdexcept>
 
 #include "spectral/input_error.hpp"
 
@@ -29,18 +28,18 @@ const ImageModuleFunctions& load_module() {
         tried += (tried.empty() ? "" : ", ") + candidate.string();
         if (!std::filesystem::is_regular_file(candidate)) continue;
         void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) throw std::runtime_error("image module " + candidate.string() + " cannot be loaded: " + dlerror());
+        if (!handle) throw ImageModuleError("image module " + candidate.string() + " cannot be loaded: " + dlerror());
         using Entry = const ImageModuleFunctions* (*)();
         const auto entry = reinterpret_cast<Entry>(dlsym(handle, "skinspec_image_module"));
-        if (!entry) throw std::runtime_error("image module " + candidate.string() + " has no entry point skinspec_image_module");
+        if (!entry) throw ImageModuleError("image module " + candidate.string() + " has no entry point skinspec_image_module");
         const ImageModuleFunctions* functions = entry();
         if (functions->interface_version != image_module_interface_version) {
-            throw std::runtime_error("image module " + candidate.string() + " has interface " + std::to_string(functions->interface_version) +
+            throw ImageModuleError("image module " + candidate.string() + " has interface " + std::to_string(functions->interface_version) +
                                      ", this program needs " + std::to_string(image_module_interface_version) + " (rebuild)");
         }
         return *functions;
     }
-    throw std::runtime_error("image support (libskinspec_images.so) not found; looked in: " + tried);
+    throw ImageModuleError("image support (libskinspec_images.so) not found; looked in: " + tried);
 }
 
 const ImageModuleFunctions& module() {

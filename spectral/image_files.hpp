@@ -5,11 +5,18 @@
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace skinspec {
+
+// The image module is missing, broken or from another build: an installation fault, not bad input.
+class ImageModuleError : public std::runtime_error {
+public:
+    explicit ImageModuleError(const std::string& message) : std::runtime_error(message) {}
+};
 
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 

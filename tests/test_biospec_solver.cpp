@@ -80,7 +80,8 @@ TEST_CASE("the same seed gives identical numbers on 1 and 2 threads", "[biospec_
 
 TEST_CASE("the SC alone reproduces the measured cumulative profile it was built from", "[biospec_solver]") {
     // Stratum corneum only, no absorbers, index-matched (n = 1 everywhere), reflector off, normal incidence:
-    // every ray crosses once and leaves with the measured deflection. 1e6 rays; within 1 % at every angle.
+    // every ray crosses once and leaves with the measured deflection. 1e6 rays; within 1 % at every angle. 491 nm
+    // lies between two tabulated profiles: the walk samples it as their mixture.
     auto stack = preset("biospec-lightly");
     stack.layers.resize(1);
     stack.layers[0].carotene_g_per_l = 0.0;
@@ -89,7 +90,7 @@ TEST_CASE("the SC alone reproduces the measured cumulative profile it was built 
     stack.bottom = BottomBoundary::exit;
     const auto& profile = MeasuredProfile::stratum_corneum();
     SpectralRequest request;
-    request.wavelengths = WavelengthGrid::list({436.0, 546.0});
+    request.wavelengths = WavelengthGrid::list({436.0, 491.0, 546.0});
     request.quantities = Quantities{true, true, false, true};
     request.max_rays_per_wavelength = 1'000'000;
     const auto result = solve_biospec(stack, request);

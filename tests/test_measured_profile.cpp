@@ -73,3 +73,25 @@ TEST_CASE("randomized table look-up samples match the measured fractions", "[mea
     CHECK(integral == Approx(1.0).epsilon(1e-9));
     CHECK(profile.cdf(436.0, 5.0) == Approx((0.026 + 0.161) / 2.0));
 }
+
+TEST_CASE("a profile between tabulated wavelengths is the mixture of its two neighbours", "[measured_profile]") {
+    // The cumulative fractions are linear in wavelength between tabulated profiles, so C(lambda) is exactly
+    // (1 - w) C(lower) + w C(upper) with w the fractional position; at and beyond the ends w = 0.
+    for (const auto* profile : {&MeasuredProfile::stratum_corneum(), &MeasuredProfile::epidermis()}) {
+        const auto nm = profile->wavelengths_nm();
+        for (const double wavelength : {nm.front() - 50.0, nm.front(), 0.5 * (nm[1] + nm[2]), nm[2] + 0.1, nm.back(), 700.0}) {
+            INFO(wavelength << " nm");
+            const auto m = profile->mixture(wavelength);
+            REQUIRE(m.lower <= m.upper);
+            REQUIRE(m.upper < nm.size());
+            CHECK(m.upper_weight >= 0.0);
+            CHECK(m.upper_weight < 1.0);
+            const auto c = profile->cumulative(wavelength);
+            const auto lower = profile->cumulative(nm[m.lower]);
+            const auto upper = profile->cumulative(nm[m.upper]);
+            for (std::size_t i = 0; i < c.size(); ++i) CHECK(c[i] == Approx((1.0 - m.upper_weight) * lower[i] + m.upper_weight * upper[i]).margin(1e-12));
+        }
+        CHECK(profile->mixture(0.5 * (nm[1] + nm[2])).upper_weight == Approx(0.5));
+        CHECK(profile->tabulated_inverse_table(1) == profile->tabulated_inverse_table(1));  // built once, shared
+    }
+}
