@@ -238,6 +238,10 @@ TEST_CASE("bad requests are input errors naming the value and range", "[biospec_
     request.stderr_target.reset();
     request.wavelengths = WavelengthGrid::list({900.0});
     CHECK_THROWS_WITH(solve_biospec(stack, request), Catch::Contains("eumelanin: wavelength 900 nm is outside"));
+    request.wavelengths = WavelengthGrid::list({550.0});
+    BiospecOptions options;
+    options.max_events_per_ray = 3'000'000'000u;  // the packets count events in 32-bit signed lanes
+    CHECK_THROWS_WITH(solve_biospec(stack, request, options), "maximum events per ray 3000000000 is outside [1, 2147483647]");
 }
 
 namespace {

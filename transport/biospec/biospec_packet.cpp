@@ -26,8 +26,6 @@ using VI = hn::Vec<DI>;
 using VU = hn::Vec<DU>;
 using MF = hn::Mask<DF>;
 
-constexpr int max_redraws = 1000;  // same-hemisphere re-draws before keeping the unperturbed direction (as the scalar spec)
-
 // xoshiro128+ (Blackman & Vigna 2018), one stream per lane, advanced only in the lanes of `draw`: uniform in
 // [0, 1) from the top 24 bits.
 struct LaneRandom {
@@ -161,8 +159,8 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         table_offsets{model.table_offset.data(), permute}, table_offsets_upper{model.table_offset_upper.data(), permute},
         table_sizes{model.table_size.data(), permute};
     const PerLayer<DF> thicknesses{model.thickness_cm.data(), permute}, hg{model.hg_g.data(), permute},
-        table_weights{model.table_upper_weight.data(), permute}, rayleigh_mfp{model.rayleigh_mean_free_path_cm.data(), permute}, eta_down{model.eta_down.data(), permute},
-        eta_up{model.eta_up.data(), permute}, inverse_eta_down{model.inverse_eta_down.data(), permute},
+        table_weights{model.table_upper_weight.data(), permute}, rayleigh_mfp{model.rayleigh_mean_free_path_cm.data(), permute},
+        eta_down{model.eta_down.data(), permute}, eta_up{model.eta_up.data(), permute}, inverse_eta_down{model.inverse_eta_down.data(), permute},
         inverse_eta_up{model.inverse_eta_up.data(), permute};
     const auto mu_a_of = [&](std::size_t set) { return PerLayer<DF>{model.mu_a_per_cm.data() + set * model.layer_stride, permute}; };
 

@@ -18,6 +18,10 @@
 
 namespace skinspec {
 
+// Re-draws of a perturbation that reverses the travel sense (a crossing's, or the fold's at the surface) before the
+// unperturbed direction is kept.
+inline constexpr int max_redraws = 1000;
+
 // How a layer changes a crossing ray's direction.
 enum class PacketScattering : std::int32_t { table = 0, henyey_greenstein = 1, rayleigh_cosine = 2, cosine = 3 };
 

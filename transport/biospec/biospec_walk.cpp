@@ -16,7 +16,6 @@ namespace skinspec {
 namespace {
 
 constexpr double deg = std::numbers::pi / 180.0;
-constexpr int max_redraws = 1000;          // same-hemisphere re-draws before keeping the unperturbed direction
 constexpr double roulette_weight = 1e-4;   // weighted estimator: Russian roulette below this weight
 constexpr double roulette_survival = 0.1;
 const double roulette_depth = -std::log(roulette_weight);     // tau - ln(boost) beyond which a set plays roulette
