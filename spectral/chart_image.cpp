@@ -187,8 +187,6 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
     write_display_referred(image, file, display, metadata);
 }
 
-DataImage read_data_image(const std::filesystem::path& file) { return read_image_file(file); }
-
 void write_data_image(const std::filesystem::path& file, const DataImage& image, const ImageMetadata& metadata) {
     write(image, file, PixelFormat::float32, ImageAttributes{metadata, std::nullopt});
 }

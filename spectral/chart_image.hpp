@@ -55,9 +55,7 @@ struct LinearImage {
     std::vector<float> rgb;
 };
 
-// The stored values of any image OpenImageIO reads, as floats (8/16-bit integers scaled to [0, 1]), no colour
-// conversion: for data such as irradiance maps and masks. InputError for a missing or unreadable file.
-DataImage read_data_image(const std::filesystem::path& file);
+// read_data_image (spectral/image_files.hpp) gives the stored values of any image, no colour conversion.
 // Float data (no colour tagging) as OpenEXR, with the metadata.
 void write_data_image(const std::filesystem::path& file, const DataImage& image, const ImageMetadata& metadata);
 // Any image OpenImageIO reads, as scene-linear `working_space` RGB: 8/16-bit files are taken as sRGB-encoded,

@@ -49,7 +49,7 @@ const ImageModuleFunctions& module() {
 
 }  // namespace
 
-DataImage read_image_file(const std::filesystem::path& file) {
+DataImage read_data_image(const std::filesystem::path& file) {
     if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
     DataImage out;
     if (const auto error = module().read(file.string(), out); !error.empty()) throw InputError(file.string() + ": " + error);

@@ -43,8 +43,9 @@ struct PixelRect {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-// Reads `file` (InputError when missing, unreadable or smaller than 2 x 2 pixels).
-DataImage read_image_file(const std::filesystem::path& file);
+// The stored values of any image OpenImageIO reads, as floats, no colour conversion (irradiance maps, masks);
+// InputError when missing, unreadable or smaller than 2 x 2 pixels.
+DataImage read_data_image(const std::filesystem::path& file);
 // Writes `image` to `file` as it is: the caller makes the write atomic (spectral/atomic_file.hpp). The format is
 // chosen by `file`'s extension; `reported_name` is the name errors give.
 void write_image_file(const std::filesystem::path& file, const DataImage& image, PixelFormat format, const ImageAttributes& attributes,

@@ -340,10 +340,8 @@ bool BiospecWavelength::enter(std::size_t lane, std::uint64_t key, Lanes& lanes,
                     return false;
                 }
                 for (std::size_t s = 0; s < sets_; ++s) {
-                    const std::size_t offset = s * channels_.count;
-                    if (channels_.reflectance >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.reflectance), f);
-                    if (channels_.specular >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.specular), 1.0);
-                    if (channels_.brdf_first_bin >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.brdf_first_bin) + exit_bin(-out.z), 1.0);
+                    tally_exit(tally, s, channels_.reflectance, f, channels_.brdf_first_bin, -out.z, 1.0);
+                    tally_exit(tally, s, channels_.specular, 1.0, -1, 0.0, 0.0);
                 }
                 return ended();
             }
@@ -376,6 +374,13 @@ bool BiospecWavelength::enter(std::size_t lane, std::uint64_t key, Lanes& lanes,
     return true;
 }
 
+void BiospecWavelength::tally_exit(RayTally& tally, std::size_t set, int channel, double value, int first_bin, double cos_exit,
+                                   double bin_value) const {
+    const std::size_t offset = set * channels_.count;
+    if (channel >= 0) tally.add_single(offset + static_cast<std::size_t>(channel), value);
+    if (first_bin >= 0) tally.add_single(offset + static_cast<std::size_t>(first_bin) + exit_bin(cos_exit), bin_value);
+}
+
 void BiospecWavelength::leave_top(std::size_t lane, double cos_exit, Lanes& lanes, RayTally& tally, ExitPaths* paths) const {
     const double f = geometry_factor(cos_exit, false);
     if (paths) {
@@ -389,9 +394,7 @@ void BiospecWavelength::leave_top(std::size_t lane, double cos_exit, Lanes& lane
     for (std::size_t s = 0; s < sets_; ++s) {
         if (!lanes.alive_set(s, lane)) continue;
         const double w = lanes.weight(s, lane);
-        const std::size_t offset = s * channels_.count;
-        if (channels_.reflectance >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.reflectance), w * f);
-        if (channels_.brdf_first_bin >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.brdf_first_bin) + exit_bin(cos_exit), w);
+        tally_exit(tally, s, channels_.reflectance, w * f, channels_.brdf_first_bin, cos_exit, w);
     }
 }
 
@@ -443,9 +446,7 @@ bool BiospecWavelength::settle(std::size_t lane, Lanes& lanes, RayTally& tally, 
             for (std::size_t s = 0; s < sets_; ++s) {
                 if (!lanes.alive_set(s, lane)) continue;
                 const double w = lanes.weight(s, lane);
-                const std::size_t offset = s * channels_.count;
-                if (channels_.transmittance >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.transmittance), w);
-                if (channels_.btdf_first_bin >= 0) tally.add_single(offset + static_cast<std::size_t>(channels_.btdf_first_bin) + exit_bin(p.exit_cos[lane]), w);
+                tally_exit(tally, s, channels_.transmittance, w, channels_.btdf_first_bin, p.exit_cos[lane], w);
             }
             return true;
         case LaneStatus::absorbed: absorb(0, k, 1.0); return true;

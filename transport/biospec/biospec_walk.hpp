@@ -78,6 +78,9 @@ private:
     // What the packet step flagged in `lane`: absorptance, roulette, an end. True when the ray has ended.
     bool settle(std::size_t lane, Lanes& lanes, RayTally& tally, ExitPaths* paths) const;
     void leave_top(std::size_t lane, double cos_exit, Lanes& lanes, RayTally& tally, ExitPaths* paths) const;
+    // A ray of set `set` leaving with |cos| = cos_exit: `value` into `channel`, `bin_value` into its angular bin
+    // from `first_bin` (either channel -1: not requested).
+    void tally_exit(RayTally& tally, std::size_t set, int channel, double value, int first_bin, double cos_exit, double bin_value) const;
     void finish_model();
     std::size_t exit_bin(double cos_exit) const;
     // What a ray leaving the top with |cos| = cos_exit adds to R per unit weight in the geometry (0 outside it).
