@@ -1,6 +1,9 @@
 #pragma once
 // Per-channel sums of per-ray contributions and of their squares: the mean over rays and its standard
-// error sqrt((E[x^2] - E[x]^2) / (N - 1)) for every tallied quantity.
+// error sqrt((E[x^2] - E[x]^2) / (N - 1)) for every tallied quantity. Channels a ray reaches very often at
+// many places (MCML's grids of absorption and exits) are tallied by batch means instead: per batch of rays
+// only their sum, and the standard error from the spread of the batches' means.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -31,7 +34,7 @@ private:
 
 class RayTally {
 public:
-    explicit RayTally(std::size_t channels = 0) : sum_(channels, 0.0), sum_sq_(channels, 0.0) {}
+    explicit RayTally(std::size_t channels = 0) : sum_(channels, 0.0), sum_sq_(channels, 0.0), batched_(channels, 0) {}
 
     // One finished ray: its contributions are added (and squared) and the score is cleared for the next ray.
     void add_ray(RayScore& score) {
@@ -46,14 +49,27 @@ public:
         ++rays_;
     }
 
-    void merge(const RayTally& other) {
+    // Adds one batch's tally (its rays, sums and squares; for batch-mean channels S^2 / n of its sum S over its n
+    // rays).
+    void merge(const RayTally& batch) {
+        const double n = static_cast<double>(std::max<std::uint64_t>(1, batch.rays_));
         for (std::size_t c = 0; c < sum_.size(); ++c) {
-            sum_[c] += other.sum_[c];
-            sum_sq_[c] += other.sum_sq_[c];
+            sum_[c] += batch.sum_[c];
+            if (batch.batched_[c]) {
+                sum_sq_[c] += batch.sum_[c] * batch.sum_[c] / n;
+                batched_[c] = 1;
+            } else {
+                sum_sq_[c] += batch.sum_sq_[c];
+            }
         }
-        rays_ += other.rays_;
-        truncated_ += other.truncated_;
+        rays_ += batch.rays_;
+        truncated_ += batch.truncated_;
+        ++batches_;
     }
+
+    // Channels [first, first + count) are tallied by batch means: add_to_batch adds to their sum, no per-ray square.
+    void use_batch_means(std::size_t first, std::size_t count) { std::fill_n(batched_.begin() + static_cast<std::ptrdiff_t>(first), count, 1); }
+    void add_to_batch(std::size_t channel, double v) { sum_[channel] += v; }
 
     // A contribution to a channel that a ray reaches at most once (an exit: R, T, an angular bin), added straight
     // into the sums: the same as going through the ray's RayScore, without its bookkeeping. The ray itself is
@@ -71,6 +87,14 @@ public:
         if (rays_ == 0) return {};
         const double n = static_cast<double>(rays_);
         const double mean = sum_[channel] / n;
+        if (batched_[channel]) {
+            // Batch means (e.g. Law & Kelton, Simulation Modeling and Analysis, Sec. 9.5.3), weighted by batch size:
+            // per-ray variance (sum_b S_b^2 / n_b - N mean^2) / (B - 1), its mean's variance that over N; 0 below two
+            // batches.
+            const double b = static_cast<double>(batches_);
+            const double variance = batches_ > 1 ? std::max(0.0, sum_sq_[channel] - n * mean * mean) / (b - 1.0) / n : 0.0;
+            return {mean, std::sqrt(variance)};
+        }
         const double variance = rays_ > 1 ? std::max(0.0, sum_sq_[channel] / n - mean * mean) / (n - 1.0) : 0.0;
         return {mean, std::sqrt(variance)};
     }
@@ -82,8 +106,10 @@ public:
 private:
     std::vector<double> sum_;
     std::vector<double> sum_sq_;
+    std::vector<unsigned char> batched_;  // 1: a batch-mean channel (sum_sq_ holds sum over batches of S_b^2 / n_b)
     std::uint64_t rays_ = 0;
     std::uint64_t truncated_ = 0;
+    std::uint64_t batches_ = 0;
 };
 
 // Traces `rays` rays with `trace_one(score, truncated)` into `tally`: one score reused for all of them.

@@ -1,19 +1,21 @@
 // The volumetric walk: MCML's photon loop (Wang, Jacques & Zheng 1995, Comput. Methods Programs Biomed.
 // 47:131-146, Sec. 3-4): exponential free paths (Eq. 3.7), absorption by weight mu_a / mu_t at each
 // interaction (Eq. 3.23), scattering by the layer's phase function, Fresnel at every boundary (Eq. 3.31),
-// Russian roulette below weight 1e-4 with survival 0.1 (Sec. 3.9). Differences from MCML: PCG32 streams per
-// batch (no ran3), oblique incidence, an optional Lambertian bottom reflector, roulette that conserves each
-// photon's energy exactly (the survivor's gain is taken back from the absorption tally where it happened),
-// and standard errors for every tally.
+// Russian roulette below weight 1e-4 with survival 0.1 (Sec. 3.9). Differences from MCML: photons traced in SIMD
+// packets (rte_packet.hpp) with a stream per photon keyed from its batch's PCG32 stream (no ran3), oblique incidence,
+// an optional Lambertian bottom reflector, roulette that conserves each photon's energy exactly (the survivor's gain
+// is taken back from the absorption tally where it happened), and standard errors for every tally.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 
-#include "transport/cosine_hemisphere.hpp"
 #include "transport/direction.hpp"
 #include "transport/fresnel.hpp"
 #include "transport/rte/rte_model.hpp"
+#include "transport/rte/rte_packet.hpp"
 #include "transport/ray_planner.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
@@ -46,244 +48,297 @@ struct Channels {
     std::size_t truncated;  // 1 for a photon stopped at the step limit (per absorption set in white mode)
 };
 
-// Per-photon state of the absorption sets in white mode: optical depth, log of the roulette boosts, and the
-// depth beyond which a set plays roulette (+inf once it has lost).
-struct WhiteState {
-    std::vector<double> tau, boost_log, limit;
-    std::size_t alive = 0;
+// The walk-side state of a packet's lanes, in double precision: each photon's key, weight (MCML's way) or its
+// absorption sets' optical depths, roulette boosts, limits and the log of the weight kept at split boundaries
+// (white), the energy it has deposited in each layer (per set), and its per-photon score of the other channels.
+struct Lanes {
+    static constexpr std::size_t count = RtePacket::lanes;
+    Lanes(std::size_t sets, std::size_t layers, std::size_t channels)
+        : sets(sets), layers(layers), channels(channels), tau(sets * count), boost_log(sets * count), limit(sets * count),
+          deposited(count * sets * layers), scores(count, RayScore(channels)) {}
+    std::size_t sets, layers, channels;
+    RtePacket packet;
+    std::uint64_t key[count] = {};
+    double weight[count] = {};
+    double log_common[count] = {};
+    std::size_t alive[count] = {};
+    std::vector<double> tau, boost_log, limit;  // [set * count + lane]
+    std::vector<double> deposited;              // [(lane * sets + set) * layers + layer]
+    std::vector<RayScore> scores;
+    RayTally* tally = nullptr;  // the batch's tally while a walk runs
 };
+
+constexpr double dead_limit = std::numeric_limits<double>::infinity();  // the limit of a set that lost the roulette
 
 class Walk {
 public:
     // `mu_a_sets` (white mode): per set, mu_a per layer in 1/cm; empty: the stack's own absorption, MCML's way.
-    Walk(const RteRequest& r, const Channels& c, std::vector<std::vector<double>> mu_a_sets)
+    Walk(const RteRequest& r, const Channels& c, const std::vector<std::vector<double>>& mu_a_sets)
         : request_(r), stack_(r.stack), ch_(c), sets_(std::max<std::size_t>(1, mu_a_sets.size())), white_(!mu_a_sets.empty()) {
-        for (std::size_t k = 0; k < stack_.layers.size(); ++k) {
+        const std::size_t layers = stack_.layers.size();
+        for (std::size_t k = 0; k < layers; ++k) {
+            const auto& l = stack_.layers[k];
             for (std::size_t s = 0; s < mu_a_sets.size(); ++s) mu_a_per_cm_.push_back(mu_a_sets[s].at(k));
-        }
-        double z = 0.0;
-        for (const auto& l : stack_.layers) {
-            top_.push_back(z);
-            z += l.thickness_cm;
-            bottom_.push_back(z);
+            const double mu_t = l.mu_a_per_cm + l.mu_s_per_cm;
+            absorbed_fraction_.push_back(mu_t > 0.0 ? l.mu_a_per_cm / mu_t : 0.0);  // Eq. 3.23
         }
         const double theta = r.incidence_deg * pi / 180.0;
-        incident_ = Direction{std::sin(theta), 0.0, std::cos(theta)};
-        specular_ = fresnel_reflectance(incident_.z, stack_.above_refractive_index, stack_.layers.front().refractive_index);
+        const Direction incident{std::sin(theta), 0.0, std::cos(theta)};
+        specular_ = fresnel_reflectance(incident.z, stack_.above_refractive_index, stack_.layers.front().refractive_index);
+        entry_ = refract(incident, stack_.above_refractive_index, stack_.layers.front().refractive_index).value_or(incident);
+        if (ch_.nz > 0) inverse_dz_ = 1.0 / r.grid.dz_cm;
+        if (ch_.nr > 0) inverse_dr_ = 1.0 / r.grid.dr_cm;
+        last_z_ = static_cast<std::int64_t>(ch_.nz) - 1;
+        last_r_ = static_cast<std::int64_t>(ch_.nr) - 1;
+        build_model();
     }
 
     void trace(RandomStream& random, std::uint64_t photons, RayTally& tally) const {
-        if (!white_) {
-            trace_rays(ch_.count, photons, tally, [&](RayScore& score, std::uint64_t& truncated) { trace_one(random, score, truncated); });
-            return;
+        // The lanes' buffers are this thread's, kept from batch to batch; every lane is empty between two walks.
+        thread_local std::unique_ptr<Lanes> scratch;
+        const std::size_t channels = ch_.count * sets_;
+        const std::size_t layers = stack_.layers.size();
+        if (!scratch || scratch->sets != sets_ || scratch->layers != layers || scratch->channels != channels) {
+            scratch = std::make_unique<Lanes>(sets_, layers, channels);
         }
-        WhiteState state{std::vector<double>(sets_), std::vector<double>(sets_), std::vector<double>(sets_), 0};
-        trace_rays(ch_.count * sets_, photons, tally, [&](RayScore& score, std::uint64_t&) { trace_white(random.bits64(), score, state); });
+        Lanes& lanes = *scratch;
+        lanes.tally = &tally;
+        for (std::size_t set = 0; set < sets_; ++set) tally.use_batch_means(set * ch_.count + ch_.a_z, ch_.truncated - ch_.a_z);
+        std::uint64_t started = 0, truncated = 0;
+        std::size_t active = 0;
+        // A lane whose photon ended takes the next one (photons that end at the surface are tallied on the way).
+        const auto refill = [&](std::size_t lane) {
+            while (started < photons) {
+                ++started;
+                if (launch(lane, random.bits64(), lanes, tally)) return true;
+            }
+            lanes.packet.active[lane] = 0;
+            return false;
+        };
+        try {
+            for (std::size_t lane = 0; lane < Lanes::count; ++lane) active += refill(lane) ? 1 : 0;
+            while (active > 0) {
+                for (std::uint64_t flags = step_rte_packet(model_, lanes.packet); flags != 0; flags &= flags - 1) {
+                    const auto lane = static_cast<std::size_t>(std::countr_zero(flags));
+                    const bool finished = white_ ? settle_white(lane, lanes) : settle(lane, lanes, truncated);
+                    if (!finished) continue;
+                    finish(lane, lanes, tally);
+                    if (!refill(lane)) --active;
+                }
+            }
+        } catch (...) {
+            scratch.reset();  // lanes left mid-photon are not reused
+            throw;
+        }
+        tally.add_truncated(truncated);
     }
 
 private:
-    std::size_t r_bin(double x, double y) const {
-        const double r = std::sqrt(x * x + y * y);
-        return std::min(static_cast<std::size_t>(r / request_.grid.dr_cm), ch_.nr - 1);  // beyond the grid: last bin (MCML)
+    void build_model() {
+        auto& m = model_;
+        m.layers = static_cast<std::int32_t>(stack_.layers.size());
+        double z = 0.0;
+        for (std::size_t k = 0; k < stack_.layers.size(); ++k) {
+            const auto& l = stack_.layers[k];
+            const double mu = white_ ? l.mu_s_per_cm : l.mu_a_per_cm + l.mu_s_per_cm;
+            m.mu_per_cm.push_back(static_cast<float>(mu));
+            m.top_cm.push_back(static_cast<float>(z));
+            z += l.thickness_cm;
+            m.bottom_cm.push_back(static_cast<float>(z));
+            PacketPhase phase = PacketPhase::none;
+            std::int32_t offset = 0, size = 1;
+            if (l.mu_s_per_cm > 0.0) {
+                switch (l.phase.kind) {
+                    case PhaseFunction::Kind::henyey_greenstein:
+                    case PhaseFunction::Kind::isotropic: phase = PacketPhase::henyey_greenstein; break;
+                    case PhaseFunction::Kind::two_term_hg: phase = PacketPhase::two_term_hg; break;
+                    case PhaseFunction::Kind::rayleigh: phase = PacketPhase::rayleigh; break;
+                    case PhaseFunction::Kind::tabulated:
+                        phase = PacketPhase::tabulated;
+                        offset = static_cast<std::int32_t>(m.table_cos.size());
+                        size = static_cast<std::int32_t>(l.phase.table->size());
+                        for (std::size_t i = 0; i < l.phase.table->size(); ++i) m.table_cos.push_back(static_cast<float>(l.phase.table->cos_theta(i)));
+                        break;
+                }
+            }
+            m.phase.push_back(static_cast<std::int32_t>(phase));
+            m.table_offset.push_back(offset);
+            m.table_size.push_back(size);
+            m.g.push_back(static_cast<float>(l.phase.kind == PhaseFunction::Kind::isotropic ? 0.0 : l.phase.g));
+            m.g2.push_back(static_cast<float>(l.phase.g2));
+            m.first_term_weight.push_back(static_cast<float>(l.phase.weight));
+            const double n = l.refractive_index;
+            const double below = k + 1 == stack_.layers.size() ? stack_.below_refractive_index : stack_.layers[k + 1].refractive_index;
+            const double above = k == 0 ? stack_.above_refractive_index : stack_.layers[k - 1].refractive_index;
+            m.eta_down.push_back(static_cast<float>(n / below));
+            m.inverse_eta_down.push_back(static_cast<float>(below / n));
+            m.eta_up.push_back(static_cast<float>(n / above));
+            m.inverse_eta_up.push_back(static_cast<float>(above / n));
+        }
+        m.reflector = stack_.bottom_reflector;
+        m.split = request_.boundaries == BoundaryMode::split;
+        m.flag_every_segment = white_;
+        m.max_steps = static_cast<std::uint32_t>(request_.max_steps_per_photon);
+        m.pad();
+    }
+
+    std::size_t r_bin(double r_cm) const {
+        return static_cast<std::size_t>(std::min<std::int64_t>(static_cast<std::int64_t>(r_cm * inverse_dr_), last_r_));  // beyond: last bin (MCML)
     }
     std::size_t a_bin(double cos_exit) const {
         const double a = std::acos(std::clamp(cos_exit, 0.0, 1.0));
         return std::min(static_cast<std::size_t>(a / (0.5 * pi / static_cast<double>(ch_.na))), ch_.na - 1);
     }
 
-    // `set` offsets the channels of one absorption set (white mode); 0 otherwise.
-    void absorb(RayScore& s, std::size_t layer, double x, double y, double z, double w, std::size_t set = 0) const {
-        const std::size_t o = set * ch_.count;
-        s.add(o + ch_.absorbed, w);
-        s.add(o + ch_.first_layer + layer, w);
+    // A deposit of lane `lane`'s photon in `layer` at radius r_cm and depth z (cm): per photon into its layer's sum, into the grids by
+    // batch means. `set` offsets the channels of one absorption set (white mode); 0 otherwise.
+    void absorb(Lanes& lanes, std::size_t lane, std::size_t layer, double r_cm, double z, double w, std::size_t set = 0) const {
+        lanes.deposited[(lane * sets_ + set) * lanes.layers + layer] += w;
         if (ch_.nz > 0) {
-            const auto iz = std::min(static_cast<std::size_t>(z / request_.grid.dz_cm), ch_.nz - 1);
-            s.add(o + ch_.a_z + iz, w);
-            if (ch_.nr > 0) s.add(o + ch_.a_rz + r_bin(x, y) * ch_.nz + iz, w);
+            const std::size_t o = set * ch_.count;
+            const auto iz = static_cast<std::size_t>(std::clamp<std::int64_t>(static_cast<std::int64_t>(z * inverse_dz_), 0, last_z_));
+            lanes.tally->add_to_batch(o + ch_.a_z + iz, w);
+            if (ch_.nr > 0) lanes.tally->add_to_batch(o + ch_.a_rz + r_bin(r_cm) * ch_.nz + iz, w);
         }
     }
 
-    void escape(RayScore& s, bool top, double x, double y, double cos_exit, double w, std::size_t set = 0) const {
+    // Weight w of lane `lane`'s photon escaping at radius r_cm with |cos| cos_exit: R or T per photon, the grids by batch means.
+    void escape(Lanes& lanes, std::size_t lane, bool top, double r_cm, double cos_exit, double w, std::size_t set = 0) const {
         const std::size_t o = set * ch_.count;
-        s.add(o + (top ? ch_.reflectance : ch_.transmittance), w);
-        if (ch_.nr > 0) s.add(o + (top ? ch_.r_r : ch_.t_r) + r_bin(x, y), w);
-        if (ch_.na > 0) s.add(o + (top ? ch_.r_a : ch_.t_a) + a_bin(cos_exit), w);
-        if (ch_.nr > 0 && ch_.na > 0) s.add(o + (top ? ch_.r_ra : ch_.t_ra) + r_bin(x, y) * ch_.na + a_bin(cos_exit), w);
+        lanes.scores[lane].add(o + (top ? ch_.reflectance : ch_.transmittance), w);
+        auto& t = *lanes.tally;
+        if (ch_.nr > 0) t.add_to_batch(o + (top ? ch_.r_r : ch_.t_r) + r_bin(r_cm), w);
+        if (ch_.na > 0) t.add_to_batch(o + (top ? ch_.r_a : ch_.t_a) + a_bin(cos_exit), w);
+        if (ch_.nr > 0 && ch_.na > 0) t.add_to_batch(o + (top ? ch_.r_ra : ch_.t_ra) + r_bin(r_cm) * ch_.na + a_bin(cos_exit), w);
     }
 
-    void trace_one(RandomStream& random, RayScore& s, std::uint64_t& truncated) const {
-        // Launch: specular reflection taken deterministically, the rest refracted into layer 1 (MCML Sec. 3.3).
-        s.add(ch_.specular, specular_);
-        double w = 1.0 - specular_;
-        if (w <= 0.0) return;
-        Direction d = *refract(incident_, stack_.above_refractive_index, stack_.layers.front().refractive_index);
-        double x = 0.0, y = 0.0, z = 0.0;
-        std::size_t k = 0;
-        double tau = 0.0;  // optical depth left to travel
-        for (std::uint64_t step = 0;; ++step) {
-            const RteLayer& layer = stack_.layers[k];
-            if (step >= request_.max_steps_per_photon) {
-                absorb(s, k, x, y, z, w);
-                ++truncated;
-                return;
+    // A finished photon: its deposits per layer (and in all) join its score, which joins the tally.
+    void finish(std::size_t lane, Lanes& lanes, RayTally& tally) const {
+        auto& s = lanes.scores[lane];
+        double* deposited = &lanes.deposited[lane * sets_ * lanes.layers];
+        for (std::size_t set = 0; set < sets_; ++set, deposited += lanes.layers) {
+            double all = 0.0;
+            for (std::size_t k = 0; k < lanes.layers; ++k) {
+                if (deposited[k] == 0.0) continue;
+                s.add(set * ch_.count + ch_.first_layer + k, deposited[k]);
+                all += deposited[k];
+                deposited[k] = 0.0;
             }
-            const double mu_t = layer.mu_a_per_cm + layer.mu_s_per_cm;
-            if (tau <= 0.0) tau = -std::log(1.0 - random.uniform());  // Eq. 3.7, u in [0, 1)
-            const double step_cm = mu_t > 0.0 ? tau / mu_t : std::numeric_limits<double>::infinity();
-            const double to_boundary = d.z > 0.0 ? (bottom_[k] - z) / d.z
-                                       : d.z < 0.0 ? (top_[k] - z) / d.z
-                                                   : std::numeric_limits<double>::infinity();
-            if (step_cm >= to_boundary) {
-                // Move to the boundary, keep the optical depth left (MCML's "sleft").
-                x += to_boundary * d.x;
-                y += to_boundary * d.y;
-                z = d.z > 0.0 ? bottom_[k] : top_[k];
-                if (mu_t > 0.0) tau -= to_boundary * mu_t;
-                const auto c = cross_boundary(random, d, k);
-                if (c.escaped > 0.0) escape(s, c.top, x, y, c.cos_exit, w * c.escaped);
-                if (c.left) return;
-                w *= c.kept;
-                if (!(w > 0.0)) return;
-                continue;
-            }
-            x += step_cm * d.x;
-            y += step_cm * d.y;
-            z += step_cm * d.z;
-            tau = 0.0;
-            // Absorption by weight (Eq. 3.23), then scattering.
-            const double absorbed = w * layer.mu_a_per_cm / mu_t;
-            absorb(s, k, x, y, z, absorbed);
+            if (all != 0.0) s.add(set * ch_.count + ch_.absorbed, all);
+        }
+        tally.add_ray(s);
+    }
+
+    // Launch (MCML Sec. 3.3): the specular reflection taken deterministically, the rest refracted into layer 1.
+    // False when nothing enters (the photon is tallied).
+    bool launch(std::size_t lane, std::uint64_t key, Lanes& lanes, RayTally& tally) const {
+        auto& s = lanes.scores[lane];
+        for (std::size_t set = 0; set < sets_; ++set) s.add(set * ch_.count + ch_.specular, specular_);
+        if (1.0 - specular_ <= 0.0) {
+            tally.add_ray(s);
+            return false;
+        }
+        lanes.key[lane] = key;
+        lanes.weight[lane] = 1.0 - specular_;
+        lanes.log_common[lane] = std::log(1.0 - specular_);
+        lanes.alive[lane] = sets_;
+        for (std::size_t set = 0; set < sets_; ++set) {
+            lanes.tau[set * Lanes::count + lane] = 0.0;
+            lanes.boost_log[set * Lanes::count + lane] = 0.0;
+            lanes.limit[set * Lanes::count + lane] = -std::log(roulette_weight);
+        }
+        lanes.packet.launch(lane, key, static_cast<float>(entry_.x), static_cast<float>(entry_.y), static_cast<float>(entry_.z));
+        return true;
+    }
+
+    // MCML's way after a segment: absorption by weight at an interaction (Eq. 3.23), Russian roulette below weight
+    // 1e-4 with survival 0.1 (Sec. 3.9; energy-conserving: the survivor's gain is taken back where it happened; the
+    // draw is keyed by the photon and its step), escapes and the step limit. True when the photon is finished.
+    bool settle(std::size_t lane, Lanes& lanes, std::uint64_t& truncated) const {
+        const auto& p = lanes.packet;
+        double& w = lanes.weight[lane];
+        const int bits = p.event_bits[lane];
+        const auto k = static_cast<std::size_t>(p.segment_layer[lane]);
+        const double r = p.r_cm[lane], z = p.z[lane];
+        if (bits & rte_interaction) {
+            const double absorbed = w * absorbed_fraction_[k];
+            absorb(lanes, lane, k, r, z, absorbed);
             w -= absorbed;
-            if (layer.mu_s_per_cm > 0.0) {
-                const double c = layer.phase.sample_cos(random);
-                d = deflect(d, c, std::sqrt(std::max(0.0, 1.0 - c * c)), sample_azimuth(random));
-            }
             if (w < roulette_weight) {
-                if (w <= 0.0) return;
-                if (random.uniform() < roulette_survival) {
-                    absorb(s, k, x, y, z, w - w / roulette_survival);  // negative: the survivor's gain
+                if (w <= 0.0) return true;
+                if (RandomStream::keyed_uniform(lanes.key[lane], p.steps[lane]) < roulette_survival) {
+                    absorb(lanes, lane, k, r, z, w - w / roulette_survival);  // negative: the survivor's gain
                     w /= roulette_survival;
                 } else {
-                    absorb(s, k, x, y, z, w);
-                    return;
+                    absorb(lanes, lane, k, r, z, w);
+                    return true;
                 }
             }
         }
-    }
-
-    // Fresnel at the boundary the photon is on (d and k updated): the fraction of its weight that leaves (through
-    // the top when `top`, at cos_exit) and the fraction that goes on; `left` when nothing goes on.
-    struct Crossing {
-        double escaped = 0.0;
-        double kept = 1.0;
-        bool top = false;
-        double cos_exit = 0.0;
-        bool left = false;
-    };
-    Crossing cross_boundary(RandomStream& random, Direction& d, std::size_t& k) const {
-        const bool down = d.z > 0.0;
-        const std::size_t last = stack_.layers.size() - 1;
-        if (down && k == last && stack_.bottom_reflector) {
-            d = sample_cosine_hemisphere(random.uniform(), sample_azimuth(random), false);
-            return {};
+        if (bits & (rte_left_top | rte_left_bottom)) {
+            const double kept = p.kept[lane];
+            escape(lanes, lane, (bits & rte_left_top) != 0, r, p.exit_cos[lane], w * (1.0 - kept));
+            if (!(kept > 0.0)) return true;
+            w *= kept;
         }
-        const bool outer = down ? k == last : k == 0;
-        const double n1 = stack_.layers[k].refractive_index;
-        const double n2 = outer ? (down ? stack_.below_refractive_index : stack_.above_refractive_index)
-                                : stack_.layers[down ? k + 1 : k - 1].refractive_index;
-        const double reflect = fresnel_reflectance(d.z, n1, n2);
-        const auto transmitted = refract(d, n1, n2);
-        if (outer && transmitted && request_.boundaries == BoundaryMode::split) {
-            d = mirror(d);
-            return {1.0 - reflect, reflect, !down, std::abs(transmitted->z), !(reflect > 0.0)};
+        if (bits & rte_truncated) {
+            absorb(lanes, lane, k, r, z, w);
+            ++truncated;
+            return true;
         }
-        if (!transmitted || (reflect > 0.0 && random.uniform() < reflect)) {
-            d = mirror(d);
-            return {};
-        }
-        if (outer) return {1.0, 0.0, !down, std::abs(transmitted->z), true};
-        d = *transmitted;
-        k = down ? k + 1 : k - 1;
-        return {};
+        return false;
     }
 
     // White Monte Carlo (Alerstam et al. 2008, J. Biomed. Opt. 13:041304): free paths and scattering from mu_s
     // alone, so the path serves every absorption set; set s loses weight by Beer-Lambert along each segment,
     // w_s = (1 - R_sp) c exp(b_s - tau_s) with tau_s its optical depth, b_s its roulette boosts and c the
-    // product of the weights kept at split boundaries. Absorption is deposited at the segment's end. Each photon
-    // has its own stream; roulette (weight below 1e-4, survival 0.1, energy-conserving) draws a number keyed by
-    // (photon, step) shared by every set, so a set's numbers equal those of its own white run to rounding.
-    void trace_white(std::uint64_t key, RayScore& s, WhiteState& state) const {
-        auto random = RandomStream::for_ray(key);
-        for (std::size_t set = 0; set < sets_; ++set) s.add(set * ch_.count + ch_.specular, specular_);
-        if (1.0 - specular_ <= 0.0) return;
-        double log_common = std::log(1.0 - specular_);
-        Direction d = *refract(incident_, stack_.above_refractive_index, stack_.layers.front().refractive_index);
-        double x = 0.0, y = 0.0, z = 0.0;
-        std::size_t k = 0;
-        double tau_left = 0.0;  // scattering optical depth left to travel
-        std::fill(state.tau.begin(), state.tau.end(), 0.0);
-        std::fill(state.boost_log.begin(), state.boost_log.end(), 0.0);
-        std::fill(state.limit.begin(), state.limit.end(), -std::log(roulette_weight));
-        state.alive = sets_;
-        const auto alive = [&](std::size_t set) { return state.limit[set] != std::numeric_limits<double>::infinity(); };
-        const auto weight = [&](std::size_t set) { return std::exp(log_common + state.boost_log[set] - state.tau[set]); };
-        for (std::uint64_t step = 0;; ++step) {
-            const RteLayer& layer = stack_.layers[k];
-            if (step >= request_.max_steps_per_photon) {
-                for (std::size_t set = 0; set < sets_; ++set) {
-                    if (!alive(set)) continue;
-                    absorb(s, k, x, y, z, weight(set), set);
-                    s.add(set * ch_.count + ch_.truncated, 1.0);
-                }
-                return;
-            }
-            if (tau_left <= 0.0) tau_left = -std::log(1.0 - random.uniform());  // Eq. 3.7 with mu_s
-            const double step_cm = layer.mu_s_per_cm > 0.0 ? tau_left / layer.mu_s_per_cm : std::numeric_limits<double>::infinity();
-            const double to_boundary = d.z > 0.0 ? (bottom_[k] - z) / d.z
-                                       : d.z < 0.0 ? (top_[k] - z) / d.z
-                                                   : std::numeric_limits<double>::infinity();
-            const bool hits = step_cm >= to_boundary;
-            const double segment = hits ? to_boundary : step_cm;
-            x += segment * d.x;
-            y += segment * d.y;
-            z = hits ? (d.z > 0.0 ? bottom_[k] : top_[k]) : z + segment * d.z;
-            const double* mu_a = &mu_a_per_cm_[k * sets_];
-            for (std::size_t set = 0; set < sets_; ++set) {
-                if (!alive(set) || mu_a[set] <= 0.0) continue;
-                const double before = weight(set);
-                state.tau[set] += mu_a[set] * segment;
-                absorb(s, k, x, y, z, before - weight(set), set);
-                if (state.tau[set] - state.boost_log[set] - log_common <= state.limit[set]) continue;
-                const double w = weight(set);
-                if (RandomStream::keyed_uniform(key, step) < roulette_survival) {
-                    state.boost_log[set] -= std::log(roulette_survival);
-                    absorb(s, k, x, y, z, w - weight(set), set);  // negative: the survivor's gain
-                } else {
-                    absorb(s, k, x, y, z, w, set);
-                    state.limit[set] = std::numeric_limits<double>::infinity();
-                    --state.alive;
-                }
-            }
-            if (state.alive == 0) return;
-            if (hits) {
-                if (layer.mu_s_per_cm > 0.0) tau_left -= to_boundary * layer.mu_s_per_cm;
-                const auto c = cross_boundary(random, d, k);
-                if (c.escaped > 0.0) {
-                    for (std::size_t set = 0; set < sets_; ++set) {
-                        if (alive(set)) escape(s, c.top, x, y, c.cos_exit, weight(set) * c.escaped, set);
-                    }
-                }
-                if (c.left) return;
-                if (c.kept < 1.0) log_common += std::log(c.kept);
-                continue;
-            }
-            tau_left = 0.0;
-            if (layer.mu_s_per_cm > 0.0) {
-                const double cs = layer.phase.sample_cos(random);
-                d = deflect(d, cs, std::sqrt(std::max(0.0, 1.0 - cs * cs)), sample_azimuth(random));
+    // product of the weights kept at split boundaries. Absorption is deposited at the segment's end. Roulette (weight
+    // below 1e-4, survival 0.1, energy-conserving) draws a number keyed by (photon, step) shared by every set, so a
+    // set's numbers equal those of its own white run to rounding. True when the photon is finished.
+    bool settle_white(std::size_t lane, Lanes& lanes) const {
+        const auto& p = lanes.packet;
+        const int bits = p.event_bits[lane];
+        const auto k = static_cast<std::size_t>(p.segment_layer[lane]);
+        const double r = p.r_cm[lane], z = p.z[lane];
+        const double segment = p.segment_cm[lane];
+        const auto at = [&](std::size_t set) { return set * Lanes::count + lane; };
+        const auto alive = [&](std::size_t set) { return lanes.limit[at(set)] != dead_limit; };
+        const auto weight = [&](std::size_t set) { return std::exp(lanes.log_common[lane] + lanes.boost_log[at(set)] - lanes.tau[at(set)]); };
+        const double* mu_a = &mu_a_per_cm_[k * sets_];
+        for (std::size_t set = 0; set < sets_; ++set) {
+            if (!alive(set) || mu_a[set] <= 0.0) continue;
+            const double before = weight(set);
+            lanes.tau[at(set)] += mu_a[set] * segment;
+            absorb(lanes, lane, k, r, z, before - weight(set), set);
+            if (lanes.tau[at(set)] - lanes.boost_log[at(set)] - lanes.log_common[lane] <= lanes.limit[at(set)]) continue;
+            const double w = weight(set);
+            if (RandomStream::keyed_uniform(lanes.key[lane], p.steps[lane]) < roulette_survival) {
+                lanes.boost_log[at(set)] -= std::log(roulette_survival);
+                absorb(lanes, lane, k, r, z, w - weight(set), set);  // negative: the survivor's gain
+            } else {
+                absorb(lanes, lane, k, r, z, w, set);
+                lanes.limit[at(set)] = dead_limit;
+                --lanes.alive[lane];
             }
         }
+        if (lanes.alive[lane] == 0) return true;
+        if (bits & (rte_left_top | rte_left_bottom)) {
+            const double kept = p.kept[lane];
+            for (std::size_t set = 0; set < sets_; ++set) {
+                if (alive(set)) escape(lanes, lane, (bits & rte_left_top) != 0, r, p.exit_cos[lane], weight(set) * (1.0 - kept), set);
+            }
+            if (!(kept > 0.0)) return true;
+            lanes.log_common[lane] += std::log(kept);
+        }
+        if (bits & rte_truncated) {
+            for (std::size_t set = 0; set < sets_; ++set) {
+                if (!alive(set)) continue;
+                absorb(lanes, lane, k, r, z, weight(set), set);
+                lanes.scores[lane].add(set * ch_.count + ch_.truncated, 1.0);
+            }
+            return true;
+        }
+        return false;
     }
 
     const RteRequest& request_;
@@ -291,10 +346,13 @@ private:
     const Channels& ch_;
     std::size_t sets_;
     bool white_;
-    std::vector<double> mu_a_per_cm_;  // white mode: [layer * sets + set]
-    std::vector<double> top_, bottom_;
-    Direction incident_;
+    std::vector<double> mu_a_per_cm_;        // white mode: [layer * sets + set]
+    std::vector<double> absorbed_fraction_;  // MCML's way: mu_a / mu_t per layer
+    Direction entry_;
     double specular_ = 0.0;
+    double inverse_dz_ = 0.0, inverse_dr_ = 0.0;  // 1/cm
+    std::int64_t last_z_ = 0, last_r_ = 0;        // the last grid bins
+    RtePacketModel model_;
 };
 
 std::vector<Estimate> scaled(const RayTally& t, std::size_t first, std::size_t n, const std::function<double(std::size_t)>& scale) {
@@ -317,6 +375,9 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
         throw InputError("incidence angle " + format_number(request.incidence_deg) + " deg is outside [0, 90)");
     }
     if (request.photons < 1) throw InputError("photon count 0 is outside [1, inf)");
+    if (request.max_steps_per_photon < 1 || request.max_steps_per_photon > 2147483647) {
+        throw InputError("maximum steps per photon " + std::to_string(request.max_steps_per_photon) + " is outside [1, 2147483647]");
+    }
     const auto& g = request.grid;
     if (g.nz < 0 || g.nr < 0 || g.na < 0 || ((g.nz > 0 || g.nr > 0) && !(g.dz_cm > 0.0 && g.dr_cm > 0.0))) {
         throw InputError("grid: bin counts must be >= 0 and dz, dr > 0");
@@ -336,6 +397,8 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
     driver.max_rays_per_wavelength = request.photons;
     driver.stderr_target = request.stderr_target;
     driver.seed = request.seed;
+    // The grids' standard errors are batch means: at least 64 batches when the budget allows (batches of 64 to 4096).
+    if (g.nz > 0 || g.nr > 0 || g.na > 0) driver.rays_per_batch = std::clamp<std::uint64_t>(request.photons / 64, 64, driver.rays_per_batch);
     driver.on_progress = request.on_progress;
     driver.cancel = request.cancel;
     const auto outcome = run_batches(driver, channels.count * sets, {channels.reflectance, channels.transmittance},
