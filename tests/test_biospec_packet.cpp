@@ -5,6 +5,8 @@
 
 #include <hwy/targets.h>
 
+#include "forced_target.hpp"
+
 #include "transport/biospec/biospec_packet.hpp"
 #include "transport/biospec/biospec_solver.hpp"
 #include "materials/material_file.hpp"
@@ -13,13 +15,7 @@ using namespace skinspec;
 
 namespace {
 
-// Restores the machine's own instruction set when a test that forces another one ends.
-struct ForcedTarget {
-    explicit ForcedTarget(std::int64_t target) { hwy::SetSupportedTargetsForTest(target); }
-    ~ForcedTarget() { hwy::SetSupportedTargetsForTest(0); }
-    ForcedTarget(const ForcedTarget&) = delete;
-    ForcedTarget& operator=(const ForcedTarget&) = delete;
-};
+using testing::ForcedTarget;
 
 SpectralRequest request(std::uint64_t rays) {
     SpectralRequest r;

@@ -1,10 +1,11 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <numeric>
 #include <string>
 
 #include <hwy/targets.h>
+
+#include "forced_target.hpp"
 
 #include "transport/fresnel.hpp"
 #include "transport/rte/rte_model.hpp"
@@ -14,13 +15,7 @@ using namespace skinspec;
 
 namespace {
 
-// Restores the machine's own instruction set when a test that forces another one ends.
-struct ForcedTarget {
-    explicit ForcedTarget(std::int64_t target) { hwy::SetSupportedTargetsForTest(target); }
-    ~ForcedTarget() { hwy::SetSupportedTargetsForTest(0); }
-    ForcedTarget(const ForcedTarget&) = delete;
-    ForcedTarget& operator=(const ForcedTarget&) = delete;
-};
+using testing::ForcedTarget;
 
 // One layer between `n_above` and `n_below`, free paths with coefficient mu (1/cm), HG g.
 RtePacketModel one_layer(float mu, float g, float thickness_cm, float n, float n_above, float n_below, bool split) {
