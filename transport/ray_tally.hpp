@@ -112,16 +112,4 @@ private:
     std::uint64_t batches_ = 0;
 };
 
-// Traces `rays` rays with `trace_one(score, truncated)` into `tally`: one score reused for all of them.
-template <class TraceOne>
-void trace_rays(std::size_t channels, std::uint64_t rays, RayTally& tally, TraceOne&& trace_one) {
-    RayScore score(channels);
-    std::uint64_t truncated = 0;
-    for (std::uint64_t i = 0; i < rays; ++i) {
-        trace_one(score, truncated);
-        tally.add_ray(score);
-    }
-    tally.add_truncated(truncated);
-}
-
 }  // namespace skinspec

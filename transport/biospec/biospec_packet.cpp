@@ -206,7 +206,8 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         const VF reflectance = FresnelReflectance(hn::Abs(oz), eta, m, cos_t, total);
         const MF fresnel = hn::AndNot(same_index, at_interface);
         const MF test = hn::AndNot(total, hn::And(fresnel, reflectance > zero));
-        const MF reflected = hn::And(fresnel, hn::Or(total, hn::And(test, random.uniform(test) < reflectance)));
+        MF reflected = hn::And(fresnel, total);
+        if (!hn::AllFalse(df, test)) reflected = hn::Or(reflected, hn::And(test, random.uniform(test) < reflectance));
         const MF refracted = hn::AndNot(reflected, fresnel);
         const MF moving = hn::AndNot(hn::Or(bounce, reflected), going);
         ox = hn::IfThenElse(refracted, hn::Mul(eta, ox), ox);

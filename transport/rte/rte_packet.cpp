@@ -132,7 +132,8 @@ std::uint64_t RteStepImpl(const RtePacketModel& model, RtePacket& p) {
         // Split outer boundaries: the transmitted part escapes and the reflected part goes on.
         const MF split = model.split ? hn::AndNot(total, outer) : none;
         const MF test = hn::AndNot(hn::Or(total, split), hn::And(fresnel, reflectance > zero));
-        const MF reflected = hn::And(fresnel, hn::Or(total, hn::And(test, random.uniform(test) < reflectance)));
+        MF reflected = hn::And(fresnel, total);
+        if (!hn::AllFalse(df, test)) reflected = hn::Or(reflected, hn::And(test, random.uniform(test) < reflectance));
         const MF refracted = hn::AndNot(hn::Or(reflected, split), fresnel);
         const MF escapes = hn::Or(split, hn::And(refracted, outer));
         const MF moves_on = hn::AndNot(outer, refracted);
@@ -155,7 +156,7 @@ std::uint64_t RteStepImpl(const RtePacketModel& model, RtePacket& p) {
         hn::StoreU(x, df, p.x + base);
         hn::StoreU(y, df, p.y + base);
         hn::StoreU(z, df, p.z + base);
-        hn::StoreU(hn::Sqrt(hn::MulAdd(x, x, hn::Mul(y, y))), df, p.r_cm + base);
+        if (model.radius) hn::StoreU(hn::Sqrt(hn::MulAdd(x, x, hn::Mul(y, y))), df, p.r_cm + base);
         hn::StoreU(dx, df, p.dx + base);
         hn::StoreU(dy, df, p.dy + base);
         hn::StoreU(dz, df, p.dz + base);

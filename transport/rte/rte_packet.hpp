@@ -43,6 +43,7 @@ struct RtePacketModel {
     bool reflector = false;                           // Lambertian reflector below the last layer
     bool split = false;                               // outer boundaries: part escapes, the photon goes on (kept)
     bool flag_every_segment = false;                  // hand every lane to the caller after every segment (white)
+    bool radius = false;                              // store r_cm (radial grids need it)
     std::uint32_t max_steps = 0;
 
     // Sets layer_stride for `layers` and pads every per-layer array to it.
@@ -53,7 +54,7 @@ struct RtePacketModel {
 struct RtePacket {
     static constexpr std::size_t lanes = 64;  // a multiple of every target's lane count (AVX-512: 16 floats)
     alignas(64) float x[lanes] = {}, y[lanes] = {}, z[lanes] = {};
-    alignas(64) float r_cm[lanes] = {};         // sqrt(x^2 + y^2) after the segment
+    alignas(64) float r_cm[lanes] = {};         // sqrt(x^2 + y^2) after the segment (with model.radius)
     alignas(64) float dx[lanes] = {}, dy[lanes] = {}, dz[lanes] = {};
     alignas(64) float tau_left[lanes] = {};     // optical depth left of the current free path (0: draw a new one)
     alignas(64) float segment_cm[lanes] = {};   // length of the last segment

@@ -178,6 +178,7 @@ private:
         m.reflector = stack_.bottom_reflector;
         m.split = request_.boundaries == BoundaryMode::split;
         m.flag_every_segment = white_;
+        m.radius = ch_.nr > 0;
         m.max_steps = static_cast<std::uint32_t>(request_.max_steps_per_photon);
         m.pad();
     }
