@@ -13,7 +13,7 @@ namespace {
 
 std::vector<MaterialOverride> patch_overrides(const SwatchRequest& request, const std::vector<double>& parameters) {
     auto overrides = request.overrides;
-    const auto varied = sweep_overrides(request.sweeps, parameters);
+    const auto varied = sweep_overrides(sweep_axes(request.sweeps), parameters);
     overrides.insert(overrides.end(), varied.begin(), varied.end());
     return overrides;
 }
@@ -80,7 +80,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         for (std::size_t i = begin; i < end; ++i) {
             std::vector<std::pair<std::string, double>> varied;
             for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
-            members.push_back({material_of(i), sweep_overrides(request.sweeps, parameters[i]), std::move(varied)});
+            members.push_back({material_of(i), sweep_overrides(sweep_axes(request.sweeps), parameters[i]), std::move(varied)});
         }
         const auto results = solve_sweep(solver, members, base);
         for (std::size_t j = 0; j < results.size(); ++j) {

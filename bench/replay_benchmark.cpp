@@ -51,8 +51,8 @@ int main() {
     request.spectral.max_rays_per_wavelength = 10'000'000;
     const auto sweep = parse_sweep("epidermis.melanosome_fraction=0.005:0.25:100:log");
     std::vector<SweepMember> members;
-    for (const auto& values : sweep_grid({sweep})) {
-        const auto overrides = sweep_overrides({sweep}, values);
+    for (const auto& values : sweep_grid({sweep.axis()})) {
+        const auto overrides = sweep_overrides({sweep.axis()}, values);
         members.push_back({load_material("biospec-moderately", overrides), overrides, {{sweep.field, values[0]}}});
     }
     const auto preset = load_material("biospec-moderately");

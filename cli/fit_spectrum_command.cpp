@@ -1,17 +1,14 @@
 #include "cli/fit_spectrum_command.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <mutex>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "cli/material_options.hpp"
 #include "cli/progress.hpp"
@@ -251,17 +248,16 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const SpectrumFitter fitter(*base, measured.wavelength_nm, settings);
     const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::vector<std::optional<SpectrumFit>> slots(chosen.size());
+    std::vector<std::optional<SpectrumFit>> slots;
     if (!fitter.cancelled()) {
         ProgressBar bar("fit-spectrum", "spectra");
-        std::atomic<std::size_t> done{0};
-        std::mutex progress_lock;
-        tbb::parallel_for(std::size_t{0}, chosen.size(), [&](std::size_t i) {
-            if (InterruptGuard::interrupted()) return;
-            slots[i] = fitter.fit(measured.names[chosen[i]], measured.reflectance[chosen[i]]);
-            const std::lock_guard lock(progress_lock);
-            bar(Progress{0, 0, ++done, chosen.size()});
-        });
+        std::vector<std::string> names;
+        std::vector<std::vector<double>> spectra;
+        for (const auto i : chosen) {
+            names.push_back(measured.names[i]);
+            spectra.push_back(measured.reflectance[i]);
+        }
+        slots = fitter.fit_all(names, spectra, [&bar](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); });
         bar.clear();
     }
     std::vector<SpectrumFit> fits;

@@ -27,9 +27,7 @@ SolverSwitches solver_switches(const SolverOptions& o) {
     SolverSwitches s;
     if (!o.estimator.empty()) s.estimator = parse_absorption_estimator(o.estimator, "--estimator");
     if (!o.fold_into_skin.empty()) s.fold_into_skin = parse_fold_into_skin(o.fold_into_skin, "--fold-into-skin");
-    if (o.boundaries == "random") s.boundaries = BoundaryMode::random;
-    else if (o.boundaries == "split") s.boundaries = BoundaryMode::split;
-    else if (!o.boundaries.empty()) throw InputError("--boundaries: '" + o.boundaries + "' is not allowed (allowed: random, split)");
+    if (!o.boundaries.empty()) s.boundaries = parse_boundary_mode(o.boundaries, "--boundaries");
     if (o.roughness > 0.0) s.surface_roughness = o.roughness;
     if (o.channels > 0) s.quadrature_channels = o.channels;
     return s;

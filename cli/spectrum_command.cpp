@@ -46,24 +46,6 @@ struct SpectrumOptions {
     std::string observer = "2";
 };
 
-Quantities parse_quantities(const std::string& text) {
-    Quantities q{false, false, false, false};
-    std::string item;
-    for (std::size_t i = 0; i <= text.size(); ++i) {
-        if (i < text.size() && text[i] != ',') {
-            item += text[i];
-            continue;
-        }
-        if (item == "R") q.reflectance = true;
-        else if (item == "T") q.transmittance = true;
-        else if (item == "A") q.absorptance = true;
-        else if (item == "brdf" || item == "angular") q.angular = true;
-        else throw InputError("--quantities: '" + item + "' is not a quantity (allowed: R, T, A, brdf)");
-        item.clear();
-    }
-    return q;
-}
-
 std::vector<MaterialOverride> overrides_for(const SpectrumOptions& o) {
     std::vector<MaterialOverride> out;
     if (!o.variant.empty()) out.push_back({"model.variant", o.variant, "--variant"});
@@ -85,7 +67,7 @@ void run_spectrum(const SpectrumOptions& o) {
     request.switches = solver_switches(o.solver);
     auto& spectral = request.spectral;
     spectral.wavelengths = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
-    spectral.quantities = parse_quantities(o.quantities);
+    spectral.quantities = parse_quantities(o.quantities, "--quantities");
     spectral.incidence_deg = o.incidence_deg;
     spectral.geometry = measurement_geometry(o.solver);
     spectral.seed = o.seed;
@@ -106,30 +88,17 @@ void run_spectrum(const SpectrumOptions& o) {
     std::vector<ParameterSweep> sweeps;
     for (const auto& v : o.vary) sweeps.push_back(parse_sweep(v));
     if (sweeps.size() > 2) throw InputError("--vary: at most two fields (they form a grid); got " + std::to_string(sweeps.size()));
-    const auto grid = sweep_grid(sweeps);
+    const auto axes = sweep_axes(sweeps);
 
     // Every material (and every combination of the sweeps) is loaded and checked against the solver before
     // any ray is traced.
     std::vector<std::vector<SweepMember>> members_per_name;
-    const auto load = [&](const std::string& name, const std::vector<MaterialOverride>& extra) {
-        auto overrides = request.overrides;
-        overrides.insert(overrides.end(), extra.begin(), extra.end());
-        auto material = load_material(name, overrides);
-        if (!o.layers.empty()) {
-            if (const auto* stack = std::get_if<LayerStack>(&material)) material = stack->sub_stack(o.layers);
-            else throw InputError("--layers: material '" + name + "' is homogeneous and has no layers");
-        }
-        check_request(solver, material, request);
-        return material;
-    };
     for (const auto& name : names) {
-        std::vector<SweepMember> members;
-        for (const auto& values : grid) {
-            const auto extra = sweep_overrides(sweeps, values);
-            std::vector<std::pair<std::string, double>> varied;
-            for (std::size_t s = 0; s < sweeps.size(); ++s) varied.emplace_back(sweeps[s].field, values[s]);
-            members.push_back({load(name, extra), extra, std::move(varied)});
-        }
+        auto members = sweep_members(solver, request, axes, o.layers, [&](const std::vector<MaterialOverride>& extra) {
+            auto overrides = request.overrides;
+            overrides.insert(overrides.end(), extra.begin(), extra.end());
+            return load_material(name, overrides);
+        });
         const bool bands = std::holds_alternative<HomogeneousMaterial>(members.front().material);
         if (!members_per_name.empty() && bands != std::holds_alternative<HomogeneousMaterial>(members_per_name.front().front().material)) {
             throw InputError("material '" + name + "' has " + (bands ? "bands" : "wavelengths") + ", the materials before it " +
@@ -150,7 +119,7 @@ void run_spectrum(const SpectrumOptions& o) {
         bar.clear();
         for (auto& result : results) {
             auto color = result.bands.empty() ? reflectance_color(result, illuminant, observer) : std::nullopt;
-            spectra.push_back({std::move(result), std::move(color), seconds / static_cast<double>(grid.size())});
+            spectra.push_back({std::move(result), std::move(color), seconds / static_cast<double>(members_per_name[m].size())});
         }
     }
 

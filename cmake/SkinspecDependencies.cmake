@@ -55,3 +55,17 @@ endif()
 if(SKINSPEC_BUILD_TESTS)
   find_package(Catch2 2 REQUIRED)
 endif()
+
+# The Python module is built for the interpreter Debian's python3-numpy and python3-pytest belong to
+# (/usr/bin/python3), not whichever python3 is first on PATH; -DPython3_EXECUTABLE=... chooses another.
+if(SKINSPEC_PYTHON)
+  if(NOT Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "Interpreter of the Python module")
+  endif()
+  find_package(Python3 COMPONENTS Interpreter Development.Module)
+  find_package(pybind11 2.6 CONFIG)
+  if(NOT Python3_FOUND OR NOT pybind11_FOUND)
+    message(FATAL_ERROR "The Python module needs python3-dev and pybind11-dev (scripts/setup.sh installs them), "
+                        "or configure with -DSKINSPEC_PYTHON=OFF")
+  endif()
+endif()

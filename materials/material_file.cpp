@@ -309,6 +309,12 @@ HomogeneousMaterial read_homogeneous(const Reader& r, const toml::table& root) {
     return m;
 }
 
+InputError unknown_section(const std::string& what, const std::string& head, const std::vector<std::string>& layer_names) {
+    std::string allowed = "model, surface, bottom";
+    for (const auto& n : layer_names) allowed += ", " + n;
+    return InputError(what + ": no layer or section '" + head + "' (allowed: " + allowed + ")");
+}
+
 // Parses "--set" value text as a TOML value (held in a one-key table under "v"); text that is not one is a string.
 toml::table override_value(const std::string& text) {
     try {
@@ -358,11 +364,7 @@ std::map<std::string, std::string> apply_overrides(toml::table& root, const std:
                 }
             }
         }
-        if (!matched) {
-            std::string allowed = "model, surface, bottom";
-            for (const auto& n : names) allowed += ", " + n;
-            throw InputError(o.origin + " " + o.key + ": no layer or section '" + head + "' (allowed: " + allowed + ")");
-        }
+        if (!matched) throw unknown_section(o.origin + " " + o.key, head, names);
     }
     return paths;
 }
@@ -373,15 +375,16 @@ toml::array array_of(const std::vector<double>& values) {
     return out;
 }
 
-toml::table stack_table(const LayerStack& s) {
+// With `every_model_switch` false, the variant and only the switches that differ from it (what a file holds, so
+// that a later --variant still takes effect); with true, every switch's value (what material_field reads).
+toml::table stack_table(const LayerStack& s, bool every_model_switch) {
     toml::table root{{"kind", "layered"}, {"name", s.name}, {"description", s.description}};
-    // The variant and only the switches that differ from it, so that a later --variant still takes effect.
     const auto defaults = model_variant(s.model.variant, "model.variant");
     toml::table model{{"variant", s.model.variant}};
     for (const auto& f : model_fields()) {
         std::visit([&](auto member) {
             using T = std::remove_cvref_t<decltype(s.model.*member)>;
-            if (s.model.*member == defaults.*member) return;
+            if (!every_model_switch && s.model.*member == defaults.*member) return;
             if constexpr (std::is_same_v<T, DecadicConversion>) model.insert(f.key, s.model.*member == DecadicConversion::multiply_ln10);
             else if constexpr (std::is_enum_v<T>) model.insert(f.key, std::string(to_string(s.model.*member)));
             else model.insert(f.key, s.model.*member);
@@ -444,9 +447,18 @@ MaterialOverride parse_override(std::string_view text) {
 Material read_material(const std::filesystem::path& file, const std::vector<MaterialOverride>& overrides) {
     const std::string name = file.string();
     if (!std::filesystem::is_regular_file(file)) throw InputError(name + ": material file not found");
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in && !in.eof()) throw InputError(name + ": cannot read the material file");
+    return parse_material(text.str(), name, overrides);
+}
+
+Material parse_material(std::string_view toml_text, std::string_view source, const std::vector<MaterialOverride>& overrides) {
+    const std::string name(source);
     toml::table root;
     try {
-        root = toml::parse_file(name);
+        root = toml::parse(toml_text, name);
     } catch (const toml::parse_error& e) {
         throw InputError(name + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column) +
                          ": TOML syntax error: " + std::string(e.description()));
@@ -495,7 +507,7 @@ std::string to_toml(const Material& material) {
     out << "# skinspec material, written by skinspec " << "(units in the key names; see docs/MATERIALS.md)\n";
     std::visit(
         [&](const auto& m) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, LayerStack>) out << stack_table(m);
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, LayerStack>) out << stack_table(m, false);
             else out << homogeneous_table(m);
         },
         material);
@@ -505,6 +517,120 @@ std::string to_toml(const Material& material) {
 
 void write_material(const Material& material, const std::filesystem::path& file, bool overwrite) {
     write_text_file(file, to_toml(material), overwrite);
+}
+
+Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides) {
+    return parse_material(to_toml(material), "material " + material_name(material), overrides);
+}
+
+namespace {
+
+// The document material_field reads: every model switch spelled out.
+toml::table full_table(const Material& material) {
+    return std::visit(
+        [](const auto& m) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, LayerStack>) return stack_table(m, true);
+            else return homogeneous_table(m);
+        },
+        material);
+}
+
+FieldValue field_value(const toml::node& node, const std::string& key) {
+    if (const auto b = node.value_exact<bool>()) return *b;
+    if (node.is_number()) return *node.value<double>();
+    if (const auto text = node.value_exact<std::string>()) return *text;
+    if (const auto* array = node.as_array()) {
+        if (array->is_homogeneous(toml::node_type::string)) {
+            std::vector<std::string> out;
+            for (const auto& e : *array) out.push_back(*e.value_exact<std::string>());
+            return out;
+        }
+        std::vector<double> out;
+        for (const auto& e : *array) out.push_back(e.value<double>().value_or(0.0));
+        return out;
+    }
+    throw InputError(key + ": not a value (a table)");
+}
+
+std::string keys_text(const toml::table& table, const std::string& prefix) {
+    std::string out;
+    for (const auto& [k, node] : table) {
+        if (k.str() != "name" || prefix.empty()) out += (out.empty() ? "" : ", ") + prefix + std::string(k.str());
+    }
+    return out;
+}
+
+}  // namespace
+
+FieldValue material_field(const Material& material, std::string_view key_text) {
+    const std::string key(key_text);
+    const auto root = full_table(material);
+    const auto dot = key.find('.');
+    if (dot == std::string::npos) {
+        const auto* node = root.get(key);
+        if (!node || node->is_table() || key == "layers") {
+            throw InputError("field '" + key + "' is not one of " + material_name(material) + "'s (fields: " + [&] {
+                std::string keys;
+                for (const auto& k : material_keys(material)) keys += (keys.empty() ? "" : ", ") + k;
+                return keys;
+            }() + ")");
+        }
+        return field_value(*node, key);
+    }
+    const std::string head = key.substr(0, dot);
+    const std::string name = key.substr(dot + 1);
+    if (head == "model" || head == "surface" || head == "bottom") {
+        const auto* section = root.get(head) ? root.get(head)->as_table() : nullptr;
+        const auto* node = section ? section->get(name) : nullptr;
+        if (!node) throw InputError("field '" + key + "' is not set in " + material_name(material) + " (" + head + " holds: " +
+                                    (section ? keys_text(*section, head + ".") : std::string("nothing")) + ")");
+        return field_value(*node, key);
+    }
+    std::vector<std::string> names;
+    std::vector<std::pair<std::string, FieldValue>> found;
+    std::string missing;
+    if (const auto* layers = root.get("layers"); layers && layers->as_array()) {
+        for (const auto& node : *layers->as_array()) {
+            const auto& layer = *node.as_table();
+            const auto layer_name = layer["name"].value_or(std::string());
+            names.push_back(layer_name);
+            if (!layer_matches(layer_name, head)) continue;
+            if (const auto* value = layer.get(name)) found.emplace_back(layer_name, field_value(*value, key));
+            else missing = layer_name + " holds: " + keys_text(layer, layer_name + ".");
+        }
+    }
+    if (found.empty() && missing.empty()) throw unknown_section("field '" + key + "'", head, names);
+    if (!missing.empty()) throw InputError("field '" + key + "' is not set in " + material_name(material) + " (" + missing + ")");
+    for (const auto& [layer_name, value] : found) {
+        if (value != found.front().second) {
+            throw InputError("field '" + key + "' addresses " + found.front().first + " and " + layer_name +
+                             ", which differ: read " + found.front().first + "." + name + " and " + layer_name + "." + name + " one at a time");
+        }
+    }
+    return found.front().second;
+}
+
+std::vector<std::string> material_keys(const Material& material) {
+    const auto root = full_table(material);
+    std::vector<std::string> keys;
+    for (const auto& [k, node] : root) {
+        const std::string key(k.str());
+        if (key == "kind") continue;
+        if (const auto* section = node.as_table()) {
+            for (const auto& [name, value] : *section) keys.push_back(key + "." + std::string(name.str()));
+        } else if (key == "layers") {
+            for (const auto& layer_node : *node.as_array()) {
+                const auto& layer = *layer_node.as_table();
+                const auto layer_name = layer["name"].value_or(std::string());
+                for (const auto& [name, value] : layer) {
+                    if (name.str() != "name") keys.push_back(layer_name + "." + std::string(name.str()));
+                }
+            }
+        } else {
+            keys.push_back(key);
+        }
+    }
+    return keys;
 }
 
 }  // namespace skinspec

@@ -38,11 +38,23 @@ MaterialOverride parse_override(std::string_view text);
 
 // Reads a material file and applies the overrides before validation.
 Material read_material(const std::filesystem::path& file, const std::vector<MaterialOverride>& overrides = {});
+// Material TOML text (a file's contents, or what to_toml wrote); `source` names it in messages.
+Material parse_material(std::string_view toml_text, std::string_view source, const std::vector<MaterialOverride>& overrides = {});
+// `material` with the overrides applied and checked as when read from a file (messages name "material NAME").
+Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides);
 // A preset name (file stem in data/materials) or a path to a .toml file.
 Material load_material(std::string_view name_or_file, const std::vector<MaterialOverride>& overrides = {});
 std::vector<std::filesystem::path> preset_files();
 const std::string& material_name(const Material& material);
 const std::string& material_description(const Material& material);
+
+// The value of a field as --set addresses it: NAME, model.NAME (every switch, also those the variant sets),
+// surface.NAME, bottom.NAME or LAYER.NAME, where a LAYER suffix ("dermis") must address layers that agree.
+// InputError naming the key and what the material holds.
+using FieldValue = std::variant<bool, double, std::string, std::vector<double>, std::vector<std::string>>;
+FieldValue material_field(const Material& material, std::string_view key);
+// Every key material_field reads, in file order (each layer's fields as LAYER.NAME).
+std::vector<std::string> material_keys(const Material& material);
 
 // TOML text that read_material turns back into an equal Material.
 std::string to_toml(const Material& material);

@@ -21,6 +21,14 @@ std::vector<double> ParameterSweep::values() const {
     return v;
 }
 
+SweepAxis ParameterSweep::axis() const { return {field, values()}; }
+
+std::vector<SweepAxis> sweep_axes(const std::vector<ParameterSweep>& sweeps) {
+    std::vector<SweepAxis> axes;
+    for (const auto& s : sweeps) axes.push_back(s.axis());
+    return axes;
+}
+
 ParameterSweep parse_sweep(std::string_view text) {
     const std::string what = "--vary '" + std::string(text) + "'";
     const auto eq = text.find('=');
@@ -57,13 +65,12 @@ ParameterSweep parse_sweep(std::string_view text) {
     return sweep;
 }
 
-std::vector<std::vector<double>> sweep_grid(const std::vector<ParameterSweep>& sweeps) {
+std::vector<std::vector<double>> sweep_grid(const std::vector<SweepAxis>& axes) {
     std::vector<std::vector<double>> grid{{}};
-    for (const auto& sweep : sweeps) {
+    for (const auto& axis : axes) {
         std::vector<std::vector<double>> next;
-        const auto values = sweep.values();
-        // The first sweep varies fastest: rows (later sweeps) are the outer loop.
-        for (const double v : values) {
+        // The first axis varies fastest: rows (later axes) are the outer loop.
+        for (const double v : axis.values) {
             for (const auto& g : grid) {
                 auto combination = g;
                 combination.push_back(v);
@@ -75,9 +82,9 @@ std::vector<std::vector<double>> sweep_grid(const std::vector<ParameterSweep>& s
     return grid;
 }
 
-std::vector<MaterialOverride> sweep_overrides(const std::vector<ParameterSweep>& sweeps, const std::vector<double>& values) {
+std::vector<MaterialOverride> sweep_overrides(const std::vector<SweepAxis>& axes, const std::vector<double>& values) {
     std::vector<MaterialOverride> out;
-    for (std::size_t s = 0; s < sweeps.size() && s < values.size(); ++s) out.push_back({sweeps[s].field, format_number(values[s]), "--vary"});
+    for (std::size_t s = 0; s < axes.size() && s < values.size(); ++s) out.push_back({axes[s].field, format_number(values[s]), "--vary"});
     return out;
 }
 

@@ -13,6 +13,7 @@ namespace skinspec {
 // "FIELD=FIRST:LAST:STEPS[:log]", e.g. "epidermis.melanosome_fraction=0.01:0.42:8:log": STEPS values from
 // FIRST to LAST inclusive, evenly spaced or, with ":log", evenly spaced in the logarithm (FIRST, LAST > 0);
 // STEPS = 1: FIRST alone.
+struct SweepAxis;
 struct ParameterSweep {
     std::string field;
     double first = 0.0;
@@ -20,13 +21,21 @@ struct ParameterSweep {
     std::size_t steps = 1;
     bool log = false;
     std::vector<double> values() const;
+    SweepAxis axis() const;
 };
+
+// One swept field and its values in order (a parsed --vary, or any list, e.g. from Python).
+struct SweepAxis {
+    std::string field;
+    std::vector<double> values;
+};
+std::vector<SweepAxis> sweep_axes(const std::vector<ParameterSweep>& sweeps);
 // InputError naming the --vary text for a malformed sweep, an empty range or a log range through 0.
 ParameterSweep parse_sweep(std::string_view text);
 
-// Every combination of the sweeps' values, the first sweep varying fastest (columns, then rows).
-std::vector<std::vector<double>> sweep_grid(const std::vector<ParameterSweep>& sweeps);
-// The overrides of one combination.
-std::vector<MaterialOverride> sweep_overrides(const std::vector<ParameterSweep>& sweeps, const std::vector<double>& values);
+// Every combination of the axes' values, the first axis varying fastest (columns, then rows).
+std::vector<std::vector<double>> sweep_grid(const std::vector<SweepAxis>& axes);
+// The overrides of one combination (values written exactly, shortest round-trip form).
+std::vector<MaterialOverride> sweep_overrides(const std::vector<SweepAxis>& axes, const std::vector<double>& values);
 
 }  // namespace skinspec

@@ -229,6 +229,25 @@ SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& mate
     return result;
 }
 
+std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
+                                       const std::vector<std::string>& layers,
+                                       const std::function<Material(const std::vector<MaterialOverride>&)>& make) {
+    std::vector<SweepMember> members;
+    for (const auto& values : sweep_grid(axes)) {
+        auto overrides = sweep_overrides(axes, values);
+        auto material = make(overrides);
+        if (!layers.empty()) {
+            if (const auto* stack = std::get_if<LayerStack>(&material)) material = stack->sub_stack(layers);
+            else throw InputError("--layers: material '" + material_name(material) + "' is homogeneous and has no layers");
+        }
+        check_request(solver, material, request);
+        std::vector<std::pair<std::string, double>> varied;
+        for (std::size_t a = 0; a < axes.size(); ++a) varied.emplace_back(axes[a].field, values[a]);
+        members.push_back({std::move(material), std::move(overrides), std::move(varied)});
+    }
+    return members;
+}
+
 std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request) {
     std::vector<const Material*> materials;
     for (const auto& m : members) {

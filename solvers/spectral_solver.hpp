@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "materials/material_file.hpp"
+#include "materials/parameter_sweep.hpp"
 #include "transport/biospec/biospec_options.hpp"
 #include "transport/diffusion/diffusion_profiles.hpp"
 #include "transport/rte/rte_model.hpp"
@@ -108,6 +109,12 @@ struct SweepMember {
     std::vector<MaterialOverride> overrides;
     std::vector<std::pair<std::string, double>> varied;
 };
+// The members of a sweep over `axes`, one per combination of their values (sweep_grid order; no axis: one
+// member): each made by `make` from the combination's overrides, cut to the sub-stack of `layers` when given,
+// and checked against the solver, so that every input is refused before any ray is traced.
+std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
+                                       const std::vector<std::string>& layers,
+                                       const std::function<Material(const std::vector<MaterialOverride>&)>& make);
 // Every member checked first, then solved together (solve_many: replayed where the solver can).
 std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request);
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);

@@ -10,7 +10,7 @@
 using namespace skinspec;
 namespace fs = std::filesystem;
 
-TEST_CASE("a failed write leaves neither the file nor a temporary; a good one replaces atomically", "[atomic_file]") {
+TEST_CASE("a failed write leaves neither the file nor a temporary, a good one replaces atomically", "[atomic_file]") {
     const auto dir = fs::temp_directory_path() / "skinspec_atomic_test";
     fs::remove_all(dir);
     fs::create_directories(dir);

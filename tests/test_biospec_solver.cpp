@@ -147,7 +147,7 @@ TEST_CASE("without absorbers and reflector all light leaves", "[biospec_solver]"
     for (const auto& w : result.wavelengths) CHECK(w.reflectance.value + w.transmittance.value == Approx(1.0).margin(1e-12));
 }
 
-TEST_CASE("more melanin lowers R at every wavelength; more blood deepens the haemoglobin dips", "[biospec_solver]") {
+TEST_CASE("more melanin lowers R at every wavelength, more blood deepens the haemoglobin dips", "[biospec_solver]") {
     SpectralRequest request;
     request.wavelengths = WavelengthGrid::range(400.0, 700.0, 20.0);
     request.max_rays_per_wavelength = 100'000;

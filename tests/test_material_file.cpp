@@ -77,7 +77,7 @@ TEST_CASE("every preset survives load -> save -> load unchanged", "[material_fil
     CHECK(std::get<LayerStack>(read_material(temp_path("roundtrip2.toml"))) == stack);
 }
 
-TEST_CASE("a saved material still follows a later --variant; switches set by hand stay pinned", "[material_file]") {
+TEST_CASE("a saved material still follows a later --variant, switches set by hand stay pinned", "[material_file]") {
     const auto saved = temp_path("variant.toml");
     write_material(load_material("biospec-lightly"), saved, true);
     const auto later = std::get<LayerStack>(read_material(saved, {{"model.variant", "biospec-2004"}}));
@@ -187,4 +187,37 @@ TEST_CASE("each invalid material file gets its error naming file, line, key, val
     CHECK_THROWS_WITH(read_material("/nonexistent/m.toml"), Catch::Contains("material file not found"));
     CHECK_THROWS_WITH(load_material("no-such-preset"), Catch::Contains("is neither a preset nor a .toml file (presets: biospec-heavily"));
     CHECK(std::holds_alternative<LayerStack>(read_material(write_temp("ok.toml", minimal))));
+}
+
+TEST_CASE("material_field reads every field as --set addresses it, material_keys lists them", "[material_file]") {
+    auto m = load_material("biospec-moderately", {{"dermis.oxygen_saturation", "0.8"}});
+    CHECK(std::get<double>(material_field(m, "epidermis.melanosome_fraction")) == 0.052);
+    CHECK(std::get<double>(material_field(m, "dermis.oxygen_saturation")) == 0.8);
+    CHECK(std::get<std::string>(material_field(m, "model.variant")) == "biospec");
+    CHECK(std::get<std::string>(material_field(m, "name")) == "biospec-moderately");
+    // Every model switch reads, also those the variant sets and a file leaves out.
+    for (const auto& key : material_keys(m)) CHECK_NOTHROW(material_field(m, key));
+    const auto keys = material_keys(m);
+    CHECK(std::find(keys.begin(), keys.end(), "epidermis.melanosome_fraction") != keys.end());
+    CHECK(std::find(keys.begin(), keys.end(), "model.dermal_rayleigh") != keys.end());
+    CHECK_THROWS_WITH(material_field(m, "epiderm.melanosome_fraction"), Catch::Contains("no layer or section 'epiderm'"));
+    CHECK_THROWS_WITH(material_field(m, "epidermis.melanin"), Catch::Contains("is not set in biospec-moderately"));
+    CHECK_THROWS_WITH(material_field(m, "colour"), Catch::Contains("is not one of biospec-moderately's"));
+    m = load_material("biospec-moderately", {{"papillary_dermis.blood_fraction", "0.01"}, {"reticular_dermis.blood_fraction", "0.002"}});
+    CHECK_THROWS_WITH(material_field(m, "dermis.blood_fraction"), Catch::Contains("which differ"));
+    const auto jensen = load_material("jensen2001-skin1");
+    CHECK(std::get<std::vector<std::string>>(material_field(jensen, "bands")) == std::vector<std::string>{"R", "G", "B"});
+    CHECK(std::get<std::vector<double>>(material_field(jensen, "absorption_per_mm")).size() == 3);
+}
+
+TEST_CASE("with_overrides applies --set checks to a material in memory, parse_material names its source", "[material_file]") {
+    const auto base = load_material("biospec-lightly");
+    const auto changed = with_overrides(base, {{"epidermis.melanosome_fraction", "0.03", "set"}});
+    CHECK(changed == load_material("biospec-lightly", {{"epidermis.melanosome_fraction", "0.03"}}));
+    CHECK(with_overrides(base, {}) == base);
+    CHECK_THROWS_WITH(with_overrides(base, {{"epidermis.melanosome_fraction", "-1", "set"}}),
+                      "material biospec-lightly (set epidermis.melanosome_fraction): key 'epidermis.melanosome_fraction' = -1 is outside [0, 1]");
+    CHECK_THROWS_WITH(with_overrides(base, {{"epidermis.melanosome_fraction", "nan", "set"}}), Catch::Contains("= nan is outside [0, 1]"));
+    CHECK(parse_material(to_toml(base), "text") == base);
+    CHECK_THROWS_WITH(parse_material("kind = \"layered\"\nname = [", "notebook cell"), Catch::StartsWith("notebook cell:2:"));
 }

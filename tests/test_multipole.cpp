@@ -66,7 +66,7 @@ TEST_CASE("profiles integrate to the closed-form totals and transform as the clo
     }
 }
 
-TEST_CASE("thick slabs become the dipole; pairs are chosen by convergence", "[multipole]") {
+TEST_CASE("thick slabs become the dipole, pairs are chosen by convergence", "[multipole]") {
     const double f = diffuse_fresnel_reflectance(1.3);
     const Multipole thick({1.0, 0.05, 100.0, f, f});
     const Dipole dipole({1.0, 0.05, 1.3});

@@ -98,7 +98,7 @@ TEST_CASE("free paths are exponential with mean 1 / mu (Wang, Jacques & Zheng 19
     CHECK(sd == Approx(1.0 / mu).epsilon(0.03));
 }
 
-TEST_CASE("a boundary reflects and refracts by Fresnel and Snell; split boundaries keep the reflected part", "[rte_packet]") {
+TEST_CASE("a boundary reflects and refracts by Fresnel and Snell, split boundaries keep the reflected part", "[rte_packet]") {
     // Without scattering a photon runs straight to the boundary: at normal incidence from n = 1.5 into air a split
     // boundary keeps R = ((n - 1) / (n + 1))^2 and the escaping ray leaves along the normal; at 60 degrees (beyond
     // the critical angle, 41.8 degrees) it is totally reflected and nothing escapes.

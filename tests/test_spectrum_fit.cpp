@@ -106,3 +106,39 @@ TEST_CASE("the replayed model's analytic Jacobian equals central differences", "
         }
     }
 }
+
+TEST_CASE("fit_all fits many spectra in parallel, in order, each as fit() alone, a set cancel flag starts none", "[spectrum_fit]") {
+    SpectrumFitSettings settings;
+    settings.free = {{"epidermis.melanosome_fraction", {}, {}}};
+    settings.rays_per_wavelength = 2000;
+    const auto base = preset("biospec-moderately");
+    const SpectrumFitter fitter(base, grid(), settings);
+    std::vector<std::vector<double>> spectra;
+    for (const double f : {0.02, 0.06, 0.15}) {
+        const auto m = fitter.model({f});
+        std::vector<double> r;
+        for (const auto& e : m) r.push_back(e.value);
+        spectra.push_back(r);
+    }
+    std::vector<std::size_t> done;
+    const auto fits = fitter.fit_all({"a", "b", "c"}, spectra, [&](std::size_t d, std::size_t total) {
+        CHECK(total == 3);
+        done.push_back(d);
+    });
+    REQUIRE(fits.size() == 3);
+    CHECK(done == std::vector<std::size_t>{1, 2, 3});
+    for (std::size_t i = 0; i < 3; ++i) {
+        REQUIRE(fits[i]);
+        const auto alone = fitter.fit(fits[i]->name, spectra[i]);
+        CHECK(fits[i]->parameters == alone.parameters);
+    }
+    CHECK(fits[0]->name == "a");
+    // The fitter's own model spectra: the parameters come back (the optimiser's tolerance, not Monte Carlo noise).
+    CHECK(fits[1]->parameters[0] == Approx(0.06).epsilon(0.01));
+
+    CancelFlag cancel{true};
+    auto cancelled_settings = settings;
+    cancelled_settings.cancel = &cancel;
+    const SpectrumFitter stopped(base, grid(), cancelled_settings);
+    for (const auto& f : stopped.fit_all({"a", "b", "c"}, spectra, {})) CHECK_FALSE(f);
+}

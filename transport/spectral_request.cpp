@@ -23,6 +23,22 @@ MeasurementGeometry parse_measurement_geometry(std::string_view text, std::strin
                               "a measurement geometry");
 }
 
+Quantities parse_quantities(std::string_view text, std::string_view what) {
+    Quantities q{false, false, false, false};
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const auto comma = std::min(text.find(',', start), text.size());
+        const auto item = text.substr(start, comma - start);
+        if (item == "R") q.reflectance = true;
+        else if (item == "T") q.transmittance = true;
+        else if (item == "A") q.absorptance = true;
+        else if (item == "brdf" || item == "angular") q.angular = true;
+        else throw InputError(std::string(what) + ": '" + std::string(item) + "' is not a quantity (allowed: R, T, A, brdf)");
+        start = comma + 1;
+    }
+    return q;
+}
+
 std::vector<double> default_angular_bin_edges_deg() {
     std::vector<double> edges{0.0};
     for (double e = 2.5; e < 90.0; e += 5.0) edges.push_back(e);

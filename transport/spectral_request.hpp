@@ -23,6 +23,9 @@ struct Quantities {
     bool angular = false;        // BRDF / BTDF per polar bin (virtual goniometer)
 };
 
+// "R,T,A,brdf" (any of them, comma-separated; "angular" = brdf); InputError naming `what` for anything else.
+Quantities parse_quantities(std::string_view text, std::string_view what);
+
 // How R is measured (CIE 15:2004 Sec. 5 geometries; docs/SOLVERS.md "Measurement geometry"):
 enum class MeasurementGeometry {
     sci,      // specular component included: all light leaving the top (directional-hemispherical)

@@ -6,8 +6,11 @@
 #include <limits>
 #include <numeric>
 
+#include <mutex>
+
 #include <Eigen/Dense>
 #include <nlopt.hpp>
+#include <tbb/parallel_for.h>
 
 #include "spectral/ciede2000.hpp"
 #include "spectral/input_error.hpp"
@@ -346,6 +349,21 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
     fit.evaluations = evaluations;
     fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return fit;
+}
+
+std::vector<std::optional<SpectrumFit>> SpectrumFitter::fit_all(const std::vector<std::string>& names,
+                                                                const std::vector<std::vector<double>>& measured,
+                                                                const std::function<void(std::size_t, std::size_t)>& on_fitted) const {
+    std::vector<std::optional<SpectrumFit>> slots(measured.size());
+    std::size_t done = 0;
+    std::mutex progress_lock;
+    tbb::parallel_for(std::size_t{0}, measured.size(), [&](std::size_t i) {
+        if (settings_.cancel && settings_.cancel->load()) return;
+        slots[i] = fit(names[i], measured[i]);
+        const std::lock_guard lock(progress_lock);
+        if (on_fitted) on_fitted(++done, measured.size());
+    });
+    return slots;
 }
 
 }  // namespace skinspec

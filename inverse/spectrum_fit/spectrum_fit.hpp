@@ -6,6 +6,7 @@
 // minimise the weighted squared residual. Free parameters change absorption only, or the thickness of a layer
 // whose paths scale with it (no Rayleigh scattering), so one set of paths serves every spectrum.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -89,6 +90,10 @@ public:
 
     // One spectrum at the fitter's wavelengths (all given ones; those outside the window are left out).
     SpectrumFit fit(const std::string& name, const std::vector<double>& measured) const;
+    // Many spectra in parallel, results in their order; once the settings' cancel flag is set no new fit starts
+    // (those not fitted are nullopt). `on_fitted(done, total)` after each fit, serialised.
+    std::vector<std::optional<SpectrumFit>> fit_all(const std::vector<std::string>& names, const std::vector<std::vector<double>>& measured,
+                                                    const std::function<void(std::size_t, std::size_t)>& on_fitted) const;
     // The model at parameter values (in the order of the free keys), per fitted wavelength, with standard errors;
     // with `jacobian`, also dR_w / dparameter_j ([w][j]) from the same pass over the paths.
     std::vector<Estimate> model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian = nullptr) const;

@@ -3,9 +3,17 @@
 #include <cmath>
 
 #include "spectral/input_error.hpp"
+#include "spectral/named_choice.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
+
+std::string_view to_string(BoundaryMode mode) { return mode == BoundaryMode::split ? "split" : "random"; }
+
+BoundaryMode parse_boundary_mode(std::string_view text, std::string_view what) {
+    return parse_named_choice(text, what, std::array{BoundaryMode::random, BoundaryMode::split}, "a boundary mode");
+}
+
 
 RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
     RteStack out;

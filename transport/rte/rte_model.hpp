@@ -45,6 +45,8 @@ enum class BoundaryMode {
     random,  // all-or-none: reflect with probability R (MCML's default)
     split,   // outer boundaries: the transmitted part w (1 - R) escapes, the ray goes on with w R
 };
+std::string_view to_string(BoundaryMode mode);
+BoundaryMode parse_boundary_mode(std::string_view text, std::string_view what);
 
 struct RteRequest {
     RteStack stack;

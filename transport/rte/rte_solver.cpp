@@ -486,7 +486,7 @@ std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack
         o.settings = {{"incidence_deg", request.incidence_deg},
                       {"seed", request.seed},
                       {"max_rays_per_wavelength", request.max_rays_per_wavelength},
-                      {"boundaries", std::string(boundaries == BoundaryMode::split ? "split" : "random")},
+                      {"boundaries", std::string(to_string(boundaries))},
                       {"bottom", std::string(to_string(stacks[s]->bottom))},
                       {"absorption", std::string(replay ? "white Monte Carlo (Beer-Lambert along mu_s paths)" : "MCML (albedo per interaction)")},
                       {"absorption_sets_traced_together", std::uint64_t{stacks.size()}},

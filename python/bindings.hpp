@@ -1,0 +1,73 @@
+#pragma once
+// The native part of the Python module (docs/PYTHON.md): one bind_* per area, and the argument conversions and
+// the interruptible call they share. Nothing here computes physics: every call goes to the library (solver
+// registry, replay, fit, colorimetry) exactly as the command-line program's does.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <tbb/global_control.h>
+
+#include "materials/material_file.hpp"
+#include "transport/spectral_request.hpp"
+
+namespace skinspec::python {
+
+namespace py = pybind11;
+
+void bind_materials(py::module_& m);
+void bind_spectra(py::module_& m);
+void bind_color(py::module_& m);
+void bind_fit(py::module_& m);
+
+// A Python-side material: the resolved Material and the overrides set on it since it was loaded (recorded in
+// the provenance of every result computed from it).
+struct PyMaterial {
+    Material material;
+    std::vector<MaterialOverride> overrides;
+};
+// A Material object, or a preset name / .toml path (loaded).
+PyMaterial material_argument(const py::handle& value, std::string_view what);
+
+// A 1-D array-like of finite numbers (a scalar is one value). InputError naming `what`, the shape or the first
+// bad entry and its index.
+std::vector<double> finite_vector(const py::handle& value, std::string_view what);
+// Any array-like of finite numbers, as float64 (C order).
+py::array_t<double, py::array::c_style> finite_array(const py::handle& value, std::string_view what);
+// A string of comma-separated names or a sequence of strings ("R,T" or ["R", "T"]).
+std::vector<std::string> name_list(const py::handle& value, std::string_view what);
+// InputError "WHAT = V is outside [LO, HI]" unless lo <= v <= hi.
+void check_range(double value, double lo, double hi, std::string_view what);
+// A Python integer (or numpy integer; not a bool) in [lo, hi].
+std::uint64_t whole_number(const py::handle& value, double lo, double hi, std::string_view what);
+// One finite number.
+double one_number(const py::handle& value, std::string_view what);
+
+py::array_t<double> to_array(const std::vector<double>& values, const std::vector<py::ssize_t>& shape);
+// The result types of python/skinspec/results.py (Spectrum, Profiles, ...), built from keyword fields.
+py::object result_object(const char* type_name, const py::dict& fields);
+
+// Runs `work` on a worker thread with the GIL released. The calling thread wakes every 50 ms: it hands the
+// latest progress to `on_progress` (a Python callable taking a dict, or None) and checks for signals. Ctrl-C (or an
+// exception in the callback) sets the cancel flag, waits for the worker to stop at its next batch, discards what it
+// computed and raises. Exceptions of `work` are re-raised in the caller (InputError as skinspec.InputError).
+using Work = std::function<void(const CancelFlag& cancel, const std::function<void(const Progress&)>& report)>;
+void run_interruptible(const Work& work, const py::object& on_progress);
+
+// Scoped `threads` (None: all cores): TBB's global parallelism limit while a call runs.
+class ThreadLimit {
+public:
+    explicit ThreadLimit(const py::object& threads);
+    ThreadLimit(const ThreadLimit&) = delete;
+    ThreadLimit& operator=(const ThreadLimit&) = delete;
+
+private:
+    std::optional<tbb::global_control> control_;
+};
+
+}  // namespace skinspec::python

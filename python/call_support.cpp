@@ -1,0 +1,197 @@
+// Argument conversions, result objects and the interruptible call shared by every binding (bindings.hpp).
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "python/bindings.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::python {
+
+PyMaterial material_argument(const py::handle& value, std::string_view what) {
+    if (py::isinstance<PyMaterial>(value)) return value.cast<PyMaterial>();
+    if (py::isinstance<py::str>(value)) return {load_material(value.cast<std::string>()), {}};
+    if (py::hasattr(value, "__fspath__")) return {load_material(py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>()), {}};
+    throw InputError(std::string(what) + ": expected a skinspec.Material, a preset name or a .toml path, got " +
+                     py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+}
+
+namespace {
+
+std::string shape_text(const py::array& a) {
+    std::string out = "(";
+    for (py::ssize_t d = 0; d < a.ndim(); ++d) out += (d ? ", " : "") + std::to_string(a.shape(d));
+    return out + (a.ndim() == 1 ? ",)" : ")");
+}
+
+py::array_t<double, py::array::c_style> as_doubles(const py::handle& value, std::string_view what) {
+    if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || value.is_none()) {
+        throw InputError(std::string(what) + ": expected numbers, got " + py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+    }
+    py::array raw;
+    try {
+        raw = py::array(py::module_::import("numpy").attr("asarray")(value));
+    } catch (const py::error_already_set&) {
+        throw InputError(std::string(what) + ": expected an array of numbers");
+    }
+    const char kind = raw.dtype().kind();
+    if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+        throw InputError(std::string(what) + ": expected numbers, got an array of dtype " + py::str(raw.dtype()).cast<std::string>());
+    }
+    return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(raw);
+}
+
+void check_finite(const py::array_t<double, py::array::c_style>& a, std::string_view what) {
+    const double* data = a.data();
+    for (py::ssize_t i = 0; i < a.size(); ++i) {
+        if (std::isfinite(data[i])) continue;
+        std::string index;
+        py::ssize_t rest = i;
+        for (py::ssize_t d = a.ndim() - 1; d >= 0; --d) {
+            index = std::to_string(rest % a.shape(d)) + (index.empty() ? "" : ", ") + index;
+            rest /= a.shape(d);
+        }
+        throw InputError(fmt::format("{}[{}] = {} is not a finite number", what, index, format_number(data[i])));
+    }
+}
+
+}  // namespace
+
+std::vector<double> finite_vector(const py::handle& value, std::string_view what) {
+    const auto a = as_doubles(value, what);
+    if (a.ndim() > 1) throw InputError(std::string(what) + ": expected a 1-D array, got shape " + shape_text(a));
+    check_finite(a, what);
+    return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+py::array_t<double, py::array::c_style> finite_array(const py::handle& value, std::string_view what) {
+    auto a = as_doubles(value, what);
+    check_finite(a, what);
+    return a;
+}
+
+std::vector<std::string> name_list(const py::handle& value, std::string_view what) {
+    std::vector<std::string> out;
+    if (py::isinstance<py::str>(value)) {
+        const auto text = value.cast<std::string>();
+        for (std::size_t start = 0; start <= text.size();) {
+            const auto comma = std::min(text.find(',', start), text.size());
+            out.push_back(std::string(trim(std::string_view(text).substr(start, comma - start))));
+            start = comma + 1;
+        }
+        return out;
+    }
+    try {
+        for (const auto& item : value) out.push_back(item.cast<std::string>());
+    } catch (const py::cast_error&) {
+        throw InputError(std::string(what) + ": expected a string or a list of strings");
+    }
+    return out;
+}
+
+std::uint64_t whole_number(const py::handle& value, double lo, double hi, std::string_view what) {
+    if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) throw InputError(std::string(what) + ": expected a whole number");
+    const auto index = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+    if (!index) throw py::error_already_set();
+    check_range(index.cast<double>(), lo, hi, what);
+    return index.cast<std::uint64_t>();
+}
+
+double one_number(const py::handle& value, std::string_view what) {
+    const auto a = as_doubles(value, what);
+    if (a.ndim() != 0) throw InputError(std::string(what) + ": expected one number");
+    check_finite(a, what);
+    return *a.data();
+}
+
+void check_range(double value, double lo, double hi, std::string_view what) {
+    if (!(value >= lo && value <= hi)) {
+        throw InputError(fmt::format("{} = {} is outside [{}, {}]", what, format_number(value), format_number(lo), format_number(hi)));
+    }
+}
+
+py::array_t<double> to_array(const std::vector<double>& values, const std::vector<py::ssize_t>& shape) {
+    py::array_t<double> out(shape);
+    std::copy(values.begin(), values.end(), out.mutable_data());
+    return out;
+}
+
+py::object result_object(const char* type_name, const py::dict& fields) {
+    return py::module_::import("skinspec.results").attr(type_name)(**fields);
+}
+
+void run_interruptible(const Work& work, const py::object& on_progress) {
+    CancelFlag cancel{false};
+    std::mutex lock;
+    std::condition_variable finished_signal;
+    bool finished = false;
+    std::optional<Progress> latest;
+    std::exception_ptr failure;
+    const auto report = [&](const Progress& p) {
+        const std::lock_guard guard(lock);
+        latest = p;
+    };
+    std::thread worker;
+    {
+        const py::gil_scoped_release release;
+        worker = std::thread([&] {
+            try {
+                work(cancel, report);
+            } catch (...) {
+                failure = std::current_exception();
+            }
+            const std::lock_guard guard(lock);
+            finished = true;
+            finished_signal.notify_all();
+        });
+    }
+    const auto stop = [&] {
+        cancel = true;
+        const py::gil_scoped_release release;
+        worker.join();
+    };
+    while (true) {
+        bool done = false;
+        std::optional<Progress> progress;
+        {
+            const py::gil_scoped_release release;
+            std::unique_lock guard(lock);
+            finished_signal.wait_for(guard, std::chrono::milliseconds(50), [&] { return finished; });
+            done = finished;
+            progress.swap(latest);
+        }
+        try {
+            if (progress && !on_progress.is_none()) {
+                py::dict p;
+                p["rays_done"] = progress->rays_done;
+                p["rays_expected"] = progress->rays_expected;
+                p["done"] = progress->wavelengths_done;
+                p["total"] = progress->wavelengths_total;
+                on_progress(p);
+            }
+            if (!done && PyErr_CheckSignals() != 0) throw py::error_already_set();
+        } catch (...) {
+            stop();
+            throw;
+        }
+        if (done) break;
+    }
+    {
+        const py::gil_scoped_release release;
+        worker.join();
+    }
+    if (failure) std::rethrow_exception(failure);
+}
+
+ThreadLimit::ThreadLimit(const py::object& threads) {
+    if (threads.is_none()) return;
+    control_.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(whole_number(threads, 1, 1024, "threads")));
+}
+
+}  // namespace skinspec::python

@@ -1,0 +1,16 @@
+// The native part of the Python package skinspec (python/skinspec/__init__.py re-exports it; docs/PYTHON.md).
+#include "python/bindings.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/input_error.hpp"
+
+PYBIND11_MODULE(_skinspec, m) {
+    namespace py = pybind11;
+    m.doc() = "skinspec: spectral simulation of human skin appearance (native part)";
+    m.attr("__version__") = std::string(skinspec::version);
+    // Bad input: the same one-line messages as the command-line program, as a ValueError subclass.
+    py::register_exception<skinspec::InputError>(m, "InputError", PyExc_ValueError);
+    skinspec::python::bind_materials(m);
+    skinspec::python::bind_spectra(m);
+    skinspec::python::bind_color(m);
+    skinspec::python::bind_fit(m);
+}

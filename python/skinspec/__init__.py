@@ -1,0 +1,26 @@
+"""skinspec: spectral simulation of human skin appearance (docs/PYTHON.md).
+
+    import numpy as np, skinspec
+    skin = skinspec.Material("biospec-moderately")
+    skin["epidermis.melanosome_fraction"] = 0.03
+    s = skinspec.spectrum(skin, np.arange(400, 701, 10), stderr=0.002, seed=1)
+    s.R, s.R_stderr                      # numpy arrays, one value per wavelength
+    skinspec.color(s.wavelength_nm, s.R).Lab
+
+Every function is the library the `skinspec` program runs, with the same defaults, numbers and error messages
+(skinspec.InputError, a ValueError). Solves release the GIL; Ctrl-C raises KeyboardInterrupt.
+"""
+import os as _os
+
+from . import _skinspec
+from ._skinspec import (InputError, Material, __version__, absorption_only_fields, color, color_spaces, data_directory,
+                        delta_e2000, fields, fit_spectrum, presets, profiles, solvers, spectrum)
+from .results import Color, Fit, Profiles, Spectrum
+
+# An installed package (cmake --install ... --component python) carries its own copy of the data tables.
+_packaged_data = _os.path.join(_os.path.dirname(__file__), "data")
+if _os.path.isdir(_packaged_data):
+    _skinspec._set_default_data_directory(_packaged_data)
+
+__all__ = ["InputError", "Material", "Spectrum", "Profiles", "Color", "Fit", "absorption_only_fields", "color", "color_spaces",
+           "data_directory", "delta_e2000", "fields", "fit_spectrum", "presets", "profiles", "solvers", "spectrum", "__version__"]

@@ -1,0 +1,113 @@
+"""Result types of skinspec's Python functions: plain dataclasses of numpy arrays (docs/PYTHON.md).
+
+Quantities a request did not ask for are None, never zeros; standard errors are None for deterministic
+solvers (has_uncertainty False). Units are in the names (nm, mm, per sr, per mm^2).
+"""
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+import numpy as np
+
+
+def _shape(a: Optional[np.ndarray]) -> str:
+    return "None" if a is None else "x".join(str(n) for n in a.shape)
+
+
+@dataclass(frozen=True, repr=False)
+class Spectrum:
+    """What skinspec.spectrum computed. Arrays have the sweep's shape (one axis per vary field, in order)
+    in front of the wavelength axis: R[..., w]; A[..., w, layer]; brdf_per_sr[..., w, bin]."""
+    wavelength_nm: Optional[np.ndarray]  # None for band materials (see bands)
+    bands: list
+    R: Optional[np.ndarray]
+    R_stderr: Optional[np.ndarray]
+    R_specular: Optional[np.ndarray]
+    R_specular_stderr: Optional[np.ndarray]
+    T: Optional[np.ndarray]
+    T_stderr: Optional[np.ndarray]
+    A: Optional[np.ndarray]
+    A_stderr: Optional[np.ndarray]
+    A_surface: Optional[np.ndarray]
+    A_surface_stderr: Optional[np.ndarray]
+    brdf_per_sr: Optional[np.ndarray]
+    brdf_per_sr_stderr: Optional[np.ndarray]
+    btdf_per_sr: Optional[np.ndarray]
+    btdf_per_sr_stderr: Optional[np.ndarray]
+    angular_bin_edges_deg: list
+    rays: Optional[np.ndarray]
+    truncated_rays: Optional[np.ndarray]
+    converged: Optional[np.ndarray]
+    has_uncertainty: bool
+    layer_names: list
+    solver: str
+    model: str
+    material: str
+    settings: dict
+    vary: dict  # field -> its values (the sweep axes, in order)
+    provenance: Any  # a dict, or an object array of dicts shaped by the sweep
+    warnings: list = field(default_factory=list)  # one line per kind, as the CLI prints them
+    seconds: float = 0.0
+
+    def __repr__(self) -> str:
+        sweep = ", ".join(f"{k}: {len(v)} values" for k, v in self.vary.items())
+        return (f"<skinspec.Spectrum {self.material} by {self.solver}: R {_shape(self.R)}"
+                + (f", sweep {sweep}" if sweep else "") + f", {self.seconds:.3g} s>")
+
+
+@dataclass(frozen=True, repr=False)
+class Profiles:
+    """Radial profiles of skinspec.profiles: R_per_mm2[channel, radius] (channels: wavelengths or bands)."""
+    radii_mm: np.ndarray
+    wavelength_nm: Optional[np.ndarray]
+    labels: list
+    R_per_mm2: np.ndarray
+    T_per_mm2: Optional[np.ndarray]
+    total_R: np.ndarray
+    total_T: Optional[np.ndarray]
+    R_specular: np.ndarray
+    solver: str
+    model: str
+    material: str
+    warnings: list
+
+    def __repr__(self) -> str:
+        return f"<skinspec.Profiles {self.material} by {self.solver}: {len(self.labels)} channels x {len(self.radii_mm)} radii>"
+
+
+@dataclass(frozen=True, repr=False)
+class Color:
+    """Colorimetry of skinspec.color: arrays of the spectra's leading shape plus one axis."""
+    XYZ: np.ndarray
+    xy: np.ndarray
+    Lab: np.ndarray
+    white_XYZ: np.ndarray
+    rgb: dict  # colour space -> RGB array
+    illuminant: str
+    observer: str
+
+    def __repr__(self) -> str:
+        return f"<skinspec.Color {_shape(self.XYZ)} under {self.illuminant}, spaces {', '.join(self.rgb)}>"
+
+
+@dataclass(frozen=True, repr=False)
+class Fit:
+    """One fitted spectrum of skinspec.fit_spectrum."""
+    name: str
+    parameters: dict
+    parameter_stderr: dict  # inf where the spectrum does not determine the parameter
+    on_bound: list
+    rms: float
+    wavelength_nm: np.ndarray
+    measured: np.ndarray
+    fitted: np.ndarray
+    fitted_stderr: np.ndarray
+    residual: np.ndarray
+    measured_lab: np.ndarray
+    fitted_lab: np.ndarray
+    delta_e2000: float
+    evaluations: int
+    seconds: float
+
+    def __repr__(self) -> str:
+        values = ", ".join(f"{k}={v:.4g}" for k, v in self.parameters.items())
+        return f"<skinspec.Fit {self.name}: {values}; RMS {self.rms:.4f}, dE00 {self.delta_e2000:.2f}>"
