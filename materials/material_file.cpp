@@ -520,6 +520,7 @@ void write_material(const Material& material, const std::filesystem::path& file,
 }
 
 Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides) {
+    if (overrides.empty()) return material;  // to_toml round-trips exactly: nothing to re-check
     return parse_material(to_toml(material), "material " + material_name(material), overrides);
 }
 

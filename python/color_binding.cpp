@@ -57,8 +57,7 @@ py::object color(const py::object& wavelengths, const py::object& spectra, const
     const auto illuminant = parse_illuminant(illuminant_name, "illuminant");
     const auto observer = observer_argument(observer_name);
     const auto& cm = ColorManagement::builtin();
-    std::vector<std::string> space_names;
-    for (const auto& s : {std::string("sRGB"), std::string("Linear Rec.709"), std::string("ACEScg")}) space_names.push_back(s);
+    std::vector<std::string> space_names{"sRGB", "Linear Rec.709", "ACEScg"};
     if (!spaces.is_none()) {
         space_names.clear();
         for (const auto& name : name_list(spaces, "spaces")) space_names.push_back(cm.canonical_space(name, "spaces"));
