@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "solvers/color_precision.hpp"
+#include "solvers/result_wire.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/color_uncertainty.hpp"
 #include "spectral/input_error.hpp"
@@ -72,33 +73,27 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     }
 
     // Patches are solved in chunks through the solver's sweep (the BioSpec walk traces a chunk's paths once and
-    // re-weights them per patch); progress and Ctrl-C act per chunk.
+    // re-weights them per patch); progress and Ctrl-C act per chunk. With a work share each process solves its
+    // chunks and the first one turns every chunk's results into patches, in order.
     const std::size_t chunk = std::max<std::size_t>(1, request.patches_per_sweep);
-    for (std::size_t begin = 0; begin < parameters.size(); begin += chunk) {
-        const std::size_t end = std::min(parameters.size(), begin + chunk);
-        std::vector<SweepMember> members;
-        for (std::size_t i = begin; i < end; ++i) {
-            std::vector<std::pair<std::string, double>> varied;
-            for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
-            members.push_back({material_of(i), sweep_overrides(sweep_axes(request.sweeps), parameters[i]), std::move(varied)});
-        }
-        const auto results = solve_sweep(solver, members, base);
+    const std::size_t chunks = (parameters.size() + chunk - 1) / chunk;
+    // Appends a chunk's patches; false when the chunk is incomplete (stopped), after which nothing is appended.
+    const auto add_chunk = [&](std::size_t c, const std::vector<SpectralResult>& results) {
         for (std::size_t j = 0; j < results.size(); ++j) {
             const auto& result = results[j];
             if (result.partial) break;
-            const std::size_t i = begin + j;
-            std::vector<double> r, se;
+            const std::size_t i = c * chunk + j;
             SwatchPatch patch;
             patch.parameters = parameters[i];
             for (const auto& w : result.wavelengths) {
-                r.push_back(w.reflectance.value);
-                se.push_back(w.reflectance.stderr);
+                patch.reflectance.push_back(w.reflectance.value);
+                patch.reflectance_stderr.push_back(w.reflectance.stderr);
                 patch.rays += w.rays;
                 patch.converged = patch.converged && w.converged;
             }
-            patch.xyz = weights.integrate(r);
+            patch.xyz = weights.integrate(patch.reflectance);
             patch.lab = xyz_to_lab(patch.xyz, chart.white);
-            patch.delta_e_uncertainty = ciede2000_uncertainty(weights, r, se);
+            patch.delta_e_uncertainty = ciede2000_uncertainty(weights, patch.reflectance, patch.reflectance_stderr);
             for (auto w : result.warnings) {
                 w.at = "patch " + std::to_string(i + 1) + ", " + w.at;
                 chart.warnings.push_back(std::move(w));
@@ -106,12 +101,41 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
             chart.patches.push_back(std::move(patch));
             if (i == 0) chart.settings = result.settings;
         }
-        if (chart.patches.size() < end) {
-            chart.partial = true;
-            break;
+        return chart.patches.size() == std::min(parameters.size(), (c + 1) * chunk);
+    };
+    const auto* share = request.work_share;
+    std::vector<std::pair<std::size_t, std::string>> mine;
+    std::size_t own_total = 0, own_done = 0;
+    for (std::size_t c = 0; c < chunks; ++c) own_total += !share || share->mine(c) ? std::min(chunk, parameters.size() - c * chunk) : 0;
+    for (std::size_t c = 0; c < chunks; ++c) {
+        if (share && !share->mine(c)) continue;
+        if (request.cancel && request.cancel->load()) break;
+        const std::size_t begin = c * chunk, end = std::min(parameters.size(), begin + chunk);
+        std::vector<SweepMember> members;
+        for (std::size_t i = begin; i < end; ++i) {
+            std::vector<std::pair<std::string, double>> varied;
+            for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
+            members.push_back({material_of(i), sweep_overrides(sweep_axes(request.sweeps), parameters[i]), std::move(varied)});
         }
-        if (request.on_progress) request.on_progress(end, parameters.size());
+        auto results = solve_sweep(solver, members, base);
+        const bool complete = results.size() == members.size() && (results.empty() || !results.back().partial);
+        if (share) {
+            for (auto& r : results) r.provenance = {};  // a chart keeps no provenance: not sent
+            mine.emplace_back(c, results_to_bytes(results));
+        }
+        else if (!add_chunk(c, results)) break;
+        if (!complete) break;
+        own_done += members.size();
+        if (request.on_progress) request.on_progress(own_done, own_total);
     }
+    if (share) {
+        const auto gathered = share->gather(mine, chunks);
+        if (share->rank() != 0) return chart;
+        for (std::size_t c = 0; c < chunks; ++c) {
+            if (gathered[c].empty() || !add_chunk(c, results_from_bytes(gathered[c]))) break;
+        }
+    }
+    chart.partial = chart.patches.size() < parameters.size();
     chart.settings["material"] = request.material;
     chart.settings["solver"] = request.solver;
     chart.settings["geometry"] = std::string(to_string(request.geometry));

@@ -35,6 +35,9 @@ struct SwatchRequest {
     SolverSwitches switches;
     std::function<void(std::size_t patches_done, std::size_t patches_total)> on_progress;
     const CancelFlag* cancel = nullptr;
+    // Several processes (solvers/work_share.hpp): each solves every size()-th chunk; rank 0's chart has every
+    // patch, equal bit for bit to a one-process chart, the other ranks' charts none.
+    const WorkShare* work_share = nullptr;
 };
 
 struct SwatchPatch {
@@ -42,6 +45,8 @@ struct SwatchPatch {
     XYZ xyz;                         // perfect reflector Y = 1 under the request's illuminant
     Lab lab;
     double delta_e_uncertainty = 0.0;  // RMS CIEDE2000 error propagated from the spectral standard errors
+    std::vector<double> reflectance;         // R at the chart's wavelengths (the request's geometry)
+    std::vector<double> reflectance_stderr;  // its standard errors (0 for deterministic solvers)
     std::uint64_t rays = 0;
     bool converged = true;
 };

@@ -9,6 +9,8 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/bench_command.hpp"
+#include "cli/export_command.hpp"
+#include "cli/process_group.hpp"
 #include "spectral/image_files.hpp"
 #include "cli/stress_command.hpp"
 #include "cli/color_command.hpp"
@@ -44,7 +46,7 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 // "did you mean --wavelengths?" for each unexpected --option, from the options of the command it was given to.
 void suggest_options(const CLI::App& app, const std::vector<std::string>& unexpected) {
     const CLI::App* command = &app;
-    for (const auto* sub : app.get_subcommands()) command = sub;
+    while (!command->get_subcommands().empty()) command = command->get_subcommands().back();
     for (const auto& arg : unexpected) {
         if (!arg.starts_with("--")) continue;
         const auto given = arg.substr(2, arg.find('=') == std::string::npos ? std::string::npos : arg.find('=') - 2);
@@ -66,6 +68,7 @@ void suggest_options(const CLI::App& app, const std::vector<std::string>& unexpe
 }  // namespace
 
 int main(int argc, char** argv) {
+    skinspec::cli::join_process_group(argc, argv);
     CLI::App app{"skinspec: spectral simulator of human skin appearance"};
     app.set_version_flag("--version", std::string("skinspec ") + skinspec::version);
     app.require_subcommand(1);
@@ -81,6 +84,9 @@ int main(int argc, char** argv) {
     skinspec::cli::add_fit_spectrum_command(app);
     skinspec::cli::add_bench_command(app);
     skinspec::cli::add_stress_command(app);
+    skinspec::cli::add_export_command(app);
+    // With several processes only rank 0 reports an input error (every rank finds the same one); any error stops them all.
+    const bool root = skinspec::cli::is_root_process();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ExtrasError& e) {
@@ -91,14 +97,14 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const skinspec::InputError& e) {
-        std::cerr << "skinspec: error: " << e.what() << '\n';
-        return 2;
+        if (root) std::cerr << "skinspec: error: " << e.what() << '\n';
+        return skinspec::cli::error_exit(2);
     } catch (const skinspec::ImageModuleError& e) {
         std::cerr << "skinspec: error: " << e.what() << " (rebuild with ./scripts/setup.sh, or set SKINSPEC_IMAGE_MODULE)\n";
-        return 1;
+        return skinspec::cli::error_exit(1);
     } catch (const std::exception& e) {
         std::cerr << "skinspec: internal error: " << e.what() << '\n';
-        return 1;
+        return skinspec::cli::error_exit(1);
     }
     return 0;
 }

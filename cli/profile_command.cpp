@@ -33,19 +33,6 @@ struct ProfileOptions {
     bool overwrite = false;
 };
 
-// FIRST:LAST:STEP in mm, FIRST >= 0, STEP > 0, at most a million radii.
-std::vector<double> parse_radii(const std::string& text) {
-    const auto [first, last, step] = parse_colon_triple(text, "--radii", "mm");
-    if (first < 0.0) throw InputError("--radii: FIRST = " + format_number(first) + " mm is outside [0, inf)");
-    if (step <= 0.0) throw InputError("--radii: STEP = " + format_number(step) + " mm is outside (0, inf)");
-    if (last < first) throw InputError("--radii: LAST = " + format_number(last) + " mm is below FIRST = " + format_number(first) + " mm");
-    const double count = std::floor((last - first) / step + 1e-9) + 1.0;
-    if (count > 1e6) throw InputError("--radii: " + format_number(count) + " radii is outside [1, 1000000]");
-    std::vector<double> radii;
-    for (int i = 0; i < static_cast<int>(count); ++i) radii.push_back(first + i * step);
-    return radii;
-}
-
 std::string column_tag(const ChannelProfile& c) {
     return c.wavelength_nm > 0.0 ? fmt::format("{:g}nm", c.wavelength_nm) : "band" + c.label;
 }
@@ -96,7 +83,7 @@ void write_profile_plot(const std::string& file, const SpectralProfiles& p) {
 void run_profile(const ProfileOptions& o) {
     if (!o.preset.empty() && !o.material_file.empty()) throw InputError("--preset and --material: give one material, not both");
     const auto& solver = chosen_solver(o.solver, "multipole");
-    const auto radii = parse_radii(o.radii);
+    const auto radii = parse_radii_mm(o.radii, "--radii");
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
     if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".csv"});
     if (!o.plot.empty()) check_output_path(o.plot, o.overwrite, {".png", ".svg"});

@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 
 #include "cli/material_options.hpp"
+#include "cli/process_group.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
@@ -110,11 +111,11 @@ void run_spectrum(const SpectrumOptions& o) {
 
     std::vector<ReportedSpectrum> spectra;
     for (std::size_t m = 0; m < names.size(); ++m) {
-        if (InterruptGuard::interrupted()) break;
+        if (InterruptGuard::interrupted() && !process_work_share()) break;  // every rank takes part in every gather
         ProgressBar bar(material_name(members_per_name[m].front().material));
-        spectral.on_progress = [&bar](const Progress& p) { bar(p); };
+        if (is_root_process()) spectral.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
-        auto results = solve_sweep(solver, members_per_name[m], request);
+        auto results = solve_sweep(solver, members_per_name[m], request, process_work_share());
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         bar.clear();
         for (auto& result : results) {
@@ -123,6 +124,8 @@ void run_spectrum(const SpectrumOptions& o) {
         }
     }
 
+    // With several processes (mpirun), rank 0 has every result and reports; the others are done.
+    if (!is_root_process()) return;
     for (const auto& s : spectra) print_warning_summary(s.result.material, s.result.warnings);
     if (o.json) std::cout << to_json(spectra).dump(2) << '\n';
     else std::cout << (sweeps.empty() ? to_table(spectra) : to_sweep_table(spectra));

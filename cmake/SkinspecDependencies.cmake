@@ -69,3 +69,16 @@ if(SKINSPEC_PYTHON)
                         "or configure with -DSKINSPEC_PYTHON=OFF")
   endif()
 endif()
+
+# Mitsuba 3 scene files (formats/mitsuba_scene.hpp) are XML: pugixml (libpugixml-dev).
+find_package(pugixml REQUIRED)
+
+# MPI (OpenMPI from Debian: libopenmpi-dev, openmpi-bin) shares `spectrum --vary` and `export lut` among
+# processes started by mpirun (cli/process_group.hpp). Optional: without it the program is one process.
+if(SKINSPEC_MPI)
+  enable_language(C)
+  find_package(MPI COMPONENTS C)
+  if(NOT MPI_C_FOUND)
+    message(STATUS "MPI not found: skinspec is built without it (install libopenmpi-dev for mpirun runs)")
+  endif()
+endif()

@@ -35,8 +35,12 @@ public:
     std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         const auto o = options(request.switches);
         if (o.estimator != AbsorptionEstimator::weighted) return SpectralSolver::solve_many(materials, request);
-        return solve_in_replay_groups(materials, request, max_replay_sets, biospec_path_difference,
+        return solve_in_replay_groups(materials, request, solve_groups(materials, request),
                                       [&](const std::vector<const LayerStack*>& stacks) { return solve_biospec_sets(stacks, request.spectral, o); });
+    }
+    std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
+        if (options(request.switches).estimator != AbsorptionEstimator::weighted) return SpectralSolver::solve_groups(materials, request);
+        return replay_groups(materials, max_replay_sets, biospec_path_difference);
     }
 
 private:

@@ -7,6 +7,7 @@
 #include "solvers/adding_doubling_solver.hpp"
 #include "solvers/biospec_walk_solver.hpp"
 #include "solvers/diffusion_solvers.hpp"
+#include "solvers/result_wire.hpp"
 #include "solvers/volumetric_walk_solver.hpp"
 #include "spectral/input_error.hpp"
 
@@ -100,10 +101,14 @@ std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const M
     return results;
 }
 
-std::vector<SpectralResult> solve_in_replay_groups(
-    const std::vector<const Material*>& materials, const SolverRequest& request, std::size_t max_sets,
-    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference,
-    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&)>& solve_group) {
+std::vector<std::vector<std::size_t>> SpectralSolver::solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const {
+    std::vector<std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < materials.size(); ++i) groups.push_back({i});
+    return groups;
+}
+
+std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets,
+                                                    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference) {
     std::vector<std::vector<std::size_t>> groups;
     for (std::size_t i = 0; i < materials.size(); ++i) {
         const auto& stack = std::get<LayerStack>(*materials[i]);
@@ -113,13 +118,19 @@ std::vector<SpectralResult> solve_in_replay_groups(
         if (group == groups.end()) groups.push_back({i});
         else group->push_back(i);
     }
+    return groups;
+}
+
+std::vector<SpectralResult> solve_in_replay_groups(
+    const std::vector<const Material*>& materials, const SolverRequest& request, const std::vector<std::vector<std::size_t>>& groups,
+    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&)>& solve_group) {
     std::vector<std::optional<SpectralResult>> by_index(materials.size());
     for (const auto& g : groups) {
         if (request.spectral.cancel && request.spectral.cancel->load()) break;
         std::vector<const LayerStack*> stacks;
         for (const auto i : g) stacks.push_back(&std::get<LayerStack>(*materials[i]));
         auto results = solve_group(stacks);
-        for (std::size_t j = 0; j < g.size(); ++j) by_index[g[j]] = std::move(results[j]);
+        for (std::size_t j = 0; j < results.size(); ++j) by_index[g[j]] = std::move(results[j]);
     }
     std::vector<SpectralResult> out;
     for (auto& r : by_index) {
@@ -248,13 +259,50 @@ std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const Solve
     return members;
 }
 
-std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request) {
+namespace {
+
+// Each process solves the groups share->mine() gives it; the first process gathers them (result_wire.hpp) in
+// the materials' order, up to the first one not solved.
+std::vector<SpectralResult> solve_shared(const SpectralSolver& solver, const std::vector<const Material*>& materials, const SolverRequest& request,
+                                         const WorkShare& share) {
+    const auto groups = solver.solve_groups(materials, request);
+    std::vector<std::pair<std::size_t, std::string>> mine;
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (!share.mine(g)) continue;
+        if (request.spectral.cancel && request.spectral.cancel->load()) break;
+        std::vector<const Material*> group;
+        for (const auto i : groups[g]) group.push_back(materials[i]);
+        mine.emplace_back(g, results_to_bytes(solver.solve_many(group, request)));
+    }
+    const auto gathered = share.gather(mine, groups.size());
+    if (share.rank() != 0) return {};
+    std::vector<std::optional<SpectralResult>> by_index(materials.size());
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (gathered[g].empty()) continue;
+        auto results = results_from_bytes(gathered[g]);
+        for (std::size_t j = 0; j < results.size(); ++j) by_index[groups[g][j]] = std::move(results[j]);
+    }
+    std::vector<SpectralResult> out;
+    for (auto& r : by_index) {
+        if (!r || r->partial) {
+            if (r) out.push_back(std::move(*r));
+            break;
+        }
+        out.push_back(std::move(*r));
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request,
+                                        const WorkShare* share) {
     std::vector<const Material*> materials;
     for (const auto& m : members) {
         check_request(solver, m.material, request);
         materials.push_back(&m.material);
     }
-    auto results = solver.solve_many(materials, effective_request(request));
+    auto results = share ? solve_shared(solver, materials, effective_request(request), *share) : solver.solve_many(materials, effective_request(request));
     for (std::size_t i = 0; i < results.size(); ++i) {
         auto overrides = request.overrides;
         overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());

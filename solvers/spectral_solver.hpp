@@ -13,6 +13,7 @@
 
 #include "materials/material_file.hpp"
 #include "materials/parameter_sweep.hpp"
+#include "solvers/work_share.hpp"
 #include "transport/biospec/biospec_options.hpp"
 #include "transport/diffusion/diffusion_profiles.hpp"
 #include "transport/rte/rte_model.hpp"
@@ -76,15 +77,21 @@ public:
     // Several materials under one request, one result each in order. Default: solve() each. A solver that
     // declares replay_fields traces each group of materials differing only in those fields once.
     virtual std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const;
+    // The groups (indices into `materials`) that solve_many solves together, in the order it solves them: a result
+    // depends on the other members of its group (one trace replayed for all), never on other groups. Default:
+    // each material alone. What a sweep may share among processes (solve_sweep with a WorkShare).
+    virtual std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const;
     virtual SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const;
 };
 
-// For solve_many implementations that replay absorption: groups the layered materials whose paths agree
-// (`path_difference` empty), at most `max_sets` per group, solves each group with `solve_group` (one result per
+// For solve_groups implementations that replay absorption: the layered materials whose paths agree
+// (`path_difference` empty), at most `max_sets` per group, each joining the first group it fits.
+std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets,
+                                                    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference);
+// For solve_many implementations that replay absorption: solves each of `groups` with `solve_group` (one result per
 // stack, in order) and returns the results in the materials' order, up to the first one not solved (cancelled).
 std::vector<SpectralResult> solve_in_replay_groups(
-    const std::vector<const Material*>& materials, const SolverRequest& request, std::size_t max_sets,
-    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference,
+    const std::vector<const Material*>& materials, const SolverRequest& request, const std::vector<std::vector<std::size_t>>& groups,
     const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&)>& solve_group);
 
 // The registered solvers, in the order `--mode` lists them.
@@ -115,8 +122,11 @@ struct SweepMember {
 std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
                                        const std::vector<std::string>& layers,
                                        const std::function<Material(const std::vector<MaterialOverride>&)>& make);
-// Every member checked first, then solved together (solve_many: replayed where the solver can).
-std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request);
+// Every member checked first, then solved together (solve_many: replayed where the solver can). With `share`
+// (several processes, e.g. MPI ranks), each process solves its share of the solver's groups and the first
+// process gets every result, equal bit for bit to a one-process run; the others get none.
+std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request,
+                                        const WorkShare* share = nullptr);
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 
 }  // namespace skinspec

@@ -30,8 +30,11 @@ public:
     // Absorption replay: materials whose volumetric paths agree are traced once per wavelength in white Monte
     // Carlo (at most max_replay_sets together; a material alone runs MCML's way).
     std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
-        return solve_in_replay_groups(materials, request, max_replay_sets, volumetric_path_difference,
+        return solve_in_replay_groups(materials, request, solve_groups(materials, request),
                                       [&](const std::vector<const LayerStack*>& stacks) { return solve_rte_spectra(stacks, request.spectral, boundaries(request), false); });
+    }
+    std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const override {
+        return replay_groups(materials, max_replay_sets, volumetric_path_difference);
     }
 
 private:

@@ -75,4 +75,17 @@ std::array<double, 3> parse_colon_triple(std::string_view text, std::string_view
     return {parts[0], parts[1], parts[2]};
 }
 
+std::vector<double> parse_radii_mm(std::string_view text, std::string_view option) {
+    const auto [first, last, step] = parse_colon_triple(text, option, "mm");
+    if (first < 0.0) throw InputError(std::string(option) + ": FIRST = " + format_number(first) + " mm is outside [0, inf)");
+    if (step <= 0.0) throw InputError(std::string(option) + ": STEP = " + format_number(step) + " mm is outside (0, inf)");
+    if (last < first) throw InputError(std::string(option) + ": LAST = " + format_number(last) + " mm is below FIRST = " + format_number(first) + " mm");
+    const double count = std::floor((last - first) / step + 1e-9) + 1.0;
+    if (count > 1e6) throw InputError(std::string(option) + ": " + format_number(count) + " radii is outside [1, 1000000]");
+    std::vector<double> radii;
+    for (int i = 0; i < static_cast<int>(count); ++i) radii.push_back(first + i * step);
+    return radii;
+}
+
+
 }  // namespace skinspec

@@ -22,6 +22,9 @@ std::vector<std::string_view> split_fields(std::string_view line);
 // checked by the caller).
 std::array<double, 3> parse_colon_triple(std::string_view text, std::string_view option, std::string_view unit);
 
+// "FIRST:LAST:STEP" radii in mm: FIRST >= 0, STEP > 0, LAST >= FIRST, at most a million; InputError naming `option`.
+std::vector<double> parse_radii_mm(std::string_view text, std::string_view option);
+
 // Shortest round-trip text of a double, for messages ("0.1", not "0.100000").
 std::string format_number(double value);
 

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "solvers/spectral_solver.hpp"
+#include "thread_work_share.hpp"
 #include "materials/material_file.hpp"
 
 using namespace skinspec;
@@ -140,4 +141,40 @@ TEST_CASE("sweep members: every combination, the first axis fastest, each checke
     CHECK_THROWS_WITH(sweep_members(find_solver("dipole"), SolverRequest{}, {}, {"epidermis"},
                                     [](const std::vector<MaterialOverride>& o) { return load_material("jensen2001-skin1", o); }),
                       Catch::Contains("homogeneous and has no layers"));
+}
+
+TEST_CASE("solve groups: replaying solvers group what shares paths, the others solve each material alone", "[solver]") {
+    std::vector<Material> materials;
+    for (const char* v : {"0.02", "0.05"}) materials.push_back(load_material("biospec-moderately", {{"epidermis.melanosome_fraction", v}}));
+    materials.push_back(load_material("biospec-moderately", {{"epidermis.thickness_cm", "0.02"}}));
+    std::vector<const Material*> pointers;
+    for (const auto& m : materials) pointers.push_back(&m);
+    const auto request = one_wavelength(100);
+    using Groups = std::vector<std::vector<std::size_t>>;
+    CHECK(find_solver("biospec").solve_groups(pointers, request) == Groups{{0, 1}, {2}});
+    CHECK(find_solver("rte").solve_groups(pointers, request) == Groups{{0, 1}, {2}});
+    CHECK(find_solver("multipole").solve_groups(pointers, {}) == Groups{{0}, {1}, {2}});
+    auto per_crossing = request;
+    per_crossing.switches.estimator = AbsorptionEstimator::random_test;
+    CHECK(find_solver("biospec").solve_groups(pointers, per_crossing) == Groups{{0}, {1}, {2}});
+}
+
+TEST_CASE("a sweep shared among processes gives rank 0 the one-process results bit for bit", "[solver]") {
+    const auto make = [](const std::vector<MaterialOverride>& o) { return load_material("biospec-moderately", o); };
+    const std::vector<SweepAxis> axes{{"epidermis.melanosome_fraction", {0.01, 0.05}}, {"epidermis.thickness_cm", {0.008, 0.01, 0.012}}};
+    for (const char* solver : {"biospec", "rte", "multipole"}) {
+        const auto& s = find_solver(solver);
+        const auto request = s.capabilities().uncertainty ? one_wavelength(500) : SolverRequest{};
+        const auto members = sweep_members(s, request, axes, {}, make);
+        const auto one = solve_sweep(s, members, request);
+        const auto shared = testing::run_shared<std::vector<SpectralResult>>(2, [&](const WorkShare& share) { return solve_sweep(s, members, request, &share); });
+        REQUIRE(shared.size() == one.size());
+        for (std::size_t i = 0; i < one.size(); ++i) {
+            CHECK(shared[i].wavelengths.front().reflectance.value == one[i].wavelengths.front().reflectance.value);
+            CHECK(shared[i].wavelengths.front().reflectance.stderr == one[i].wavelengths.front().reflectance.stderr);
+            CHECK(shared[i].settings == one[i].settings);
+            CHECK(shared[i].provenance.varied == one[i].provenance.varied);
+            CHECK(shared[i].provenance.material_toml == one[i].provenance.material_toml);
+        }
+    }
 }

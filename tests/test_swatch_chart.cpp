@@ -1,6 +1,13 @@
 #include <catch2/catch.hpp>
 
 #include "appearance/swatch_chart.hpp"
+#include "solvers/color_precision.hpp"
+#include "spectral/ciede2000.hpp"
+#include "spectral/color_uncertainty.hpp"
+#include "spectral/text_fields.hpp"
+#include "thread_work_share.hpp"
+
+#include <cmath>
 #include "spectral/input_error.hpp"
 
 using namespace skinspec;
@@ -62,4 +69,60 @@ TEST_CASE("patches meet the colour tolerance and order by pigmentation", "[swatc
     }
     CHECK(chart.patches[0].lab.L > chart.patches[1].lab.L + 3.0);
     CHECK(chart.patches[1].lab.L > chart.patches[2].lab.L + 3.0);
+}
+
+TEST_CASE("a chart shared among processes equals the one-process chart bit for bit", "[swatch_chart]") {
+    SwatchRequest r;
+    r.sweeps = {parse_sweep("epidermis.melanosome_fraction=0.01:0.4:5:log"), parse_sweep("dermis.blood_fraction=0.002:0.05:3")};
+    r.delta_e = 2.0;
+    r.patches_per_sweep = 4;  // 15 patches in 4 chunks
+    const auto one = compute_swatch(r);
+    for (const std::size_t ranks : {2u, 3u}) {
+        const auto shared = testing::run_shared<SwatchChart>(ranks, [&](const WorkShare& share) {
+            auto request = r;
+            request.work_share = &share;
+            return compute_swatch(request);
+        });
+        REQUIRE(shared.patches.size() == one.patches.size());
+        for (std::size_t i = 0; i < one.patches.size(); ++i) {
+            CHECK(shared.patches[i].reflectance == one.patches[i].reflectance);
+            CHECK(shared.patches[i].reflectance_stderr == one.patches[i].reflectance_stderr);
+            CHECK(shared.patches[i].rays == one.patches[i].rays);
+            CHECK(shared.patches[i].xyz.Y == one.patches[i].xyz.Y);
+        }
+        CHECK(shared.settings == one.settings);
+        CHECK_FALSE(shared.partial);
+    }
+}
+
+TEST_CASE("a look-up texel has the colour of its material's own spectrum, within the uncertainties", "[swatch_chart]") {
+    // The texel at the preset's melanin, dermal blood set to one value (the texture's blood axis sets both layers).
+    SwatchRequest r;
+    r.overrides = {{"dermis.blood_fraction", "0.012"}};
+    r.sweeps = {parse_sweep("epidermis.melanosome_fraction=0.042:0.062:3"), parse_sweep("dermis.blood_fraction=0.011:0.013:3")};
+    r.geometry = MeasurementGeometry::sce;
+    r.delta_e = 0.5;
+    const auto chart = compute_swatch(r);
+    const auto& texel = chart.patches[4];  // column 1, row 1: 0.052, 0.012
+    REQUIRE(texel.parameters[0] == Approx(0.052));
+    REQUIRE(texel.parameters[1] == Approx(0.012));
+    // The same material through solve_spectrum, on its own random streams, to a tighter colour target.
+    SolverRequest request;
+    request.spectral.wavelengths = chart.wavelengths;
+    request.spectral.geometry = MeasurementGeometry::sce;
+    request.spectral.seed = 7;
+    const TristimulusWeights weights(chart.wavelengths.nm(), IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
+    request.spectral.stderr_targets = color_stderr_targets(weights, 0.2);
+    request.spectral.max_rays_per_wavelength = 1'000'000;
+    const auto direct = solve_spectrum(find_solver("biospec"), load_material("biospec-moderately", {{"epidermis.melanosome_fraction", format_number(texel.parameters[0])},
+                                                                                         {"dermis.blood_fraction", format_number(texel.parameters[1])}}),
+                                       request);
+    std::vector<double> rd, sd;
+    for (const auto& w : direct.wavelengths) {
+        rd.push_back(w.reflectance.value);
+        sd.push_back(w.reflectance.stderr);
+    }
+    const auto lab = xyz_to_lab(weights.integrate(rd), weights.white());
+    const double combined = std::hypot(texel.delta_e_uncertainty, ciede2000_uncertainty(weights, rd, sd));
+    CHECK(ciede2000(texel.lab, lab) < 3.0 * combined);
 }

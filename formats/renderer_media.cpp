@@ -1,0 +1,140 @@
+#include "formats/renderer_media.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "spectral/atomic_file.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+#include "transport/measured_profile.hpp"
+#include "transport/rte/rte_model.hpp"
+
+namespace skinspec {
+namespace {
+
+constexpr double mm_per_cm = 10.0;
+
+// p(cos theta) per sr of a measured profile at cos theta = -1 + 2 k / (n - 1): the probability of the cell of
+// width h around each point from the profile's piecewise-linear C(theta) (Bruls & van der Leun 1984, as
+// transport/measured_profile.hpp reads it), over the cell's solid angle 2 pi h.
+std::vector<double> tabulated_values(const MeasuredProfile& profile, double wavelength_nm, std::size_t points) {
+    const double h = 2.0 / static_cast<double>(points - 1);
+    const auto c_of_mu = [&](double mu) { return profile.cdf(wavelength_nm, std::acos(std::clamp(mu, -1.0, 1.0)) * 180.0 / std::numbers::pi); };
+    std::vector<double> values;
+    for (std::size_t k = 0; k < points; ++k) {
+        const double mu = -1.0 + h * static_cast<double>(k);
+        const double lo = std::max(-1.0, mu - 0.5 * h), hi = std::min(1.0, mu + 0.5 * h);
+        values.push_back((c_of_mu(lo) - c_of_mu(hi)) / (2.0 * std::numbers::pi * (hi - lo)));
+    }
+    return values;
+}
+
+RendererPhase phase_of(const LayerStack& stack, std::size_t k, const MediaRequest& request) {
+    const auto o = stack.optics(k, request.phase_wavelength_nm, OpticsScope{true, false});
+    const auto& name = stack.layers[k].name;
+    RendererPhase phase;
+    phase.g = o.g.value_or(0.0);
+    if (request.phase == PhaseExport::hg) return phase;
+    switch (*o.phase) {
+        case PhaseFunctionKind::henyey_greenstein: return phase;
+        case PhaseFunctionKind::isotropic: return {RendererPhase::Kind::isotropic, 0.0, {}};
+        case PhaseFunctionKind::rayleigh:
+            throw InputError("layer '" + name + "' scatters by Rayleigh's phase function, which the export does not write (use --phase hg: HG with g = 0)");
+        case PhaseFunctionKind::measured_stratum_corneum:
+        case PhaseFunctionKind::measured_epidermis: {
+            const auto& profile = *o.phase == PhaseFunctionKind::measured_epidermis ? MeasuredProfile::epidermis() : MeasuredProfile::stratum_corneum();
+            return {RendererPhase::Kind::tabulated, phase.g, tabulated_values(profile, request.phase_wavelength_nm, request.tabulated_points)};
+        }
+    }
+    return phase;
+}
+
+}  // namespace
+
+std::string_view to_string(PhaseExport phase) { return phase == PhaseExport::hg ? "hg" : "own"; }
+
+RendererMedia renderer_media(const LayerStack& stack, const MediaRequest& request) {
+    if (request.wavelengths_nm.empty()) throw InputError("--wavelengths: no wavelength to export");
+    if (request.rgb && request.wavelengths_nm.size() != 3) {
+        throw InputError("--rgb: give exactly three wavelengths (taken as R, G, B), got " + std::to_string(request.wavelengths_nm.size()));
+    }
+    if (!(request.phase_wavelength_nm > 0.0) || !std::isfinite(request.phase_wavelength_nm)) {
+        throw InputError("--phase-wavelength " + format_number(request.phase_wavelength_nm) + " nm is outside (0, inf)");
+    }
+    if (request.tabulated_points < 3) throw InputError("tabulated phase: " + std::to_string(request.tabulated_points) + " points is below 3");
+    RendererMedia media;
+    media.material = stack.name;
+    media.wavelengths_nm = request.wavelengths_nm;
+    media.rgb = request.rgb;
+    media.phase_wavelength_nm = request.phase_wavelength_nm;
+    media.above_refractive_index = stack.above_refractive_index;
+    media.below_refractive_index = stack.below_refractive_index;
+    media.bottom_reflector = stack.bottom == BottomBoundary::diffuse_reflector;
+    for (const auto& layer : stack.layers) media.layers.push_back({layer.name, 0.0, 1.0, {}, {}, {}});
+    for (const double nm : request.wavelengths_nm) {
+        const auto rte = rte_stack_from(stack, nm);
+        for (std::size_t k = 0; k < rte.layers.size(); ++k) {
+            auto& layer = media.layers[k];
+            layer.thickness_mm = rte.layers[k].thickness_cm * mm_per_cm;
+            layer.refractive_index = rte.layers[k].refractive_index;
+            layer.sigma_a_per_mm.push_back(rte.layers[k].mu_a_per_cm / mm_per_cm);
+            layer.sigma_s_per_mm.push_back(rte.layers[k].mu_s_per_cm / mm_per_cm);
+        }
+    }
+    // After the coefficients: rte_stack_from has refused any layer without volumetric scattering (and a phase).
+    for (std::size_t k = 0; k < stack.layers.size(); ++k) media.layers[k].phase = phase_of(stack, k, request);
+    return media;
+}
+
+std::vector<std::pair<double, double>> mean_cosine_spread(const LayerStack& stack, const std::vector<double>& wavelengths_nm) {
+    std::vector<std::pair<double, double>> spread(stack.layers.size(), {1.0, -1.0});
+    for (const double nm : wavelengths_nm) {
+        for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+            const double g = stack.optics(k, nm, OpticsScope{true, false}).g.value_or(0.0);
+            spread[k] = {std::min(spread[k].first, g), std::max(spread[k].second, g)};
+        }
+    }
+    return spread;
+}
+
+std::string exact_number(double value) { return fmt::format("{}", value); }
+
+void write_spd_file(const std::filesystem::path& file, const std::vector<double>& wavelengths_nm, const std::vector<double>& values,
+                    const std::string& comment) {
+    std::string text = "# " + comment + "\n# wavelength_nm value\n";
+    for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) text += exact_number(wavelengths_nm[i]) + " " + exact_number(values[i]) + "\n";
+    write_text_file(file, text, true);
+}
+
+std::pair<std::vector<double>, std::vector<double>> read_spd_file(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw InputError("spectrum file " + file.string() + " cannot be read");
+    std::pair<std::vector<double>, std::vector<double>> out;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        const auto hash = line.find('#');
+        const auto content = trim(std::string_view(line).substr(0, hash));
+        if (content.empty()) continue;
+        const auto fields = split_fields(content);
+        const auto nm = fields.size() == 2 ? parse_double(fields[0]) : std::nullopt;
+        const auto value = fields.size() == 2 ? parse_double(fields[1]) : std::nullopt;
+        if (!nm || !value || !std::isfinite(*nm) || !std::isfinite(*value)) {
+            throw InputError(file.string() + " line " + std::to_string(number) + ": expected 'wavelength value', got '" + std::string(content) + "'");
+        }
+        out.first.push_back(*nm);
+        out.second.push_back(*value);
+    }
+    if (out.first.empty()) throw InputError("spectrum file " + file.string() + " has no values");
+    return out;
+}
+
+std::filesystem::path spectrum_file_path(const std::filesystem::path& scene, const std::string& layer, const std::string& quantity) {
+    return scene.parent_path() / (scene.stem().string() + "_spectra") / (layer + "_" + quantity + ".spd");
+}
+
+}  // namespace skinspec

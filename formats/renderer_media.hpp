@@ -1,0 +1,81 @@
+#pragma once
+// A layered material as the participating media of a path tracer (pbrt-v4, Mitsuba 3; formats/pbrt_scene.hpp,
+// formats/mitsuba_scene.hpp): per layer the volumetric model's coefficients (transport/rte/rte_model.hpp, the
+// ones the volumetric walk and adding-doubling use) at each exported wavelength, in 1/mm for a scene in mm, its
+// thickness, index and phase function. No physics here: rte_stack_from computes, this converts units and
+// chooses what the renderers can take.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "materials/layer_stack.hpp"
+#include "spectral/wavelength_grid.hpp"
+
+namespace skinspec {
+
+// Phase functions renderers take: HG (both), isotropic (both), tabulated over cos theta (Mitsuba's tabphase).
+struct RendererPhase {
+    enum class Kind { henyey_greenstein, isotropic, tabulated };
+    Kind kind = Kind::henyey_greenstein;
+    double g = 0.0;                  // HG asymmetry; for the others their mean cosine
+    std::vector<double> values;      // tabulated: p(cos theta) per sr at cos theta = -1 + 2 k / (n - 1)
+    bool operator==(const RendererPhase&) const = default;
+};
+
+struct RendererLayer {
+    std::string name;
+    double thickness_mm = 0.0;
+    double refractive_index = 1.0;
+    std::vector<double> sigma_a_per_mm;  // one per exported wavelength (or R, G, B)
+    std::vector<double> sigma_s_per_mm;
+    RendererPhase phase;
+    bool operator==(const RendererLayer&) const = default;
+};
+
+struct RendererMedia {
+    std::string material;
+    std::vector<double> wavelengths_nm;  // spectral: the exported wavelengths; RGB: the wavelengths taken as R, G, B
+    bool rgb = false;
+    double above_refractive_index = 1.0;
+    double below_refractive_index = 1.0;
+    bool bottom_reflector = true;        // an ideal Lambertian reflector below the last layer (R = 1)
+    double phase_wavelength_nm = 550.0;  // phase functions are not spectral in either renderer: taken here
+    std::vector<RendererLayer> layers;
+    bool operator==(const RendererMedia&) const = default;
+};
+
+enum class PhaseExport {
+    own,  // each layer's own phase (HG, isotropic, measured as tabulated); InputError for Rayleigh
+    hg,   // every layer as HG with its phase function's mean cosine
+};
+std::string_view to_string(PhaseExport phase);  // "own", "hg"
+
+struct MediaRequest {
+    std::vector<double> wavelengths_nm;  // spectral export, or exactly three (R, G, B) with rgb
+    bool rgb = false;
+    double phase_wavelength_nm = 550.0;
+    PhaseExport phase = PhaseExport::own;
+    std::size_t tabulated_points = 181;  // cos theta samples of a tabulated phase
+};
+
+// InputError for a layer without volumetric scattering, a wavelength outside the material's data or an RGB
+// export without exactly three wavelengths, and for Rayleigh scattering with PhaseExport::own.
+RendererMedia renderer_media(const LayerStack& stack, const MediaRequest& request);
+
+// The spread of each layer's mean cosine over the exported wavelengths: (smallest, largest) per layer.
+std::vector<std::pair<double, double>> mean_cosine_spread(const LayerStack& stack, const std::vector<double>& wavelengths_nm);
+
+// Spectrum files as pbrt-v4 and Mitsuba 3 read them: "wavelength value" pairs, one per line, '#' comments.
+void write_spd_file(const std::filesystem::path& file, const std::vector<double>& wavelengths_nm, const std::vector<double>& values,
+                    const std::string& comment);
+// InputError naming the file and line for anything else.
+std::pair<std::vector<double>, std::vector<double>> read_spd_file(const std::filesystem::path& file);
+
+// Where a spectral export puts the spectrum file of `quantity` of `layer`: `<scene stem>_spectra/<layer>_<quantity>.spd`.
+std::filesystem::path spectrum_file_path(const std::filesystem::path& scene, const std::string& layer, const std::string& quantity);
+
+// Shortest text that reads back as the same double (scene files).
+std::string exact_number(double value);
+
+}  // namespace skinspec

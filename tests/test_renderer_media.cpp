@@ -1,0 +1,94 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "formats/renderer_media.hpp"
+#include "materials/material_file.hpp"
+#include "spectral/input_error.hpp"
+#include "transport/measured_profile.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+const LayerStack& moderately() {
+    static const auto m = std::get<LayerStack>(load_material("biospec-moderately"));
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("renderer media carry the layers' coefficients in 1/mm and thickness in mm", "[renderer_media]") {
+    const auto& stack = moderately();
+    const auto media = renderer_media(stack, MediaRequest{{450.0, 550.0}});
+    REQUIRE(media.layers.size() == stack.layers.size());
+    for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+        const auto& l = media.layers[k];
+        CHECK(l.name == stack.layers[k].name);
+        CHECK(l.thickness_mm == Approx(10.0 * stack.layers[k].thickness_cm).epsilon(1e-15));
+        for (std::size_t w = 0; w < 2; ++w) {
+            const auto o = stack.optics(k, media.wavelengths_nm[w]);
+            CHECK(l.sigma_a_per_mm[w] == Approx(o.mu_a_per_cm / 10.0).epsilon(1e-15));
+            CHECK(l.sigma_s_per_mm[w] == Approx(*o.mu_s_per_cm / 10.0).epsilon(1e-15));
+        }
+    }
+    CHECK(media.bottom_reflector);
+    // Measured phases of the thin layers as tables, HG in the dermis.
+    CHECK(media.layers[0].phase.kind == RendererPhase::Kind::tabulated);
+    CHECK(media.layers[2].phase.kind == RendererPhase::Kind::henyey_greenstein);
+    CHECK(media.layers[2].phase.g == 0.8);
+    const auto hg = renderer_media(stack, MediaRequest{{550.0}, false, 550.0, PhaseExport::hg});
+    CHECK(hg.layers[0].phase.kind == RendererPhase::Kind::henyey_greenstein);
+    CHECK(hg.layers[0].phase.g == Approx(*stack.optics(0, 550.0).g));
+}
+
+TEST_CASE("a tabulated phase is normalised over the sphere and has the measured profile's mean cosine", "[renderer_media]") {
+    const auto media = renderer_media(moderately(), MediaRequest{{550.0}, false, 550.0, PhaseExport::own, 2001});
+    for (const std::size_t k : {0u, 1u}) {
+        const auto& v = media.layers[k].phase.values;
+        REQUIRE(v.size() == 2001);
+        // 2 pi int p(mu) dmu = 1 and 2 pi int mu p(mu) dmu = g (trapezoid over the regular grid).
+        double norm = 0.0, mean = 0.0;
+        const double h = 2.0 / 2000.0;
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const double mu = -1.0 + h * i, weight = (i == 0 || i + 1 == v.size()) ? 0.5 : 1.0;
+            norm += 2.0 * std::numbers::pi * weight * h * v[i];
+            mean += 2.0 * std::numbers::pi * weight * h * mu * v[i];
+            CHECK(v[i] >= 0.0);
+        }
+        CHECK(norm == Approx(1.0).epsilon(1e-3));
+        CHECK(mean == Approx(media.layers[k].phase.g).epsilon(5e-3));
+    }
+}
+
+TEST_CASE("bad media requests are input errors", "[renderer_media]") {
+    CHECK_THROWS_WITH(renderer_media(moderately(), MediaRequest{{650.0, 550.0}, true}), Catch::Contains("exactly three wavelengths"));
+    CHECK_THROWS_WITH(renderer_media(moderately(), MediaRequest{{}}), Catch::Contains("no wavelength"));
+    CHECK_THROWS_WITH(renderer_media(moderately(), MediaRequest{{550.0}, false, -1.0}), Catch::Contains("--phase-wavelength -1 nm"));
+    const auto rayleigh = std::get<LayerStack>(load_material("biospec-moderately", {{"reticular_dermis.volumetric_phase", "rayleigh"}}));
+    CHECK_THROWS_WITH(renderer_media(rayleigh, MediaRequest{{550.0}}), Catch::Contains("Rayleigh"));
+    CHECK_NOTHROW(renderer_media(rayleigh, MediaRequest{{550.0}, false, 550.0, PhaseExport::hg}));
+    auto plain = moderately();
+    plain.layers[0].volumetric.reset();
+    CHECK_THROWS_WITH(renderer_media(plain, MediaRequest{{550.0}}), Catch::Contains("no volumetric scattering"));
+}
+
+TEST_CASE("spectrum files read back exactly, malformed ones are input errors", "[renderer_media]") {
+    const auto folder = std::filesystem::temp_directory_path() / "skinspec_spd_test";
+    std::filesystem::create_directories(folder);
+    const auto file = folder / "a.spd";
+    write_spd_file(file, {400.0, 410.5}, {0.1, 1.0 / 3.0}, "test");
+    const auto [nm, values] = read_spd_file(file);
+    CHECK(nm == std::vector<double>{400.0, 410.5});
+    CHECK(values == std::vector<double>{0.1, 1.0 / 3.0});
+    std::ofstream(folder / "bad.spd") << "# x\n400 0.1\n410 abc\n";
+    CHECK_THROWS_WITH(read_spd_file(folder / "bad.spd"), Catch::Contains("bad.spd line 3: expected 'wavelength value'"));
+    std::ofstream(folder / "empty.spd") << "# nothing\n";
+    CHECK_THROWS_WITH(read_spd_file(folder / "empty.spd"), Catch::Contains("has no values"));
+    CHECK_THROWS_WITH(read_spd_file(folder / "missing.spd"), Catch::Contains("cannot be read"));
+    CHECK(spectrum_file_path("out/skin.pbrt", "epidermis", "sigma_a") == std::filesystem::path("out/skin_spectra/epidermis_sigma_a.spd"));
+    std::filesystem::remove_all(folder);
+}
