@@ -90,14 +90,7 @@ pugi::xml_node named(pugi::xml_node parent, const char* name) {
 }  // namespace
 
 std::vector<std::filesystem::path> mitsuba_scene_files(const RendererMedia& media, const std::filesystem::path& scene) {
-    std::vector<std::filesystem::path> files{scene};
-    if (!media.rgb) {
-        for (const auto& l : media.layers) {
-            files.push_back(spectrum_file_path(scene, l.name, "sigma_t"));
-            files.push_back(spectrum_file_path(scene, l.name, "albedo"));
-        }
-    }
-    return files;
+    return scene_files(media, scene, {"sigma_t", "albedo"});
 }
 
 void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path& scene_file) {

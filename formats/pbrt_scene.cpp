@@ -148,14 +148,7 @@ std::vector<double> numbers_of(const Parameter& p, const std::string& what) {
 }  // namespace
 
 std::vector<std::filesystem::path> pbrt_scene_files(const RendererMedia& media, const std::filesystem::path& scene) {
-    std::vector<std::filesystem::path> files{scene};
-    if (!media.rgb) {
-        for (const auto& l : media.layers) {
-            files.push_back(spectrum_file_path(scene, l.name, "sigma_a"));
-            files.push_back(spectrum_file_path(scene, l.name, "sigma_s"));
-        }
-    }
-    return files;
+    return scene_files(media, scene, {"sigma_a", "sigma_s"});
 }
 
 void write_pbrt_scene(const RendererMedia& media, const std::filesystem::path& scene) {
@@ -267,6 +260,7 @@ RendererMedia read_pbrt_scene(const std::filesystem::path& scene, double above_r
             eta = material == "interface" ? std::optional<double>(1.0) : std::nullopt;
             if (material == "dielectric") eta = d.parameters.contains("eta") ? number_of(d.parameters.at("eta"), file + ": eta") : 1.5;
         } else if (d.name == "Shape" && !d.arguments.empty() && d.arguments[0] == "trianglemesh") {
+            if (!d.parameters.contains("P")) throw InputError(file + " line " + std::to_string(d.line) + ": a trianglemesh without \"point3 P\"");
             const auto p = numbers_of(d.parameters.at("P"), file + ": P");
             if (p.empty() || p.size() % 3 != 0) throw InputError(file + " line " + std::to_string(d.line) + ": P is not a list of points");
             for (std::size_t i = 2; i < p.size(); i += 3) {

@@ -137,4 +137,14 @@ std::filesystem::path spectrum_file_path(const std::filesystem::path& scene, con
     return scene.parent_path() / (scene.stem().string() + "_spectra") / (layer + "_" + quantity + ".spd");
 }
 
+std::vector<std::filesystem::path> scene_files(const RendererMedia& media, const std::filesystem::path& scene,
+                                               const std::vector<std::string>& quantities) {
+    std::vector<std::filesystem::path> files{scene};
+    if (media.rgb) return files;
+    for (const auto& l : media.layers) {
+        for (const auto& q : quantities) files.push_back(spectrum_file_path(scene, l.name, q));
+    }
+    return files;
+}
+
 }  // namespace skinspec

@@ -75,6 +75,11 @@ std::pair<std::vector<double>, std::vector<double>> read_spd_file(const std::fil
 // Where a spectral export puts the spectrum file of `quantity` of `layer`: `<scene stem>_spectra/<layer>_<quantity>.spd`.
 std::filesystem::path spectrum_file_path(const std::filesystem::path& scene, const std::string& layer, const std::string& quantity);
 
+// The scene and, for spectral media, the spectrum file of each layer and each of `quantities` (what a renderer's
+// medium takes: pbrt-v4 sigma_a and sigma_s, Mitsuba 3 sigma_t and albedo).
+std::vector<std::filesystem::path> scene_files(const RendererMedia& media, const std::filesystem::path& scene,
+                                               const std::vector<std::string>& quantities);
+
 // Shortest text that reads back as the same double (scene files).
 std::string exact_number(double value);
 

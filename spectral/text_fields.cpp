@@ -87,5 +87,4 @@ std::vector<double> parse_radii_mm(std::string_view text, std::string_view optio
     return radii;
 }
 
-
 }  // namespace skinspec

@@ -6,16 +6,13 @@
 #include "formats/mitsuba_scene.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
+#include "scratch_folder.hpp"
 
 using namespace skinspec;
 
 namespace {
 
-std::filesystem::path scratch(const char* name) {
-    const auto folder = std::filesystem::temp_directory_path() / "skinspec_mitsuba_test";
-    std::filesystem::create_directories(folder);
-    return folder / name;
-}
+std::filesystem::path scratch(const char* name) { return testing::scratch_folder() / name; }
 
 // Mitsuba stores sigma_t = sigma_a + sigma_s and albedo = sigma_s / sigma_t: back to sigma_a, sigma_s to rounding.
 void check_same_media(const RendererMedia& written, const RendererMedia& read) {

@@ -6,16 +6,13 @@
 #include "formats/pbrt_scene.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
+#include "scratch_folder.hpp"
 
 using namespace skinspec;
 
 namespace {
 
-std::filesystem::path scratch(const char* name) {
-    const auto folder = std::filesystem::temp_directory_path() / "skinspec_pbrt_test";
-    std::filesystem::create_directories(folder);
-    return folder / name;
-}
+std::filesystem::path scratch(const char* name) { return testing::scratch_folder() / name; }
 
 // What pbrt-v4 stores: per layer sigma_a, sigma_s, g, thickness and index (relative eta at each interface).
 void check_same_media(const RendererMedia& written, const RendererMedia& read) {

@@ -8,6 +8,7 @@
 #include "formats/renderer_media.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
+#include "scratch_folder.hpp"
 #include "transport/measured_profile.hpp"
 
 using namespace skinspec;
@@ -77,8 +78,7 @@ TEST_CASE("bad media requests are input errors", "[renderer_media]") {
 }
 
 TEST_CASE("spectrum files read back exactly, malformed ones are input errors", "[renderer_media]") {
-    const auto folder = std::filesystem::temp_directory_path() / "skinspec_spd_test";
-    std::filesystem::create_directories(folder);
+    const auto folder = testing::scratch_folder();
     const auto file = folder / "a.spd";
     write_spd_file(file, {400.0, 410.5}, {0.1, 1.0 / 3.0}, "test");
     const auto [nm, values] = read_spd_file(file);
