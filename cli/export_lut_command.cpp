@@ -236,7 +236,9 @@ void run_export_lut(const LutOptions& o) {
         std::cout << fmt::format("{} x {} texels ({} x {}), {} rays in {:.2f} s on {} process(es); colour uncertainty (CIEDE2000, RMS) at "
                                  "most {:.3f} (target {}); {} {}{}\n",
                                  chart.columns, chart.rows, u.field, v.field, rays, seconds, process_count(), worst, request.delta_e,
-                                 space, to_string(request.geometry), chart.partial ? "; PARTIAL (interrupted)" : "");
+                                 space, to_string(request.geometry),
+                                 chart.partial ? fmt::format("; PARTIAL (interrupted): {} of {} texels", chart.patches.size(), chart.columns * chart.rows)
+                                               : std::string());
     }
     if (chart.partial) std::exit(InterruptGuard::exit_code());
 }

@@ -40,6 +40,8 @@ struct ProfileExportOptions {
     std::string output;
     std::string table;
     bool overwrite = false;
+    std::uint64_t rays = 0;
+    std::uint64_t seed = 1;
 };
 
 struct FittedChannels {
@@ -114,7 +116,7 @@ void run_export_profile(const ProfileExportOptions& o) {
     const auto grid = o.channels == "rgb" ? WavelengthGrid::range(380.0, 780.0, 10.0) : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
     check_gaussian_count(o.gaussians);
 
-    const auto profiles = solve_profiles(solver, material, ProfileRequest{grid, radii, false, solver_switches(o.solver)});
+    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed));
     print_warning_summary(profiles.material, profiles.warnings);
     const auto channels = bands || o.channels == "wavelength" ? own_channels(profiles) : rgb_channels(profiles, {grid.nm().begin(), grid.nm().end()}, space, illuminant, observer);
     const auto fit = fit_gaussian_sum(GaussianSumRequest{radii, channels.profiles_per_mm2, o.gaussians, channels.total_reflectance});
@@ -194,6 +196,7 @@ void add_export_profile_command(CLI::App& exporter) {
     cmd->add_option("--observer", o->observer, "With --per rgb: 2 or 10")->capture_default_str();
     cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians, [1, 12]")->capture_default_str();
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm: where R(r) is fitted")->capture_default_str();
+    add_profile_ray_options(*cmd, o->rays, o->seed);
     cmd->add_option("-o,--output", o->output, "JSON file of the fit (default: the JSON on standard output)");
     cmd->add_option("--table", o->table, "CSV table of variances and weights");
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");

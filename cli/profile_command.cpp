@@ -31,6 +31,8 @@ struct ProfileOptions {
     std::string output;
     std::string plot;
     bool overwrite = false;
+    std::uint64_t rays = 0;  // 0: the solver's default (Monte Carlo solvers only)
+    std::uint64_t seed = 1;
 };
 
 std::string column_tag(const ChannelProfile& c) {
@@ -38,7 +40,7 @@ std::string column_tag(const ChannelProfile& c) {
 }
 
 std::string to_csv(const SpectralProfiles& p) {
-    std::string out = fmt::format("# skinspec {} radial diffusion profiles: material {}, model {}\n", version, p.material, p.model);
+    std::string out = fmt::format("# skinspec {} radial profiles: material {}, model {}\n", version, p.material, p.model);
     out += "# units: r_mm [mm]; R_*, T_* [1/mm^2 per unit incident power, entry Fresnel transmittance included]\n";
     for (const auto& c : p.channels) {
         out += fmt::format("# {}: diffuse R total {:.6g}, T total {:.6g}, specular {:.6g}\n", c.label, c.total_reflectance,
@@ -47,14 +49,20 @@ std::string to_csv(const SpectralProfiles& p) {
     out += fmt::format("# dipole pairs (largest): {}, inverse-transform samples: {}, converged: {}\n", p.max_pairs, p.frequencies,
                        p.converged ? "yes" : "NO");
     for (const auto& w : summarise_warnings(p.warnings)) out += "# warning: " + w + "\n";
+    // Monte Carlo profiles add a standard-error column after each value column.
+    const bool errors = !p.channels.empty() && !p.channels.front().reflectance_stderr_per_mm2.empty();
     out += "r_mm";
-    for (const auto& c : p.channels) out += ",R_" + column_tag(c) + "_per_mm2";
-    for (const auto& c : p.channels) out += ",T_" + column_tag(c) + "_per_mm2";
+    for (const auto& c : p.channels) out += ",R_" + column_tag(c) + "_per_mm2" + (errors ? ",R_" + column_tag(c) + "_stderr_per_mm2" : "");
+    for (const auto& c : p.channels) out += ",T_" + column_tag(c) + "_per_mm2" + (errors ? ",T_" + column_tag(c) + "_stderr_per_mm2" : "");
     out += '\n';
+    const auto value = [&](const std::vector<double>& v, const std::vector<double>& e, std::size_t i) {
+        const double x = i < v.size() ? v[i] : 0.0;
+        return errors ? fmt::format(",{:.9g},{:.3g}", x, i < e.size() ? e[i] : 0.0) : fmt::format(",{:.9g}", x);
+    };
     for (std::size_t i = 0; i < p.radii_mm.size(); ++i) {
         out += fmt::format("{:g}", p.radii_mm[i]);
-        for (const auto& c : p.channels) out += fmt::format(",{:.9g}", c.reflectance_per_mm2[i]);
-        for (const auto& c : p.channels) out += fmt::format(",{:.9g}", c.transmittance_per_mm2[i]);
+        for (const auto& c : p.channels) out += value(c.reflectance_per_mm2, c.reflectance_stderr_per_mm2, i);
+        for (const auto& c : p.channels) out += value(c.transmittance_per_mm2, c.transmittance_stderr_per_mm2, i);
         out += '\n';
     }
     return out;
@@ -90,7 +98,7 @@ void run_profile(const ProfileOptions& o) {
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
-    const auto profiles = solve_profiles(solver, material, ProfileRequest{grid, radii, true, solver_switches(o.solver)});
+    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed));
     print_warning_summary(profiles.material, profiles.warnings);
     const auto csv = to_csv(profiles);
     if (o.output.empty()) {
@@ -118,6 +126,7 @@ void add_profile_command(CLI::App& app) {
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm")->capture_default_str();
     cmd->add_option("--output", o->output, "CSV file (default: standard output)");
     cmd->add_option("--plot", o->plot, "Log-scale plot, FILE.png or FILE.svg");
+    add_profile_ray_options(*cmd, o->rays, o->seed);
     cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
     cmd->callback([o] { run_profile(*o); });
 }

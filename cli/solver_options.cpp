@@ -42,4 +42,15 @@ void add_geometry_option(CLI::App& command, SolverOptions& o) {
 
 MeasurementGeometry measurement_geometry(const SolverOptions& o) { return parse_measurement_geometry(o.geometry, "--geometry"); }
 
+void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64_t& seed) {
+    command.add_option("--rays", rays, "rte: photons per wavelength for R(r) (default 1000000); refused by deterministic solvers")
+        ->check(CLI::PositiveNumber);
+    command.add_option("--seed", seed, "rte: random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+}
+
+ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,
+                               std::uint64_t rays, std::uint64_t seed) {
+    return ProfileRequest{wavelengths, radii_mm, transmittance, solver_switches(options), rays > 0 ? std::optional(rays) : std::nullopt, seed};
+}
+
 }  // namespace skinspec::cli

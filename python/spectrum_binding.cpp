@@ -263,7 +263,7 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
 }
 
 py::object profiles(const py::object& material, const py::object& radii_mm, const py::object& wavelengths, const std::string& mode,
-                    bool transmittance, const py::object& roughness) {
+                    bool transmittance, const py::object& roughness, const py::object& rays, const py::object& seed) {
     const auto& solver = find_solver(mode, "mode");
     const auto base = material_argument(material, "material");
     ProfileRequest request;
@@ -271,6 +271,8 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
     request.radii_mm = finite_vector(radii_mm, "radii_mm");
     request.transmittance = transmittance;
     request.switches = solver_switches(py::none(), py::none(), py::none(), roughness, py::none());
+    if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
+    request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
     SpectralProfiles p;
     {
         const py::gil_scoped_release release;
@@ -278,13 +280,15 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
     }
     const auto rows = static_cast<py::ssize_t>(p.channels.size());
     const auto radii = static_cast<py::ssize_t>(p.radii_mm.size());
-    std::vector<double> nm, r, t, total_r, total_t, specular;
+    std::vector<double> nm, r, t, r_se, t_se, total_r, total_t, specular;
     std::vector<std::string> labels;
     for (const auto& c : p.channels) {
         labels.push_back(c.label);
         nm.push_back(c.wavelength_nm);
         r.insert(r.end(), c.reflectance_per_mm2.begin(), c.reflectance_per_mm2.end());
         t.insert(t.end(), c.transmittance_per_mm2.begin(), c.transmittance_per_mm2.end());
+        r_se.insert(r_se.end(), c.reflectance_stderr_per_mm2.begin(), c.reflectance_stderr_per_mm2.end());
+        t_se.insert(t_se.end(), c.transmittance_stderr_per_mm2.begin(), c.transmittance_stderr_per_mm2.end());
         total_r.push_back(c.total_reflectance);
         total_t.push_back(c.total_transmittance);
         specular.push_back(c.specular_reflectance);
@@ -296,6 +300,9 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
     d["labels"] = labels;
     d["R_per_mm2"] = to_array(r, {rows, radii});
     d["T_per_mm2"] = transmittance ? py::object(to_array(t, {rows, radii})) : py::object(py::none());
+    const bool errors = solver.capabilities().uncertainty;  // Monte Carlo profiles carry standard errors
+    d["R_stderr_per_mm2"] = errors ? py::object(to_array(r_se, {rows, radii})) : py::object(py::none());
+    d["T_stderr_per_mm2"] = errors && transmittance ? py::object(to_array(t_se, {rows, radii})) : py::object(py::none());
     d["total_R"] = to_array(total_r, {rows});
     d["total_T"] = transmittance ? py::object(to_array(total_t, {rows})) : py::object(py::none());
     d["R_specular"] = to_array(specular, {rows});
@@ -348,9 +355,10 @@ void bind_spectra(py::module_& m) {
     m.def("profiles", &profiles, R"doc(Radial diffuse reflectance R(r) (and T(r)) in 1/mm^2, as `skinspec profile` computes it.
 
     radii_mm: 1-D array; wavelengths (layered materials; default 450, 550, 650 nm); mode: a solver with radial
-    profiles (multipole, dipole). Returns a skinspec.Profiles.)doc",
+    profiles (multipole, dipole, rte: the volumetric walk, radii from 0 in equal steps, rays photons per wavelength
+    (default 1e6), seed; its R_stderr_per_mm2). Returns a skinspec.Profiles.)doc",
           py::arg("material"), py::arg("radii_mm"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = "multipole",
-          py::arg("transmittance") = false, py::arg("roughness") = py::none());
+          py::arg("transmittance") = false, py::arg("roughness") = py::none(), py::arg("rays") = py::none(), py::arg("seed") = 1);
     m.def("solvers", &solvers, "The registered solvers and what each declares it supports.");
 }
 

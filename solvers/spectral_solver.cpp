@@ -207,6 +207,11 @@ void check_request(const SpectralSolver& solver, const Material& material, const
     }
     check_material(solver, material);
     check_switches(solver, request.switches);
+    if (!solver.capabilities().uncertainty && request.rays_per_wavelength) {
+        throw InputError("solver '" + std::string(solver.name()) + "' is deterministic: it takes no ray count (Monte Carlo solvers with radial profiles: " +
+                         offered_by([](const SolverCapabilities& c) { return c.uncertainty && c.radial_profiles; }) + ")");
+    }
+    if (request.rays_per_wavelength && *request.rays_per_wavelength == 0) throw InputError("--rays 0 is outside [1, inf)");
 }
 
 namespace {

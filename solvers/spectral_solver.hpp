@@ -62,6 +62,8 @@ struct ProfileRequest {
     std::vector<double> radii_mm;
     bool transmittance = false;
     SolverSwitches switches;
+    std::optional<std::uint64_t> rays_per_wavelength;  // Monte Carlo solvers (unset: their default); refused by the others
+    std::uint64_t seed = 1;
 };
 
 class SpectralSolver {

@@ -1,6 +1,7 @@
 #include "solvers/volumetric_walk_solver.hpp"
 
 #include "materials/material_fields.hpp"
+#include "transport/rte/rte_profiles.hpp"
 
 namespace skinspec {
 namespace {
@@ -17,7 +18,7 @@ public:
             .layered_materials = true,
             .band_materials = false,
             .uncertainty = true,
-            .radial_profiles = false,
+            .radial_profiles = true,
             .switches = {SolverSwitch::boundaries},
             .replay_fields = absorption_only_fields(),
             .material_needs = "volumetric_mu_s_per_cm_at_500nm (and volumetric_g / volumetric_phase) in every layer",
@@ -32,6 +33,11 @@ public:
     std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         return solve_in_replay_groups(materials, request, solve_groups(materials, request),
                                       [&](const std::vector<const LayerStack*>& stacks) { return solve_rte_spectra(stacks, request.spectral, boundaries(request), false); });
+    }
+    SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
+        return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance,
+                                  RteProfileOptions{request.rays_per_wavelength.value_or(1'000'000), request.seed,
+                                                    request.switches.boundaries.value_or(BoundaryMode::random)});
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const override {
         return replay_groups(materials, max_replay_sets, volumetric_path_difference);

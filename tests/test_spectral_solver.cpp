@@ -52,7 +52,7 @@ TEST_CASE("a request for what a solver does not declare is refused with one mess
     target.spectral.stderr_target = 0.01;
     CHECK_THROWS_WITH(solve_spectrum(find_solver("multipole"), skin, target), Catch::Contains("is deterministic"));
     CHECK_THROWS_WITH(solve_profiles(find_solver("biospec"), skin, ProfileRequest{WavelengthGrid::list({550.0}), {0.0, 1.0}, false, {}}),
-                      "solver 'biospec' does not compute radial profiles R(r) (solvers that do: multipole, dipole)");
+                      "solver 'biospec' does not compute radial profiles R(r) (solvers that do: rte, multipole, dipole)");
 }
 
 TEST_CASE("every declared capability is served", "[solver]") {

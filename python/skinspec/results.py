@@ -62,6 +62,8 @@ class Profiles:
     labels: list
     R_per_mm2: np.ndarray
     T_per_mm2: Optional[np.ndarray]
+    R_stderr_per_mm2: Optional[np.ndarray]  # Monte Carlo solvers (rte); None for deterministic ones
+    T_stderr_per_mm2: Optional[np.ndarray]
     total_R: np.ndarray
     total_T: Optional[np.ndarray]
     R_specular: np.ndarray

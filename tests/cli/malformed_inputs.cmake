@@ -99,7 +99,7 @@ skinspec_malformed_input("biospec takes no boundaries" 2 "solver 'biospec' does 
 skinspec_malformed_input("rte band material" 2 "solver 'rte' needs a layered material; 'jensen2001-skin1' is a homogeneous material given per band" - spectrum --mode rte --preset jensen2001-skin1)
 skinspec_malformed_input("dipole rays" 2 "solver 'dipole' is deterministic: it takes no standard-error target or ray count" - spectrum --mode dipole --rays 100)
 skinspec_malformed_input("multipole stderr" 2 "solver 'multipole' is deterministic" - spectrum --mode multipole --stderr 0.01)
-skinspec_malformed_input("lit swatch biospec" 2 "solver 'biospec' does not compute radial profiles R\\(r\\) \\(solvers that do: multipole, dipole\\)" "${out}/lit_biospec.png" swatch --lit spot --mode biospec -o ${out}/lit_biospec.png)
+skinspec_malformed_input("lit swatch biospec" 2 "solver 'biospec' does not compute radial profiles R\\(r\\) \\(solvers that do: rte, multipole, dipole\\)" "${out}/lit_biospec.png" swatch --lit spot --mode biospec -o ${out}/lit_biospec.png)
 skinspec_malformed_input("profile biospec" 2 "solver 'biospec' does not compute radial profiles" "${out}/profile_biospec.csv" profile --mode biospec --output ${out}/profile_biospec.csv)
 skinspec_malformed_input("swatch estimator in diffusion" 2 "solver 'multipole' does not take the switch 'estimator'" "${out}/swatch_est.png" swatch --mode multipole --estimator random -o ${out}/swatch_est.png)
 skinspec_malformed_input("spectrum output extension" 2 "out.txt: extension '.txt' is not supported \\(allowed: .csv, .json\\)" - spectrum --rays 10 --output out.txt)

@@ -138,3 +138,20 @@ def test_profiles_equal_the_cli_profile_table():
     assert ours.total_R.shape == (2,) and np.all(ours.total_R > 0.1)
     with pytest.raises(skinspec.InputError, match="radial"):
         skinspec.profiles("biospec-moderately", radii, mode="biospec")
+
+
+def test_volumetric_profiles_equal_the_cli_with_standard_errors():
+    import os
+    import subprocess
+    radii = np.arange(0.0, 1.01, 0.25)
+    ours = skinspec.profiles("biospec-moderately", radii, [550], mode="rte", rays=20000, seed=4)
+    table = subprocess.run([os.environ["SKINSPEC_PROGRAM"], "profile", "--mode", "rte", "--preset", "biospec-moderately", "--wavelengths", "550",
+                            "--radii", "0:1:0.25", "--rays", "20000", "--seed", "4"], capture_output=True, text=True, check=True).stdout
+    rows = np.array([[float(v) for v in line.split(",")] for line in table.splitlines() if line and line[0].isdigit()])
+    np.testing.assert_allclose(ours.R_per_mm2[0], rows[:, 1], rtol=1e-8)
+    np.testing.assert_allclose(ours.R_stderr_per_mm2[0], rows[:, 2], rtol=1e-2)
+    assert skinspec.profiles("biospec-moderately", radii, [550]).R_stderr_per_mm2 is None
+    with pytest.raises(skinspec.InputError, match="deterministic: it takes no ray count"):
+        skinspec.profiles("biospec-moderately", radii, [550], rays=100)
+    with pytest.raises(skinspec.InputError, match="equal steps"):
+        skinspec.profiles("biospec-moderately", [0.1, 0.2, 0.3], [550], mode="rte", rays=100)

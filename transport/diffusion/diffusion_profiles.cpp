@@ -23,7 +23,7 @@ SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGr
     out.radii_mm.assign(radii_mm.begin(), radii_mm.end());
     const auto add = [&](const DiffusionMaterial& m, std::string label, double nm) {
         ChannelProfile c{std::move(label), nm, {}, {}, m.stack.total_reflectance() * m.entry_transmittance,
-                         m.total_transmittance(), m.specular_reflectance};
+                         m.total_transmittance(), m.specular_reflectance, {}, {}};
         auto r = m.reflectance_profile(radii_mm);
         c.reflectance_per_mm2 = std::move(r.values);
         out.max_pairs = std::max(out.max_pairs, r.max_pairs);

@@ -19,6 +19,9 @@ struct ChannelProfile {
     double total_reflectance = 0.0;         // diffuse, analytic: 2 pi int R(r) r dr
     double total_transmittance = 0.0;
     double specular_reflectance = 0.0;
+    // Monte Carlo profiles (the volumetric walk): standard errors per radius; empty for deterministic ones.
+    std::vector<double> reflectance_stderr_per_mm2;
+    std::vector<double> transmittance_stderr_per_mm2;
 };
 
 struct SpectralProfiles {
