@@ -118,13 +118,14 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
             members.push_back({material_of(i), sweep_overrides(sweep_axes(request.sweeps), parameters[i]), std::move(varied)});
         }
         auto results = solve_sweep(solver, members, base);
-        const bool complete = results.size() == members.size() && (results.empty() || !results.back().partial);
         if (share) {
+            const bool complete = results.size() == members.size() && !results.back().partial;
             for (auto& r : results) r.provenance = {};  // a chart keeps no provenance: not sent
             mine.emplace_back(c, results_to_bytes(results));
+            if (!complete) break;
+        } else if (!add_chunk(c, results)) {
+            break;
         }
-        else if (!add_chunk(c, results)) break;
-        if (!complete) break;
         own_done += members.size();
         if (request.on_progress) request.on_progress(own_done, own_total);
     }

@@ -92,7 +92,11 @@ int main(int argc, char** argv) {
     } catch (const CLI::ExtrasError& e) {
         const int code = app.exit(e);
         suggest_options(app, app.remaining());
-        for (const auto* sub : app.get_subcommands()) suggest_options(app, sub->remaining());
+        // Down the chain of chosen subcommands (export lut): each keeps what it did not expect.
+        for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+            sub = sub->get_subcommands().back();
+            suggest_options(app, sub->remaining());
+        }
         return code;
     } catch (const CLI::ParseError& e) {
         return app.exit(e);

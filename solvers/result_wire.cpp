@@ -69,7 +69,7 @@ public:
     Writer& operator()(const std::vector<T>& v) {
         (*this)(static_cast<std::uint64_t>(v.size()));
         if constexpr (std::is_arithmetic_v<T>) {
-            out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+            if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
         } else {
             for (const auto& x : v) (*this)(x);
         }
@@ -143,7 +143,7 @@ public:
         if constexpr (std::is_arithmetic_v<T>) {
             need(n * sizeof(T));
             v.resize(n);
-            std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
+            if (n > 0) std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
             at_ += n * sizeof(T);
         } else {
             v.resize(n);

@@ -14,6 +14,16 @@
 namespace skinspec {
 namespace {
 
+// Results solved group by group, back in the materials' order, up to the first one not solved (stopped).
+std::vector<SpectralResult> solved_prefix(std::vector<std::optional<SpectralResult>>& by_index) {
+    std::vector<SpectralResult> out;
+    for (auto& r : by_index) {
+        if (!r) break;
+        out.push_back(std::move(*r));
+    }
+    return out;
+}
+
 std::string join(const std::vector<std::string>& items) {
     std::string out;
     for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
@@ -132,12 +142,7 @@ std::vector<SpectralResult> solve_in_replay_groups(
         auto results = solve_group(stacks);
         for (std::size_t j = 0; j < results.size(); ++j) by_index[g[j]] = std::move(results[j]);
     }
-    std::vector<SpectralResult> out;
-    for (auto& r : by_index) {
-        if (!r) break;
-        out.push_back(std::move(*r));
-    }
-    return out;
+    return solved_prefix(by_index);
 }
 
 SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&) const {
@@ -267,7 +272,7 @@ std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const Solve
 namespace {
 
 // Each process solves the groups share->mine() gives it; the first process gathers them (result_wire.hpp) in
-// the materials' order, up to the first one not solved.
+// the materials' order, up to the first one not solved (a rank stopped before it).
 std::vector<SpectralResult> solve_shared(const SpectralSolver& solver, const std::vector<const Material*>& materials, const SolverRequest& request,
                                          const WorkShare& share) {
     const auto groups = solver.solve_groups(materials, request);
@@ -287,15 +292,7 @@ std::vector<SpectralResult> solve_shared(const SpectralSolver& solver, const std
         auto results = results_from_bytes(gathered[g]);
         for (std::size_t j = 0; j < results.size(); ++j) by_index[groups[g][j]] = std::move(results[j]);
     }
-    std::vector<SpectralResult> out;
-    for (auto& r : by_index) {
-        if (!r || r->partial) {
-            if (r) out.push_back(std::move(*r));
-            break;
-        }
-        out.push_back(std::move(*r));
-    }
-    return out;
+    return solved_prefix(by_index);
 }
 
 }  // namespace
