@@ -123,12 +123,10 @@ std::vector<std::string> sparse_labels(const ParameterSweep& sweep, std::size_t 
 }
 
 void run_export_lut(const LutOptions& o) {
-    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
     if (o.output.empty()) throw InputError("export lut: give -o FILE.exr (the linear texture)");
     SwatchRequest request;
-    if (!o.material_file.empty()) request.material = o.material_file;
-    if (!o.preset.empty()) request.material = o.preset;
-    for (const auto& t : o.overrides) request.overrides.push_back(parse_override(t));
+    request.material = chosen_material(o.preset, o.material_file);
+    request.overrides = parsed_overrides(o.overrides);
     const auto u = lut_axis(melanin_field, o.melanin, "--melanin");
     const auto v = lut_axis(blood_field, o.blood, "--blood");
     request.sweeps = {u, v};

@@ -93,7 +93,7 @@ std::string table_csv(const GaussianSumFit& fit, const FittedChannels& channels,
 }
 
 void run_export_profile(const ProfileExportOptions& o) {
-    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
+    const std::string name = chosen_material(o.preset, o.material_file);
     if (o.channels != "rgb" && o.channels != "wavelength") {
         throw InputError("--per: '" + o.channels + "' is not what to fit per (allowed: rgb, wavelength)");
     }
@@ -106,10 +106,7 @@ void run_export_profile(const ProfileExportOptions& o) {
     const auto observer = parse_observer(o.observer, "--observer");
     if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".json"});
     if (!o.table.empty()) check_output_path(o.table, o.overwrite, {".csv"});
-    std::vector<MaterialOverride> overrides;
-    for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
-    const std::string name = o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file;
-    const auto material = load_material(name, overrides);
+    const auto material = load_material(name, parsed_overrides(o.overrides));
     const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
     if (bands && o.channels == "wavelength") throw InputError("--per wavelength: material '" + name + "' is given per band; it has no wavelengths");
     // RGB from spectra needs the visible range (CIE 015:2018 Sec. 7.1: 380-780 nm, here every 10 nm).

@@ -64,12 +64,9 @@ double largest_difference(const RendererMedia& a, const RendererMedia& b) {
 
 void run_export_scene(const SceneOptions& o, Renderer renderer) {
     const char* command = renderer == Renderer::pbrt ? "export pbrt" : "export mitsuba";
-    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
+    const std::string name = chosen_material(o.preset, o.material_file);
     if (o.output.empty()) throw InputError(std::string(command) + ": give -o FILE (" + (renderer == Renderer::pbrt ? ".pbrt" : ".xml") + ")");
-    std::vector<MaterialOverride> overrides;
-    for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
-    const std::string name = o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file;
-    const auto material = load_material(name, overrides);
+    const auto material = load_material(name, parsed_overrides(o.overrides));
     const auto* stack = std::get_if<LayerStack>(&material);
     if (!stack) {
         throw InputError("material '" + name + "' is given per band (a homogeneous half-space without layers); " + command +

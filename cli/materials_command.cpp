@@ -26,12 +26,6 @@ struct MaterialsOptions {
     bool force = false;
 };
 
-std::vector<MaterialOverride> parse_overrides(const std::vector<std::string>& texts) {
-    std::vector<MaterialOverride> out;
-    for (const auto& t : texts) out.push_back(parse_override(t));
-    return out;
-}
-
 Json model_json(const ModelOptions& m) {
     return Json{{"variant", m.variant},
                 {"dermal_rayleigh", m.dermal_rayleigh},
@@ -151,7 +145,7 @@ void run_list(bool json) {
 }
 
 void run_show(const MaterialsOptions& o) {
-    const auto material = load_material(o.material, parse_overrides(o.overrides));
+    const auto material = load_material(o.material, parsed_overrides(o.overrides));
     if (const auto* stack = std::get_if<LayerStack>(&material)) {
         show_stack(*stack, WavelengthGrid::parse(o.wavelengths, "--wavelengths"), o.json);
     } else {
@@ -160,7 +154,7 @@ void run_show(const MaterialsOptions& o) {
 }
 
 void run_save(const MaterialsOptions& o) {
-    const auto material = load_material(o.material, parse_overrides(o.overrides));
+    const auto material = load_material(o.material, parsed_overrides(o.overrides));
     write_material(material, o.output, o.force);
     std::cout << "wrote " << o.output << '\n';
 }

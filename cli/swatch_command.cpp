@@ -74,7 +74,7 @@ std::vector<std::string> axis_values(const ParameterSweep& sweep) {
 
 // `swatch --lit spot|edge|pattern FILE`: one planar patch under structured light in a diffusion mode.
 void run_lit_swatch(const SwatchOptions& o) {
-    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
+    const std::string name = chosen_material(o.preset, o.material_file);
     if (!o.vary.empty()) throw InputError("--vary: a lit swatch shows one material (use --set for its parameters)");
     if (o.outputs.empty()) throw InputError("--lit: give at least one -o FILE (.exr, .png, .tif)");
     const auto& kind = o.lit.front();
@@ -89,10 +89,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     space_chromaticities(space);
     for (const auto& out : o.outputs) check_output_path(out, o.overwrite, {".exr", ".png", ".tif", ".tiff"});
 
-    std::vector<MaterialOverride> overrides;
-    for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
-    const std::string name = o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file;
-    const auto material = load_material(name, overrides);
+    const auto material = load_material(name, parsed_overrides(o.overrides));
     // A lit patch needs radial profiles: the multipole unless --mode names another solver.
     const auto& solver = chosen_solver(o.solver, "multipole");
     const auto switches = solver_switches(o.solver);
@@ -162,10 +159,8 @@ void run_lit_swatch(const SwatchOptions& o) {
 void run_swatch(const SwatchOptions& o) {
     if (!o.lit.empty()) return run_lit_swatch(o);
     SwatchRequest request;
-    if (!o.preset.empty() && !o.material_file.empty()) throw InputError("give --preset or --material, not both");
-    if (!o.material_file.empty()) request.material = o.material_file;
-    if (!o.preset.empty()) request.material = o.preset;
-    for (const auto& t : o.overrides) request.overrides.push_back(parse_override(t));
+    request.material = chosen_material(o.preset, o.material_file);
+    request.overrides = parsed_overrides(o.overrides);
     // The default grid needs an epidermis and dermal layers; other materials default to one patch.
     const auto base = load_material(request.material, request.overrides);
     const auto* stack = std::get_if<LayerStack>(&base);

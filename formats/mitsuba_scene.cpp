@@ -22,7 +22,7 @@ std::string joined(const std::vector<double>& values, const char* separator) {
     std::string out;
     for (const double v : values) {
         if (!out.empty()) out += separator;
-        out += exact_number(v);
+        out += format_number(v);
     }
     return out;
 }
@@ -49,23 +49,22 @@ void spectrum_node(pugi::xml_node medium, const RendererMedia& media, const std:
         child(medium, "rgb", {{"name", quantity}, {"value", joined(values, ", ")}});
         return;
     }
-    const auto file = spectrum_file_path(scene, layer.name, quantity);
-    child(medium, "spectrum", {{"name", quantity}, {"filename", (file.parent_path().filename() / file.filename()).string()}});
+    child(medium, "spectrum", {{"name", quantity}, {"filename", spectrum_file_reference(scene, layer.name, quantity)}});
 }
 
 void rectangle(pugi::xml_node scene, double z_mm, const std::string& interior, const std::string& exterior, std::optional<std::pair<double, double>> iors,
                bool reflector) {
     auto shape = child(scene, "shape", {{"type", "rectangle"}});
     auto to_world = child(shape, "transform", {{"name", "to_world"}});
-    child(to_world, "scale", {{"x", exact_number(quad_half_side_mm)}, {"y", exact_number(quad_half_side_mm)}});
-    child(to_world, "translate", {{"z", exact_number(z_mm)}});
+    child(to_world, "scale", {{"x", format_number(quad_half_side_mm)}, {"y", format_number(quad_half_side_mm)}});
+    child(to_world, "translate", {{"z", format_number(z_mm)}});
     if (reflector) {
         auto bsdf = child(shape, "bsdf", {{"type", "diffuse"}});
         child(bsdf, "rgb", {{"name", "reflectance"}, {"value", "1, 1, 1"}});
     } else if (iors && iors->first != iors->second) {
         auto bsdf = child(shape, "bsdf", {{"type", "dielectric"}});
-        child(bsdf, "float", {{"name", "int_ior"}, {"value", exact_number(iors->first)}});
-        child(bsdf, "float", {{"name", "ext_ior"}, {"value", exact_number(iors->second)}});
+        child(bsdf, "float", {{"name", "int_ior"}, {"value", format_number(iors->first)}});
+        child(bsdf, "float", {{"name", "ext_ior"}, {"value", format_number(iors->second)}});
     } else {
         child(shape, "bsdf", {{"type", "null"}});
     }
@@ -95,7 +94,7 @@ std::vector<std::filesystem::path> mitsuba_scene_files(const RendererMedia& medi
 
 void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path& scene_file) {
     if (!media.rgb) {
-        std::filesystem::create_directories(spectrum_file_path(scene_file, "x", "y").parent_path());
+        std::filesystem::create_directories(spectra_folder(scene_file));
         for (const auto& l : media.layers) {
             const auto [t, a] = extinction_albedo(l);
             write_spd_file(spectrum_file_path(scene_file, l.name, "sigma_t"), media.wavelengths_nm, t,
@@ -113,7 +112,7 @@ void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path
                                version, media.material,
                                media.rgb ? fmt::format("RGB media: the coefficients at {} nm taken as R, G, B.", joined(media.wavelengths_nm, ", "))
                                          : fmt::format("Spectral media: {} wavelengths, {}-{} nm (spectral variants).", media.wavelengths_nm.size(),
-                                                       exact_number(media.wavelengths_nm.front()), exact_number(media.wavelengths_nm.back())),
+                                                       format_number(media.wavelengths_nm.front()), format_number(media.wavelengths_nm.back())),
                                fmt::format("{:.6g}", media.phase_wavelength_nm), fmt::format("{:.6g}", depth_mm))
                        .c_str());
     auto scene = child(doc, "scene", {{"version", "3.0.0"}});
@@ -145,7 +144,7 @@ void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path
             child(phase, "string", {{"name", "values"}, {"value", joined(l.phase.values, ", ")}});
         } else {
             auto phase = child(medium, "phase", {{"type", "hg"}});
-            child(phase, "float", {{"name", "g"}, {"value", exact_number(l.phase.g)}});
+            child(phase, "float", {{"name", "g"}, {"value", format_number(l.phase.g)}});
         }
     }
     double z = 0.0, above = media.above_refractive_index;

@@ -24,7 +24,7 @@ std::string number_list(const std::vector<double>& values) {
     std::string out;
     for (const double v : values) {
         if (!out.empty()) out += ' ';
-        out += exact_number(v);
+        out += format_number(v);
     }
     return out;
 }
@@ -32,18 +32,17 @@ std::string number_list(const std::vector<double>& values) {
 std::string spectrum_parameter(const RendererMedia& media, const std::filesystem::path& scene, const RendererLayer& layer, const std::string& quantity,
                                const std::vector<double>& values) {
     if (media.rgb) return fmt::format("\"rgb {}\" [ {} ]", quantity, number_list(values));
-    const auto file = spectrum_file_path(scene, layer.name, quantity);
-    return fmt::format("\"spectrum {}\" \"{}\"", quantity, (file.parent_path().filename() / file.filename()).string());
+    return fmt::format("\"spectrum {}\" \"{}\"", quantity, spectrum_file_reference(scene, layer.name, quantity));
 }
 
 std::string quad(double z_mm) {
     const double s = quad_half_side_mm;
     return fmt::format("    Shape \"trianglemesh\" \"point3 P\" [ {0} {0} {2}  {1} {0} {2}  {1} {1} {2}  {0} {1} {2} ] \"integer indices\" [ 0 1 2 0 2 3 ]\n",
-                       exact_number(-s), exact_number(s), exact_number(z_mm));
+                       format_number(-s), format_number(s), format_number(z_mm));
 }
 
 std::string interface_material(double eta) {
-    return eta == 1.0 ? std::string("    Material \"interface\"\n") : fmt::format("    Material \"dielectric\" \"float eta\" [ {} ]\n", exact_number(eta));
+    return eta == 1.0 ? std::string("    Material \"interface\"\n") : fmt::format("    Material \"dielectric\" \"float eta\" [ {} ]\n", format_number(eta));
 }
 
 // --- reading -----------------------------------------------------------------------------------------------
@@ -159,7 +158,7 @@ void write_pbrt_scene(const RendererMedia& media, const std::filesystem::path& s
         }
     }
     if (!media.rgb) {
-        std::filesystem::create_directories(spectrum_file_path(scene, "x", "y").parent_path());
+        std::filesystem::create_directories(spectra_folder(scene));
         for (const auto& l : media.layers) {
             write_spd_file(spectrum_file_path(scene, l.name, "sigma_a"), media.wavelengths_nm, l.sigma_a_per_mm,
                            fmt::format("skinspec {}: {} layer {} absorption coefficient sigma_a [1/mm]", version, media.material, l.name));
@@ -171,8 +170,8 @@ void write_pbrt_scene(const RendererMedia& media, const std::filesystem::path& s
     for (const auto& l : media.layers) depth_mm += l.thickness_mm;
     std::string text = fmt::format("# skinspec {}: {} as pbrt-v4 media, a lit slab. Scene units mm; sigma_a, sigma_s in 1/mm.\n", version, media.material);
     text += media.rgb ? fmt::format("# RGB media: the coefficients at {} nm taken as R, G, B.\n", number_list(media.wavelengths_nm))
-                      : fmt::format("# Spectral media: {} wavelengths, {}-{} nm, in {}/.\n", media.wavelengths_nm.size(), exact_number(media.wavelengths_nm.front()),
-                                    exact_number(media.wavelengths_nm.back()), spectrum_file_path(scene, "x", "y").parent_path().filename().string());
+                      : fmt::format("# Spectral media: {} wavelengths, {}-{} nm, in {}/.\n", media.wavelengths_nm.size(), format_number(media.wavelengths_nm.front()),
+                                    format_number(media.wavelengths_nm.back()), spectra_folder(scene).filename().string());
     text += fmt::format("# Phase functions at {:.6g} nm. Layers top to bottom from z = 0 (total {:.6g} mm); index above {:.6g}.\n",
                         media.phase_wavelength_nm, depth_mm, media.above_refractive_index);
     text += "LookAt 0 -60 60  0 0 -1  0 0 1\nCamera \"perspective\" \"float fov\" [ 30 ]\n";
@@ -183,7 +182,7 @@ void write_pbrt_scene(const RendererMedia& media, const std::filesystem::path& s
         text += fmt::format("# {}: {:.6g} mm, index {:.6g}, phase HG g {:.6g}\n", l.name, l.thickness_mm, l.refractive_index, l.phase.g);
         text += fmt::format("MakeNamedMedium \"{}\" \"string type\" \"homogeneous\"\n    {}\n    {}\n    \"float g\" [ {} ] \"float scale\" [ 1 ]\n", l.name,
                             spectrum_parameter(media, scene, l, "sigma_a", l.sigma_a_per_mm), spectrum_parameter(media, scene, l, "sigma_s", l.sigma_s_per_mm),
-                            exact_number(l.phase.kind == RendererPhase::Kind::isotropic ? 0.0 : l.phase.g));
+                            format_number(l.phase.kind == RendererPhase::Kind::isotropic ? 0.0 : l.phase.g));
     }
     double z = 0.0, above = media.above_refractive_index;
     std::string outside;

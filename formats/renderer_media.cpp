@@ -102,12 +102,10 @@ std::vector<std::pair<double, double>> mean_cosine_spread(const LayerStack& stac
     return spread;
 }
 
-std::string exact_number(double value) { return fmt::format("{}", value); }
-
 void write_spd_file(const std::filesystem::path& file, const std::vector<double>& wavelengths_nm, const std::vector<double>& values,
                     const std::string& comment) {
     std::string text = "# " + comment + "\n# wavelength_nm value\n";
-    for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) text += exact_number(wavelengths_nm[i]) + " " + exact_number(values[i]) + "\n";
+    for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) text += format_number(wavelengths_nm[i]) + " " + format_number(values[i]) + "\n";
     write_text_file(file, text, true);
 }
 
@@ -133,8 +131,14 @@ std::pair<std::vector<double>, std::vector<double>> read_spd_file(const std::fil
     return out;
 }
 
+std::filesystem::path spectra_folder(const std::filesystem::path& scene) { return scene.parent_path() / (scene.stem().string() + "_spectra"); }
+
 std::filesystem::path spectrum_file_path(const std::filesystem::path& scene, const std::string& layer, const std::string& quantity) {
-    return scene.parent_path() / (scene.stem().string() + "_spectra") / (layer + "_" + quantity + ".spd");
+    return spectra_folder(scene) / (layer + "_" + quantity + ".spd");
+}
+
+std::string spectrum_file_reference(const std::filesystem::path& scene, const std::string& layer, const std::string& quantity) {
+    return (spectra_folder(scene).filename() / (layer + "_" + quantity + ".spd")).string();
 }
 
 std::vector<std::filesystem::path> scene_files(const RendererMedia& media, const std::filesystem::path& scene,

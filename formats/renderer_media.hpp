@@ -72,15 +72,15 @@ void write_spd_file(const std::filesystem::path& file, const std::vector<double>
 // InputError naming the file and line for anything else.
 std::pair<std::vector<double>, std::vector<double>> read_spd_file(const std::filesystem::path& file);
 
-// Where a spectral export puts the spectrum file of `quantity` of `layer`: `<scene stem>_spectra/<layer>_<quantity>.spd`.
+// Where a spectral export puts its spectrum files: `<scene stem>_spectra/` beside the scene; the file of
+// `quantity` of `layer` is `<layer>_<quantity>.spd` in it, named in the scene relative to the scene's folder.
+std::filesystem::path spectra_folder(const std::filesystem::path& scene);
 std::filesystem::path spectrum_file_path(const std::filesystem::path& scene, const std::string& layer, const std::string& quantity);
+std::string spectrum_file_reference(const std::filesystem::path& scene, const std::string& layer, const std::string& quantity);
 
 // The scene and, for spectral media, the spectrum file of each layer and each of `quantities` (what a renderer's
 // medium takes: pbrt-v4 sigma_a and sigma_s, Mitsuba 3 sigma_t and albedo).
 std::vector<std::filesystem::path> scene_files(const RendererMedia& media, const std::filesystem::path& scene,
                                                const std::vector<std::string>& quantities);
-
-// Shortest text that reads back as the same double (scene files).
-std::string exact_number(double value);
 
 }  // namespace skinspec

@@ -60,7 +60,7 @@ TEST_CASE("a Mitsuba 3 scene reads back as the media written (tabulated phases, 
     const auto open_back = read_mitsuba_scene(scratch("exit.xml"));
     check_same_media(open, open_back);
     CHECK(open_back.below_refractive_index == 1.33);
-    std::filesystem::remove_all(scratch("x").parent_path());
+    std::filesystem::remove_all(testing::scratch_folder());
 }
 
 TEST_CASE("malformed Mitsuba scenes are input errors", "[mitsuba_scene]") {
@@ -75,5 +75,5 @@ TEST_CASE("malformed Mitsuba scenes are input errors", "[mitsuba_scene]") {
     CHECK_THROWS_WITH(read_mitsuba_scene(scratch("phase.xml")), Catch::Contains("phase 'rayleigh'"));
     std::ofstream(scratch("noshape.xml")) << "<scene/>";
     CHECK_THROWS_WITH(read_mitsuba_scene(scratch("noshape.xml")), Catch::Contains("no interfaces"));
-    std::filesystem::remove_all(scratch("x").parent_path());
+    std::filesystem::remove_all(testing::scratch_folder());
 }

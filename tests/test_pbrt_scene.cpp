@@ -56,7 +56,7 @@ TEST_CASE("a pbrt-v4 scene reads back as the media written (spectral, RGB, exit 
     const auto open_back = read_pbrt_scene(scratch("exit.pbrt"));
     check_same_media(open, open_back);
     CHECK(open_back.below_refractive_index == Approx(1.33).epsilon(1e-14));
-    std::filesystem::remove_all(scratch("x").parent_path());
+    std::filesystem::remove_all(testing::scratch_folder());
 }
 
 TEST_CASE("pbrt-v4 refuses tabulated phases, malformed scenes are input errors", "[pbrt_scene]") {
@@ -72,5 +72,5 @@ TEST_CASE("pbrt-v4 refuses tabulated phases, malformed scenes are input errors",
                                                 "AttributeBegin MediumInterface \"\" \"x\" Shape \"trianglemesh\" \"point3 P\" [0 0 -1 1 0 -1 1 1 -1]\nAttributeEnd\n";
     CHECK_THROWS_WITH(read_pbrt_scene(scratch("nomedium.pbrt")), Catch::Contains("unknown medium 'x'"));
     CHECK_THROWS_WITH(read_pbrt_scene(scratch("missing.pbrt")), Catch::Contains("cannot be read"));
-    std::filesystem::remove_all(scratch("x").parent_path());
+    std::filesystem::remove_all(testing::scratch_folder());
 }
