@@ -30,7 +30,7 @@ public:
     SpectralResult solve(const Material& material, const SolverRequest& request) const override {
         return solve_biospec(std::get<LayerStack>(material), request.spectral, options(request.switches));
     }
-    // Absorption replay: materials whose paths agree (biospec_path_difference) are traced once, in groups of at
+    // Absorption replay: materials that trace alike (path keys) are traced once, in groups of at
     // most max_replay_sets (the per-ray cost grows with the sets; progress and Ctrl-C act per group).
     std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         const auto o = options(request.switches);
@@ -40,7 +40,7 @@ public:
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         if (options(request.switches).estimator != AbsorptionEstimator::weighted) return SpectralSolver::solve_groups(materials, request);
-        return replay_groups(materials, max_replay_sets, biospec_path_difference);
+        return replay_groups(materials, max_replay_sets);
     }
 
 private:

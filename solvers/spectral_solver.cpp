@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <optional>
+#include <unordered_map>
 
+#include "materials/path_key.hpp"
 #include "skinspec/version.hpp"
 #include "solvers/adding_doubling_solver.hpp"
 #include "solvers/biospec_walk_solver.hpp"
@@ -117,16 +119,24 @@ std::vector<std::vector<std::size_t>> SpectralSolver::solve_groups(const std::ve
     return groups;
 }
 
-std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets,
-                                                    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference) {
+std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets) {
     std::vector<std::vector<std::size_t>> groups;
+    std::vector<PathKey> keys;  // one per group
+    std::unordered_multimap<std::size_t, std::size_t> by_hash;  // key hash -> group, in creation order per hash
     for (std::size_t i = 0; i < materials.size(); ++i) {
-        const auto& stack = std::get<LayerStack>(*materials[i]);
-        auto group = std::find_if(groups.begin(), groups.end(), [&](const std::vector<std::size_t>& g) {
-            return g.size() < max_sets && path_difference(std::get<LayerStack>(*materials[g.front()]), stack).empty();
-        });
-        if (group == groups.end()) groups.push_back({i});
-        else group->push_back(i);
+        auto key = path_key(std::get<LayerStack>(*materials[i]));
+        std::optional<std::size_t> joined;
+        const auto [first, last] = by_hash.equal_range(key.hash);
+        for (auto it = first; it != last; ++it) {
+            if (groups[it->second].size() < max_sets && keys[it->second] == key && (!joined || it->second < *joined)) joined = it->second;
+        }
+        if (joined) {
+            groups[*joined].push_back(i);
+            continue;
+        }
+        by_hash.emplace(key.hash, groups.size());
+        keys.push_back(std::move(key));
+        groups.push_back({i});
     }
     return groups;
 }

@@ -86,10 +86,10 @@ public:
     virtual SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const;
 };
 
-// For solve_groups implementations that replay absorption: the layered materials whose paths agree
-// (`path_difference` empty), at most `max_sets` per group, each joining the first group it fits.
-std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets,
-                                                    const std::function<std::string(const LayerStack&, const LayerStack&)>& path_difference);
+// For solve_groups implementations that replay absorption: the layered materials that trace alike (equal path
+// keys, materials/path_key.hpp: only absorption-only fields differ), at most `max_sets` per group, each joining
+// the first group it fits.
+std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets);
 // For solve_many implementations that replay absorption: solves each of `groups` with `solve_group` (one result per
 // stack, in order) and returns the results in the materials' order, up to the first one not solved (cancelled).
 std::vector<SpectralResult> solve_in_replay_groups(

@@ -40,7 +40,7 @@ public:
                                                     request.switches.boundaries.value_or(BoundaryMode::random)});
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const override {
-        return replay_groups(materials, max_replay_sets, volumetric_path_difference);
+        return replay_groups(materials, max_replay_sets);
     }
 
 private:

@@ -4,6 +4,12 @@
 #include "solvers/spectral_solver.hpp"
 #include "thread_work_share.hpp"
 #include "materials/material_file.hpp"
+#include "materials/path_key.hpp"
+#include "spectral/input_error.hpp"
+
+#include <fmt/format.h>
+#include <cmath>
+#include <optional>
 
 using namespace skinspec;
 
@@ -177,4 +183,75 @@ TEST_CASE("a sweep shared among processes gives rank 0 the one-process results b
             CHECK(shared[i].provenance.material_toml == one[i].provenance.material_toml);
         }
     }
+}
+
+namespace {
+
+// A value of `key` other than `value` that the material accepts (InputError-free), or nullopt.
+std::optional<Material> perturbed(const Material& base, const std::string& key, const FieldValue& value) {
+    std::vector<std::string> candidates;
+    if (const auto* b = std::get_if<bool>(&value)) candidates = {*b ? "false" : "true"};
+    else if (const auto* d = std::get_if<double>(&value)) {
+        for (const double v : {*d * 1.3, *d * 0.7, *d + 0.1, *d - 0.1, 10.0}) candidates.push_back(fmt::format("{}", v));
+    }
+    for (const auto& c : candidates) {
+        try {
+            auto m = with_overrides(base, {{key, c, "--vary"}});
+            if (!(m == base)) return m;
+        } catch (const InputError&) {
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+TEST_CASE("a two-member sweep equals two direct runs for every field of every layer in every solver", "[solver][sweep]") {
+    // Every description present: papillary dermis with a reduced-scattering power law (volumetric mu_s derived from
+    // it), reticular dermis with its own volumetric power law, so that a field missing from replay grouping shows.
+    auto stack = std::get<LayerStack>(load_material("biospec-lightly"));
+    stack.layers[2].reduced = ReducedScattering{"", 40.0, 1.0};
+    stack.layers[3].volumetric = VolumetricScattering{150.0, 1.0, PhaseFunctionKind::henyey_greenstein, 0.8, VolumetricSource::power_law};
+    const Material base = stack;
+    std::size_t fields = 0;
+    for (const auto& key : material_keys(base)) {
+        const auto value = material_field(base, key);
+        const auto other = perturbed(base, key, value);
+        if (!other) continue;
+        ++fields;
+        const std::vector<const Material*> pair{&base, &*other};
+        for (const auto* solver : solver_registry()) {
+            if (!solver->capabilities().layered_materials) continue;
+            const auto request = solver->capabilities().uncertainty ? one_wavelength(4000) : SolverRequest{};
+            auto single = request;
+            single.spectral.wavelengths = WavelengthGrid::list({550.0});
+            const std::vector<SweepMember> members{{base, {}, {}}, {*other, {}, {}}};
+            const auto swept = solve_sweep(*solver, members, single);
+            REQUIRE(swept.size() == 2);
+            INFO(solver->name() << " " << key << ": " << material_field(*other, key).index());
+            // Grouping follows the declaration: absorption-only fields share one trace, every other field is traced anew.
+            if (!solver->capabilities().replay_fields.empty()) {
+                CHECK(solver->solve_groups(pair, single).size() == (is_absorption_only_key(key) ? 1u : 2u));
+            }
+            for (std::size_t i = 0; i < 2; ++i) {
+                const auto direct = solve_spectrum(*solver, *pair[i], single);
+                const auto& a = swept[i].wavelengths.front().reflectance;
+                const auto& b = direct.wavelengths.front().reflectance;
+                if (solver->capabilities().uncertainty) CHECK(std::abs(a.value - b.value) <= 4.5 * std::hypot(a.stderr, b.stderr) + 1e-12);
+                else CHECK(a.value == Approx(b.value).epsilon(1e-12).margin(1e-15));
+            }
+        }
+    }
+    CHECK(fields > 60);
+}
+
+TEST_CASE("a reduced-scattering sweep traces each value anew (issue 30)", "[solver][sweep]") {
+    auto stack = std::get<LayerStack>(load_material("biospec-lightly"));
+    stack.layers[2].reduced = ReducedScattering{"", 40.0, 1.0};
+    std::vector<Material> materials;
+    for (const char* v : {"20", "200"}) materials.push_back(with_overrides(Material{stack}, {{"papillary_dermis.reduced_scattering_per_cm_at_500nm", v}}));
+    const std::vector<const Material*> pointers{&materials[0], &materials[1]};
+    CHECK(find_solver("rte").solve_groups(pointers, one_wavelength()) == std::vector<std::vector<std::size_t>>{{0}, {1}});
+    CHECK(path_difference(std::get<LayerStack>(materials[0]), std::get<LayerStack>(materials[1])) ==
+          "papillary_dermis.reduced_scattering_per_cm_at_500nm");
 }

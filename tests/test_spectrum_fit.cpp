@@ -142,3 +142,32 @@ TEST_CASE("fit_all fits many spectra in parallel, in order, each as fit() alone,
     const SpectrumFitter stopped(base, grid(), cancelled_settings);
     for (const auto& f : stopped.fit_all({"a", "b", "c"}, spectra, {})) CHECK_FALSE(f);
 }
+
+TEST_CASE("a material of 17 layers fits: the gradient has one entry per layer", "[spectrum_fit]") {
+    // The reticular dermis cut into 14 equal sub-layers: the same skin, 17 layers.
+    auto stack = preset("biospec-moderately");
+    auto reticular = stack.layers.back();
+    stack.layers.pop_back();
+    reticular.thickness_cm /= 14.0;
+    for (int i = 0; i < 14; ++i) {
+        auto sub = reticular;
+        sub.name = "reticular_dermis_" + std::to_string(i);
+        stack.layers.push_back(sub);
+    }
+    REQUIRE(stack.layers.size() == 17);
+    SpectrumFitSettings settings;
+    settings.free = {{"epidermis.melanosome_fraction", {}, {}}, {"papillary_dermis.blood_fraction", {}, {}}};
+    settings.rays_per_wavelength = 4000;
+    const SpectrumFitter fitter(stack, grid(), settings);
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list(grid());
+    request.max_rays_per_wavelength = 20'000;
+    request.seed = 7;
+    std::vector<double> measured;
+    for (const auto& w : solve_biospec(stack, request).wavelengths) measured.push_back(w.reflectance.value);
+    const auto fit = fitter.fit("seventeen", measured);
+    REQUIRE(fit.parameters.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) CHECK(std::isfinite(fit.parameter_stderr[i]));
+    CHECK(fit.parameters[0] == Approx(stack.layers[1].melanosome_fraction).epsilon(0.25));
+    CHECK(fit.rms < 0.01);
+}

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <numbers>
 
+#include "materials/path_key.hpp"
 #include "transport/fresnel.hpp"
 #include "transport/skin_fold.hpp"
 #include "spectral/input_error.hpp"
@@ -24,32 +25,6 @@ constexpr double dead_limit = std::numeric_limits<double>::infinity();  // the l
 constexpr std::uint32_t roulette_every = 8;  // crossings between two roulette looks at the sets' weights
 
 }  // namespace
-
-std::string biospec_path_difference(const LayerStack& a, const LayerStack& b) {
-    if (a.layers.size() != b.layers.size()) return "the number of layers";
-    if (a.above_refractive_index != b.above_refractive_index || a.below_refractive_index != b.below_refractive_index) return "the surrounding indices";
-    if (a.bottom != b.bottom) return "the bottom boundary";
-    if (a.fold_aspect_ratio != b.fold_aspect_ratio) return "the fold aspect ratio";
-    if (a.model.dermal_rayleigh != b.model.dermal_rayleigh) return "model.dermal_rayleigh";
-    if (a.model.rayleigh_turn != b.model.rayleigh_turn) return "model.rayleigh_turn";
-    if (a.model.swapped_upward_indices != b.model.swapped_upward_indices) return "model.swapped_upward_indices";
-    if (a.model.bottom_exit_fresnel != b.model.bottom_exit_fresnel) return "model.bottom_exit_fresnel";
-    if (a.model.redraw_reversals_in_stratum_corneum != b.model.redraw_reversals_in_stratum_corneum) {
-        return "model.redraw_reversals_in_stratum_corneum";
-    }
-    if (a.model.fold_formula != b.model.fold_formula) return "model.fold_formula";
-    for (std::size_t k = 0; k < a.layers.size(); ++k) {
-        const auto& x = a.layers[k];
-        const auto& y = b.layers[k];
-        if (x.thickness_cm != y.thickness_cm || x.refractive_index != y.refractive_index || x.crossing != y.crossing || x.hg_g != y.hg_g ||
-            x.collagen_fibre_fraction != y.collagen_fibre_fraction || x.collagen_fibre_radius_nm != y.collagen_fibre_radius_nm ||
-            x.collagen_fibre_index != y.collagen_fibre_index) {
-            return "layer '" + x.name + "' geometry or scattering";
-        }
-    }
-    return {};
-}
-
 
 BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::size_t bins) {
     int next = 0;
@@ -146,7 +121,7 @@ BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets,
     }
     packet_.mu_a_per_cm.assign(layers_ * sets_, 0.0f);
     for (std::size_t s = 0; s < sets_; ++s) {
-        if (const auto why = biospec_path_difference(*sets.front(), *sets[s]); !why.empty()) {
+        if (const auto why = path_difference(*sets.front(), *sets[s]); !why.empty()) {
             throw InputError("absorption sets '" + sets.front()->name + "' and '" + sets[s]->name + "' differ in " + why +
                              ", which changes paths (trace them separately)");
         }

@@ -45,10 +45,6 @@ struct BiospecChannels {
     BiospecChannels(const Quantities& quantities, std::size_t layers, std::size_t angular_bins);
 };
 
-// What makes the paths of two stacks differ in this walk ("" when they trace alike and only absorbers differ):
-// layer count, thickness, index, crossing scattering, collagen, surroundings, bottom, fold, dermal Rayleigh.
-std::string biospec_path_difference(const LayerStack& a, const LayerStack& b);
-
 class BiospecWavelength {
 public:
     // `sets` share everything but their absorbers (InputError naming the first difference otherwise); one set

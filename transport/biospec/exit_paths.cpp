@@ -19,14 +19,13 @@ void ExitPaths::append(const ExitPaths& other) {
 // Two versions chosen at load time by the CPU (GCC function multiversioning): AVX2 (8-wide expf) or the baseline.
 __attribute__((target_clones("avx2", "default")))
 Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient) const {
+    const std::size_t layers = layer_path_cm.size();
+    const bool with_gradient = gradient != nullptr;
+    if (with_gradient) gradient->assign(layers, 0.0);  // any layer count: the sums accumulate in place
     if (rays == 0) return {};
     constexpr std::size_t chunk = 256;
-    constexpr std::size_t max_layers = 16;
-    const std::size_t layers = layer_path_cm.size();
-    const bool with_gradient = gradient != nullptr && layers <= max_layers;
     float tau[chunk], w[chunk];
     double sum = static_cast<double>(surface_exits), sum_sq = sum;
-    double d_sum[max_layers] = {};
     const std::size_t n = exits();
     for (std::size_t start = 0; start < n; start += chunk) {
         const std::size_t m = std::min(chunk, n - start);
@@ -49,7 +48,7 @@ Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vect
                 const float* p = layer_path_cm[k].data() + start;
                 float g = 0.0f;
                 for (std::size_t i = 0; i < m; ++i) g += p[i] * w[i];
-                d_sum[k] += g;
+                (*gradient)[k] += g;
             }
         }
     }
@@ -57,8 +56,7 @@ Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vect
     const double mean = sum / count;
     const double variance = rays > 1 ? std::max(0.0, sum_sq / count - mean * mean) / (count - 1.0) : 0.0;
     if (with_gradient) {
-        gradient->assign(layers, 0.0);
-        for (std::size_t k = 0; k < layers; ++k) (*gradient)[k] = -d_sum[k] / count * factor;
+        for (auto& g : *gradient) g = -g / count * factor;
     }
     return {mean * factor, std::sqrt(variance) * factor};
 }

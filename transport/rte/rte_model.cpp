@@ -35,20 +35,6 @@ RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
     return out;
 }
 
-std::string volumetric_path_difference(const LayerStack& a, const LayerStack& b) {
-    if (a.layers.size() != b.layers.size()) return "the number of layers";
-    if (a.above_refractive_index != b.above_refractive_index || a.below_refractive_index != b.below_refractive_index) return "the surrounding indices";
-    if (a.bottom != b.bottom) return "the bottom boundary";
-    for (std::size_t k = 0; k < a.layers.size(); ++k) {
-        const auto& x = a.layers[k];
-        const auto& y = b.layers[k];
-        if (x.thickness_cm != y.thickness_cm || x.refractive_index != y.refractive_index || x.volumetric != y.volumetric) {
-            return "layer '" + x.name + "' geometry or scattering";
-        }
-    }
-    return {};
-}
-
 void validate(const RteStack& stack) {
     const auto check = [](bool ok, const std::string& what, double value, const char* range) {
         if (!ok) throw InputError(what + " = " + format_number(value) + " is outside " + range);

@@ -95,8 +95,5 @@ SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest
 // result per stack; `white` with one stack: its own white run (what a replayed set equals to rounding).
 std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack*>& stacks, const SpectralRequest& request,
                                               BoundaryMode boundaries, bool white);
-// What makes the volumetric paths of two stacks differ ("" when only absorbers differ): layer count, thickness,
-// index, volumetric scattering, surroundings, bottom.
-std::string volumetric_path_difference(const LayerStack& a, const LayerStack& b);
 
 }  // namespace skinspec

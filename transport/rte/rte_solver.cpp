@@ -12,6 +12,7 @@
 #include <memory>
 #include <numbers>
 
+#include "materials/path_key.hpp"
 #include "transport/direction.hpp"
 #include "transport/fresnel.hpp"
 #include "transport/rte/rte_model.hpp"
@@ -471,7 +472,7 @@ std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack
     if (stacks.empty()) throw InputError("absorption replay: no stacks to simulate");
     const bool replay = stacks.size() > 1 || white;
     for (const auto* stack : stacks) {
-        if (const auto why = volumetric_path_difference(*stacks.front(), *stack); !why.empty()) {
+        if (const auto why = path_difference(*stacks.front(), *stack); !why.empty()) {
             throw InputError("absorption sets '" + stacks.front()->name + "' and '" + stack->name + "' differ in " + why +
                              ", which changes paths (trace them separately)");
         }
