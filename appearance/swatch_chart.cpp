@@ -1,6 +1,7 @@
 #include "appearance/swatch_chart.hpp"
 
 #include <cmath>
+#include <memory>
 
 #include "solvers/color_precision.hpp"
 #include "solvers/result_wire.hpp"
@@ -10,16 +11,6 @@
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
-namespace {
-
-std::vector<MaterialOverride> patch_overrides(const SwatchRequest& request, const std::vector<double>& parameters) {
-    auto overrides = request.overrides;
-    const auto varied = sweep_overrides(sweep_axes(request.sweeps), parameters);
-    overrides.insert(overrides.end(), varied.begin(), varied.end());
-    return overrides;
-}
-
-}  // namespace
 
 WavelengthGrid swatch_wavelengths(double delta_e) { return WavelengthGrid::range(380.0, 780.0, delta_e < 1.0 ? 5.0 : 10.0); }
 
@@ -50,7 +41,10 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     // (and v_m + v_b <= 1 a linear bound) and each sweep is monotonic, so the corner patches are the extremes.
     // The other patches are loaded as they are solved.
     std::vector<std::size_t> corners{0, chart.columns - 1, (chart.rows - 1) * chart.columns, chart.rows * chart.columns - 1};
-    const auto material_of = [&](std::size_t i) { return load_material(request.material, patch_overrides(request, parameters[i])); };
+    // The material is read once; each patch sets its swept values on a copy in memory.
+    const auto base_material = load_material(request.material, request.overrides);
+    const auto base_toml = std::make_shared<const std::string>(to_toml(base_material));
+    const auto material_of = [&](std::size_t i) { return with_overrides(base_material, sweep_overrides(sweep_axes(request.sweeps), parameters[i])); };
     SolverRequest base;
     base.switches = request.switches;
     base.overrides = request.overrides;
@@ -115,7 +109,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         for (std::size_t i = begin; i < end; ++i) {
             std::vector<std::pair<std::string, double>> varied;
             for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
-            members.push_back({material_of(i), sweep_overrides(sweep_axes(request.sweeps), parameters[i]), std::move(varied)});
+            members.push_back({material_of(i), sweep_overrides(sweep_axes(request.sweeps), parameters[i]), std::move(varied), base_toml});
         }
         auto results = solve_sweep(solver, members, base);
         if (share) {

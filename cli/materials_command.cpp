@@ -27,14 +27,9 @@ struct MaterialsOptions {
 };
 
 Json model_json(const ModelOptions& m) {
-    return Json{{"variant", m.variant},
-                {"dermal_rayleigh", m.dermal_rayleigh},
-                {"ln10_molar_tables", m.molar_tables == DecadicConversion::multiply_ln10},
-                {"ln10_melanin_tables", m.melanin_tables == DecadicConversion::multiply_ln10},
-                {"baseline_absorption", m.baseline_absorption},
-                {"hemoglobin_molar_mass_g_per_mol", m.hemoglobin_molar_mass_g_per_mol},
-                {"bilirubin_molar_mass_g_per_mol", m.bilirubin_molar_mass_g_per_mol},
-                {"carotene_molar_mass_g_per_mol", m.carotene_molar_mass_g_per_mol}};
+    Json j = Json::object();
+    for (const auto& [key, value] : model_settings(m)) j[key] = std::visit([](const auto& v) { return Json(v); }, value);
+    return j;
 }
 
 // Per-layer optics over the grid: one vector per layer per quantity.

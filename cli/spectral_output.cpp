@@ -178,17 +178,29 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
     std::string out = fmt::format("# skinspec {} spectral result (docs/RESULTS_SCHEMA.md)\n", version);
     out += "# units: wavelength_nm [nm]; R, R_specular, T, A_* [fraction of incident flux]; BRDF/BTDF [1/sr]; "
            "*_stderr: standard error of the column before it\n";
+    // A sweep's members share their settings and base material: each is written once, each member's overrides
+    // on its own provenance line.
+    const SpectralResult* previous = nullptr;
+    std::vector<std::pair<std::string, const std::string*>> written_materials;  // (name, material TOML) already written
     for (const auto& s : spectra) {
-        out += fmt::format("# material {}: model {}, partial {}", s.result.material, s.result.model, s.result.partial);
-        for (const auto& [k, v] : s.result.settings) {
-            out += ", " + k + " " + std::visit([](const auto& x) { return fmt::format("{}", x); }, v);
+        const auto& r = s.result;
+        if (!previous || previous->material != r.material || previous->model != r.model || previous->partial != r.partial ||
+            previous->settings != r.settings) {
+            out += fmt::format("# material {}: model {}, partial {}", r.material, r.model, r.partial);
+            for (const auto& [k, v] : r.settings) out += ", " + k + " " + std::visit([](const auto& x) { return fmt::format("{}", x); }, v);
+            out += '\n';
         }
-        out += '\n';
+        previous = &r;
         const auto& p = s.result.provenance;
         std::string overrides;
         for (const auto& [key, value] : p.overrides) overrides += " " + key + "=" + value;
         out += fmt::format("# provenance {}: solver {}, skinspec {}, overrides{}\n", s.result.material, p.solver, p.version,
                            overrides.empty() ? std::string(" none") : overrides);
+        if (std::any_of(written_materials.begin(), written_materials.end(),
+                        [&](const auto& w) { return w.first == s.result.material && *w.second == p.material_toml; })) {
+            continue;
+        }
+        written_materials.emplace_back(s.result.material, &p.material_toml);
         out += "# material_toml " + s.result.material + ":\n";
         std::size_t from = 0;
         while (from < p.material_toml.size()) {

@@ -95,11 +95,7 @@ void run_spectrum(const SpectrumOptions& o) {
     // any ray is traced.
     std::vector<std::vector<SweepMember>> members_per_name;
     for (const auto& name : names) {
-        auto members = sweep_members(solver, request, axes, o.layers, [&](const std::vector<MaterialOverride>& extra) {
-            auto overrides = request.overrides;
-            overrides.insert(overrides.end(), extra.begin(), extra.end());
-            return load_material(name, overrides);
-        });
+        auto members = sweep_members(solver, request, axes, o.layers, load_material(name, request.overrides));
         const bool bands = std::holds_alternative<HomogeneousMaterial>(members.front().material);
         if (!members_per_name.empty() && bands != std::holds_alternative<HomogeneousMaterial>(members_per_name.front().front().material)) {
             throw InputError("material '" + name + "' has " + (bands ? "bands" : "wavelengths") + ", the materials before it " +
@@ -126,7 +122,15 @@ void run_spectrum(const SpectrumOptions& o) {
 
     // With several processes (mpirun), rank 0 has every result and reports; the others are done.
     if (!is_root_process()) return;
-    for (const auto& s : spectra) print_warning_summary(s.result.material, s.result.warnings);
+    // One summary per material, over all of its sweep's members.
+    for (std::size_t i = 0, j = 0; i < spectra.size(); i = j) {
+        std::vector<ResultWarning> warnings;
+        for (j = i; j < spectra.size() && spectra[j].result.material == spectra[i].result.material; ++j) {
+            warnings.insert(warnings.end(), spectra[j].result.warnings.begin(), spectra[j].result.warnings.end());
+        }
+        const auto& name = spectra[i].result.material;
+        print_warning_summary(j - i > 1 ? name + " (" + std::to_string(j - i) + " results)" : name, warnings);
+    }
     if (o.json) std::cout << to_json(spectra).dump(2) << '\n';
     else std::cout << (sweeps.empty() ? to_table(spectra) : to_sweep_table(spectra));
     if (!o.output.empty()) {

@@ -11,7 +11,7 @@
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "transport/rte/rte_model.hpp"
 
 namespace skinspec {
@@ -21,7 +21,7 @@ constexpr double mm_per_cm = 10.0;
 
 // p(cos theta) per sr of a measured profile at cos theta = -1 + 2 k / (n - 1): the probability of the cell of
 // width h around each point from the profile's piecewise-linear C(theta) (Bruls & van der Leun 1984, as
-// transport/measured_profile.hpp reads it), over the cell's solid angle 2 pi h.
+// materials/measured_profile.hpp reads it), over the cell's solid angle 2 pi h.
 std::vector<double> tabulated_values(const MeasuredProfile& profile, double wavelength_nm, std::size_t points) {
     const double h = 2.0 / static_cast<double>(points - 1);
     const auto c_of_mu = [&](double mu) { return profile.cdf(wavelength_nm, std::acos(std::clamp(mu, -1.0, 1.0)) * 180.0 / std::numbers::pi); };

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "materials/tissue_layer.hpp"
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 
 namespace skinspec {
 

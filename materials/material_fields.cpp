@@ -137,6 +137,21 @@ const std::vector<NamedField>& named_fields() {
     return fields;
 }
 
+std::vector<std::pair<std::string, ModelSettingValue>> model_settings(const ModelOptions& model) {
+    std::vector<std::pair<std::string, ModelSettingValue>> out{{"variant", model.variant}};
+    for (const auto& f : model_fields()) {
+        std::visit(
+            [&](auto member) {
+                using T = std::remove_cvref_t<decltype(model.*member)>;
+                if constexpr (std::is_same_v<T, DecadicConversion>) out.emplace_back(f.key, model.*member == DecadicConversion::multiply_ln10);
+                else if constexpr (std::is_enum_v<T>) out.emplace_back(f.key, std::string(to_string(model.*member)));
+                else out.emplace_back(f.key, model.*member);
+            },
+            f.member);
+    }
+    return out;
+}
+
 std::vector<FieldRow> material_field_rows() {
     std::vector<FieldRow> rows;
     const auto named = [&](std::string_view section, const std::string& prefix) {

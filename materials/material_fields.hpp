@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -63,6 +64,11 @@ const std::vector<NumberField<LayerStack>>& surface_fields();
 const std::vector<NumberField<LayerStack>>& bottom_fields();
 const std::vector<ModelField>& model_fields();
 const std::vector<NamedField>& named_fields();
+
+// Every [model] switch with its value, variant first, in table order: what results (settings) and `materials show`
+// report, so that a new switch appears in both with no edit.
+using ModelSettingValue = std::variant<bool, double, std::string>;
+std::vector<std::pair<std::string, ModelSettingValue>> model_settings(const ModelOptions& model);
 
 // Every key with its section, unit, range or allowed names and documentation, one row each, in file order.
 struct FieldRow {

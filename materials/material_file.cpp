@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -519,8 +520,95 @@ void write_material(const Material& material, const std::filesystem::path& file,
     write_text_file(file, to_toml(material), overwrite);
 }
 
+namespace {
+
+// The number an override's text reads as (as the file reader would read it), or nullopt for any other value.
+std::optional<double> override_number(const MaterialOverride& o) {
+    if (o.number) return o.number;  // a sweep's value, whose text is its exact shortest form
+    const auto table = override_value(o.value);
+    const auto* node = table.get("v");
+    if (!node || !node->is_number()) return std::nullopt;
+    return node->value<double>();
+}
+
+template <class Owner>
+const NumberField<Owner>* number_field(const std::vector<NumberField<Owner>>& fields, std::string_view key) {
+    for (const auto& f : fields) {
+        if (f.key == key) return &f;
+    }
+    return nullptr;
+}
+
+// Sets a number field of `stack` in place, typed, with the reader's range check. False where the override needs
+// the file reader (anything but a valid number of a field the stack already holds, a value out of range, a
+// contradiction): the caller then takes the TOML path, which gives the reader's own message. One table (the
+// field descriptors) serves both paths.
+bool set_number_in_place(LayerStack& stack, const MaterialOverride& o) {
+    const auto dot = o.key.find('.');
+    if (dot == std::string::npos) return false;
+    const auto head = std::string_view(o.key).substr(0, dot);
+    const auto name = std::string_view(o.key).substr(dot + 1);
+    const auto value = override_number(o);
+    if (!value) return false;
+    if (head == "model") {
+        for (const auto& f : model_fields()) {
+            const auto* member = std::get_if<double ModelOptions::*>(&f.member);
+            if (f.key != name || !member || !f.range.contains(*value)) continue;
+            stack.model.*(*member) = *value;
+            return true;
+        }
+        return false;
+    }
+    if (head == "surface" || head == "bottom") {
+        const auto* f = number_field(head == "surface" ? surface_fields() : bottom_fields(), name);
+        if (!f || !f->range.contains(*value)) return false;
+        stack.*(f->member) = *value;
+        return true;
+    }
+    std::vector<TissueLayer*> layers;
+    for (auto& l : stack.layers) {
+        if (layer_matches(l.name, head)) layers.push_back(&l);
+    }
+    if (layers.empty()) return false;
+    if (const auto* f = number_field(layer_number_fields(), name)) {
+        if (!f->range.contains(*value)) return false;
+        for (auto* l : layers) {
+            auto changed = *l;
+            changed.*(f->member) = *value;
+            if (changed.melanosome_fraction + changed.blood_fraction > 1.0) return false;
+        }
+        for (auto* l : layers) l->*(f->member) = *value;
+        return true;
+    }
+    if (const auto* f = number_field(volumetric_fields(), name)) {
+        const bool plain = std::all_of(layers.begin(), layers.end(), [&](const TissueLayer* l) {
+            return l->volumetric && l->volumetric->source == VolumetricSource::power_law && !(name == "volumetric_g" && is_measured(l->volumetric->phase));
+        });
+        if (!plain || !f->range.contains(*value)) return false;
+        for (auto* l : layers) (*l->volumetric).*(f->member) = *value;
+        return true;
+    }
+    if (const auto* f = number_field(reduced_power_law_fields(), name)) {
+        const bool law = std::all_of(layers.begin(), layers.end(), [](const TissueLayer* l) { return l->reduced && l->reduced->table.empty(); });
+        if (!law || !f->range.contains(*value)) return false;
+        for (auto* l : layers) (*l->reduced).*(f->member) = *value;
+        return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides) {
     if (overrides.empty()) return material;  // to_toml round-trips exactly: nothing to re-check
+    if (const auto* stack = std::get_if<LayerStack>(&material)) {
+        // Numbers (every sweep, most --set) are set in the material directly; anything else goes through the file
+        // reader, which also words every refusal.
+        LayerStack changed = *stack;
+        if (std::all_of(overrides.begin(), overrides.end(), [&](const MaterialOverride& o) { return set_number_in_place(changed, o); })) {
+            return changed;
+        }
+    }
     return parse_material(to_toml(material), "material " + material_name(material), overrides);
 }
 

@@ -4,8 +4,10 @@
 //   kind = "homogeneous": a semi-infinite material given by RGB-band (or other band) optical parameters.
 // Every field is range-checked; unknown keys are errors; messages name file, line, key, value and range.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -30,9 +32,13 @@ using Material = std::variant<LayerStack, HomogeneousMaterial>;
 // layer name or the suffix shared by several ("dermis" sets papillary_dermis and reticular_dermis). VALUE is a
 // TOML value (number, true/false, [array]); anything else is taken as a string.
 struct MaterialOverride {
+    MaterialOverride() = default;
+    MaterialOverride(std::string key_text, std::string value_text, std::string origin_option = "--set", std::optional<double> as_number = std::nullopt)
+        : key(std::move(key_text)), value(std::move(value_text)), origin(std::move(origin_option)), number(as_number) {}
     std::string key;
     std::string value;
     std::string origin = "--set";  // the option it came from, named in messages ("--set", "--vary")
+    std::optional<double> number;  // the value as a number when the maker had one (sweeps): `value` is its exact text
 };
 MaterialOverride parse_override(std::string_view text);
 

@@ -51,8 +51,9 @@ ModelOptions model_variant(std::string_view name, std::string_view what) {
         options.fold_formula = FoldFormula::authors_code;
         return options;
     }
-    throw InputError(std::string(what) + ": '" + std::string(name) +
-                     "' is not a model variant (allowed: biospec, biospec-2004, biospec-authors-code)");
+    std::string allowed;
+    for (const auto n : model_variant_names()) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
+    throw InputError(std::string(what) + ": '" + std::string(name) + "' is not a model variant (allowed: " + allowed + ")");
 }
 
 }  // namespace skinspec

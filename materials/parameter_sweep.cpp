@@ -84,7 +84,7 @@ std::vector<std::vector<double>> sweep_grid(const std::vector<SweepAxis>& axes) 
 
 std::vector<MaterialOverride> sweep_overrides(const std::vector<SweepAxis>& axes, const std::vector<double>& values) {
     std::vector<MaterialOverride> out;
-    for (std::size_t s = 0; s < axes.size() && s < values.size(); ++s) out.push_back({axes[s].field, format_number(values[s]), "--vary"});
+    for (std::size_t s = 0; s < axes.size() && s < values.size(); ++s) out.push_back({axes[s].field, format_number(values[s]), "--vary", values[s]});
     return out;
 }
 

@@ -244,8 +244,7 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
     }
     const auto layer_list = layers.is_none() ? std::vector<std::string>{} : name_list(layers, "layers");
     const auto with_options = with_overrides(base.material, extra);
-    const auto members = sweep_members(solver, request, axes, layer_list,
-                                       [&](const std::vector<MaterialOverride>& swept) { return with_overrides(with_options, swept); });
+    const auto members = sweep_members(solver, request, axes, layer_list, with_options);
 
     const ThreadLimit limit(threads);
     std::vector<SpectralResult> results;
@@ -263,14 +262,14 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
 }
 
 py::object profiles(const py::object& material, const py::object& radii_mm, const py::object& wavelengths, const std::string& mode,
-                    bool transmittance, const py::object& roughness, const py::object& rays, const py::object& seed) {
+                    bool transmittance, const py::object& roughness, const py::object& boundaries, const py::object& rays, const py::object& seed) {
     const auto& solver = find_solver(mode, "mode");
     const auto base = material_argument(material, "material");
     ProfileRequest request;
     request.wavelengths = wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths);
     request.radii_mm = finite_vector(radii_mm, "radii_mm");
     request.transmittance = transmittance;
-    request.switches = solver_switches(py::none(), py::none(), py::none(), roughness, py::none());
+    request.switches = solver_switches(py::none(), py::none(), boundaries, roughness, py::none());
     if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
     request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
     SpectralProfiles p;
@@ -356,9 +355,11 @@ void bind_spectra(py::module_& m) {
 
     radii_mm: 1-D array; wavelengths (layered materials; default 450, 550, 650 nm); mode: a solver with radial
     profiles (multipole, dipole, rte: the volumetric walk, radii from 0 in equal steps, rays photons per wavelength
-    (default 1e6), seed; its R_stderr_per_mm2). Returns a skinspec.Profiles.)doc",
+    (default 1e6), seed, boundaries random|split; its R_stderr_per_mm2). A switch the solver does not take is refused.
+    Returns a skinspec.Profiles.)doc",
           py::arg("material"), py::arg("radii_mm"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = "multipole",
-          py::arg("transmittance") = false, py::arg("roughness") = py::none(), py::arg("rays") = py::none(), py::arg("seed") = 1);
+          py::arg("transmittance") = false, py::arg("roughness") = py::none(), py::arg("boundaries") = py::none(), py::arg("rays") = py::none(),
+          py::arg("seed") = 1);
     m.def("solvers", &solvers, "The registered solvers and what each declares it supports.");
 }
 

@@ -8,7 +8,10 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ "${#targets[@]}" -gt 0 ] || targets=(spectrum_csv material_toml mci fit_csv fit_images measured_spectra pbrt_scene mitsuba_scene)
+if [ "${#targets[@]}" -eq 0 ]; then
+  # Every fuzz/fuzz_NAME.cpp (the same folder CMakeLists.txt builds the targets from).
+  for f in fuzz/fuzz_*.cpp; do t=${f#fuzz/fuzz_}; targets+=("${t%.cpp}"); done
+fi
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DSKINSPEC_FUZZ=ON -DSKINSPEC_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
 cmake --build build-fuzz -j 2 --target "${targets[@]/#/fuzz_}"

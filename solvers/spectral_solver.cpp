@@ -242,10 +242,11 @@ SolverRequest effective_request(const SolverRequest& request) {
     return out;
 }
 
-void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material,
+void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material, std::string material_toml,
                        const std::vector<MaterialOverride>& overrides, std::vector<std::pair<std::string, double>> varied) {
     result.provenance.solver = std::string(solver.name());
-    result.provenance.material_toml = to_toml(material);
+    if (const auto* stack = std::get_if<LayerStack>(&material)) add_model_settings(result.settings, stack->model);
+    result.provenance.material_toml = std::move(material_toml);
     for (const auto& o : overrides) result.provenance.overrides.emplace_back(o.key, o.value);
     result.provenance.varied = std::move(varied);
     result.provenance.version = version;
@@ -256,25 +257,26 @@ void record_provenance(SpectralResult& result, const SpectralSolver& solver, con
 SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
     check_request(solver, material, request);
     auto result = solver.solve(material, effective_request(request));
-    record_provenance(result, solver, material, request.overrides, {});
+    record_provenance(result, solver, material, to_toml(material), request.overrides, {});
     return result;
 }
 
 std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
-                                       const std::vector<std::string>& layers,
-                                       const std::function<Material(const std::vector<MaterialOverride>&)>& make) {
+                                       const std::vector<std::string>& layers, const Material& base) {
+    Material cut = base;
+    if (!layers.empty()) {
+        if (const auto* stack = std::get_if<LayerStack>(&base)) cut = stack->sub_stack(layers);
+        else throw InputError("--layers: material '" + material_name(base) + "' is homogeneous and has no layers");
+    }
+    const auto base_toml = std::make_shared<const std::string>(to_toml(cut));
     std::vector<SweepMember> members;
     for (const auto& values : sweep_grid(axes)) {
         auto overrides = sweep_overrides(axes, values);
-        auto material = make(overrides);
-        if (!layers.empty()) {
-            if (const auto* stack = std::get_if<LayerStack>(&material)) material = stack->sub_stack(layers);
-            else throw InputError("--layers: material '" + material_name(material) + "' is homogeneous and has no layers");
-        }
+        auto material = with_overrides(cut, overrides);
         check_request(solver, material, request);
         std::vector<std::pair<std::string, double>> varied;
         for (std::size_t a = 0; a < axes.size(); ++a) varied.emplace_back(axes[a].field, values[a]);
-        members.push_back({std::move(material), std::move(overrides), std::move(varied)});
+        members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml});
     }
     return members;
 }
@@ -318,7 +320,8 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
     for (std::size_t i = 0; i < results.size(); ++i) {
         auto overrides = request.overrides;
         overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());
-        record_provenance(results[i], solver, members[i].material, overrides, members[i].varied);
+        record_provenance(results[i], solver, members[i].material, members[i].base_toml ? *members[i].base_toml : to_toml(members[i].material), overrides,
+                          members[i].varied);
     }
     return results;
 }

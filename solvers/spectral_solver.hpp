@@ -5,6 +5,7 @@
 // the solver, what was asked and which solvers do offer it; solvers never see such a request.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -112,18 +113,19 @@ void check_request(const SpectralSolver& solver, const Material& material, const
 SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request);
 
 // One member of a sweep: a material, the overrides that made it (after the request's own) and the swept
-// field values, recorded in its result's provenance.
+// field values, recorded in its result's provenance with the sweep's base material (one text shared by every
+// member, so that an output carries the base once and each member's overrides).
 struct SweepMember {
     Material material;
     std::vector<MaterialOverride> overrides;
     std::vector<std::pair<std::string, double>> varied;
+    std::shared_ptr<const std::string> base_toml;  // unset: the member's own material is recorded
 };
 // The members of a sweep over `axes`, one per combination of their values (sweep_grid order; no axis: one
-// member): each made by `make` from the combination's overrides, cut to the sub-stack of `layers` when given,
-// and checked against the solver, so that every input is refused before any ray is traced.
+// member): `base` cut to the sub-stack of `layers` when given, then each combination's overrides set on it in
+// memory (with_overrides), each checked against the solver, so that every input is refused before any ray is traced.
 std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
-                                       const std::vector<std::string>& layers,
-                                       const std::function<Material(const std::vector<MaterialOverride>&)>& make);
+                                       const std::vector<std::string>& layers, const Material& base);
 // Every member checked first, then solved together (solve_many: replayed where the solver can). With `share`
 // (several processes, e.g. MPI ranks), each process solves its share of the solver's groups and the first
 // process gets every result, equal bit for bit to a one-process run; the others get none.

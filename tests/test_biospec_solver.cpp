@@ -6,7 +6,7 @@
 
 #include "transport/biospec/biospec_solver.hpp"
 #include "transport/fresnel.hpp"
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 
@@ -320,7 +320,7 @@ TEST_CASE("absorption replay refuses sets whose paths differ and the random esti
     const std::vector<const LayerStack*> sets{&stacks[0], &stacks[1]};
     SpectralRequest request;
     request.max_rays_per_wavelength = 100;
-    CHECK_THROWS_WITH(solve_biospec_sets(sets, request), Catch::Contains("differ in layer 'epidermis' geometry or scattering, which changes paths"));
+    CHECK_THROWS_WITH(solve_biospec_sets(sets, request), Catch::Contains("differ in epidermis.thickness_cm, which changes paths"));
     stacks[1].layers[1].thickness_cm = stacks[0].layers[1].thickness_cm;
     BiospecOptions random;
     random.estimator = AbsorptionEstimator::random_test;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "studies/phase_study/hg_fit.hpp"
 
 using namespace skinspec;

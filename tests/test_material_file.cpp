@@ -221,3 +221,30 @@ TEST_CASE("with_overrides applies --set checks to a material in memory, parse_ma
     CHECK(parse_material(to_toml(base), "text") == base);
     CHECK_THROWS_WITH(parse_material("kind = \"layered\"\nname = [", "notebook cell"), Catch::StartsWith("notebook cell:2:"));
 }
+
+TEST_CASE("numbers set in memory equal the file reader's result, and every refusal is the reader's", "[material_file]") {
+    const auto base = load_material("biospec-moderately");
+    const auto through_file = [&](const std::vector<MaterialOverride>& o) { return parse_material(to_toml(base), "material biospec-moderately", o); };
+    for (const std::vector<MaterialOverride>& o : std::vector<std::vector<MaterialOverride>>{
+             {{"epidermis.melanosome_fraction", "0.07", "--vary"}},
+             {{"dermis.blood_fraction", "0.03", "--vary"}, {"dermis.oxygen_saturation", "5e-1", "--set"}},
+             {{"model.hemoglobin_molar_mass_g_per_mol", "64500", "--set"}},
+             {{"surface.fold_aspect_ratio", "0.5", "--set"}, {"bottom.below_refractive_index", "1.4", "--set"}},
+             {{"papillary_dermis.volumetric_g", "0.7", "--set"}},
+             {{"model.dermal_rayleigh", "false", "--set"}},
+             {{"epidermis.scattering", "cosine", "--set"}}}) {
+        CHECK(with_overrides(base, o) == through_file(o));
+    }
+    for (const MaterialOverride& o : {MaterialOverride{"epidermis.melanosome_fraction", "1.5", "--vary"},
+                                      MaterialOverride{"epidermis.blood_fraction", "0.99", "--vary"},
+                                      MaterialOverride{"hypodermis.blood_fraction", "0.1", "--vary"},
+                                      MaterialOverride{"epidermis.volumetric_g", "0.5", "--set"},
+                                      MaterialOverride{"epidermis.melanosome_fraction", "inf", "--vary"}}) {
+        std::string direct, file;
+        try { with_overrides(base, {o}); } catch (const InputError& e) { direct = e.what(); }
+        try { through_file({o}); } catch (const InputError& e) { file = e.what(); }
+        INFO(o.key << "=" << o.value);
+        CHECK_FALSE(direct.empty());
+        CHECK(direct == file);
+    }
+}

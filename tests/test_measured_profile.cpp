@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "transport/random_stream.hpp"
 
 using namespace skinspec;

@@ -9,7 +9,7 @@
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 #include "scratch_folder.hpp"
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 
 using namespace skinspec;
 

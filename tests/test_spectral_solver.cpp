@@ -130,22 +130,25 @@ TEST_CASE("sweep members: every combination, the first axis fastest, each checke
     const auto& walk = find_solver("biospec");
     const auto request = one_wavelength(100);
     const std::vector<SweepAxis> axes{{"epidermis.melanosome_fraction", {0.01, 0.02, 0.04}}, {"dermis.blood_fraction", {0.002, 0.01}}};
-    const auto make = [](const std::vector<MaterialOverride>& o) { return load_material("biospec-moderately", o); };
-    const auto members = sweep_members(walk, request, axes, {}, make);
+    const auto base = load_material("biospec-moderately");
+    const auto members = sweep_members(walk, request, axes, {}, base);
     REQUIRE(members.size() == 6);
     CHECK(members[1].varied == std::vector<std::pair<std::string, double>>{{"epidermis.melanosome_fraction", 0.02}, {"dermis.blood_fraction", 0.002}});
     CHECK(members[3].varied.back().second == 0.01);
     CHECK(std::get<double>(material_field(members[5].material, "epidermis.melanosome_fraction")) == 0.04);
     CHECK(members[5].overrides.front().value == "0.04");
-    CHECK(sweep_members(walk, request, {}, {}, make).size() == 1);
-    const auto cut = sweep_members(walk, request, {}, {"stratum_corneum", "epidermis"}, make);
+    // One base text for the whole sweep; each result records it with its member's overrides.
+    CHECK(members[0].base_toml == members[5].base_toml);
+    CHECK(*members[0].base_toml == to_toml(base));
+    CHECK(with_overrides(parse_material(*members[5].base_toml, "base"), members[5].overrides) == members[5].material);
+    CHECK(sweep_members(walk, request, {}, {}, base).size() == 1);
+    const auto cut = sweep_members(walk, request, {}, {"stratum_corneum", "epidermis"}, base);
     CHECK(std::get<LayerStack>(cut.front().material).layers.size() == 2);
-    CHECK_THROWS_WITH(sweep_members(walk, request, {{"epidermis.melanosome_fraction", {0.01, 2.0}}}, {}, make), Catch::Contains("= 2 is outside [0, 1]"));
+    CHECK_THROWS_WITH(sweep_members(walk, request, {{"epidermis.melanosome_fraction", {0.01, 2.0}}}, {}, base), Catch::Contains("= 2 is outside [0, 1]"));
     auto t_request = request;
     t_request.spectral.quantities.angular = true;
-    CHECK_THROWS_WITH(sweep_members(find_solver("dipole"), t_request, axes, {}, make), Catch::Contains("does not compute brdf"));
-    CHECK_THROWS_WITH(sweep_members(find_solver("dipole"), SolverRequest{}, {}, {"epidermis"},
-                                    [](const std::vector<MaterialOverride>& o) { return load_material("jensen2001-skin1", o); }),
+    CHECK_THROWS_WITH(sweep_members(find_solver("dipole"), t_request, axes, {}, base), Catch::Contains("does not compute brdf"));
+    CHECK_THROWS_WITH(sweep_members(find_solver("dipole"), SolverRequest{}, {}, {"epidermis"}, load_material("jensen2001-skin1")),
                       Catch::Contains("homogeneous and has no layers"));
 }
 
@@ -166,12 +169,12 @@ TEST_CASE("solve groups: replaying solvers group what shares paths, the others s
 }
 
 TEST_CASE("a sweep shared among processes gives rank 0 the one-process results bit for bit", "[solver]") {
-    const auto make = [](const std::vector<MaterialOverride>& o) { return load_material("biospec-moderately", o); };
+    const auto base = load_material("biospec-moderately");
     const std::vector<SweepAxis> axes{{"epidermis.melanosome_fraction", {0.01, 0.05}}, {"epidermis.thickness_cm", {0.008, 0.01, 0.012}}};
     for (const char* solver : {"biospec", "rte", "multipole"}) {
         const auto& s = find_solver(solver);
         const auto request = s.capabilities().uncertainty ? one_wavelength(500) : SolverRequest{};
-        const auto members = sweep_members(s, request, axes, {}, make);
+        const auto members = sweep_members(s, request, axes, {}, base);
         const auto one = solve_sweep(s, members, request);
         const auto shared = testing::run_shared<std::vector<SpectralResult>>(2, [&](const WorkShare& share) { return solve_sweep(s, members, request, &share); });
         REQUIRE(shared.size() == one.size());

@@ -5,8 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "transport/measured_profile.hpp"
-#include "transport/random_stream.hpp"
+#include "materials/measured_profile.hpp"
 
 namespace skinspec {
 
@@ -21,8 +20,6 @@ struct PhaseFunction {
     static PhaseFunction henyey_greenstein(double g) { return {Kind::henyey_greenstein, g, 0.0, 1.0, nullptr}; }
     static PhaseFunction isotropic() { return {Kind::isotropic, 0.0, 0.0, 1.0, nullptr}; }
 
-    // cos of the deflection from the current direction.
-    double sample_cos(RandomStream& random) const;
     std::string describe() const;
 };
 

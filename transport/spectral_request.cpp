@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include "materials/material_fields.hpp"
+#include "spectral/input_error.hpp"
 #include "spectral/named_choice.hpp"
+#include "spectral/text_fields.hpp"
 
 namespace skinspec {
 
@@ -44,6 +47,18 @@ std::vector<double> default_angular_bin_edges_deg() {
     for (double e = 2.5; e < 90.0; e += 5.0) edges.push_back(e);
     edges.push_back(90.0);
     return edges;
+}
+
+void check_incidence_deg(double incidence_deg) {
+    if (!std::isfinite(incidence_deg) || incidence_deg < 0.0 || incidence_deg >= 90.0) {
+        throw InputError("incidence angle " + format_number(incidence_deg) + " deg is outside [0, 90)");
+    }
+}
+
+void add_model_settings(std::map<std::string, SettingValue>& settings, const ModelOptions& model) {
+    for (auto& [key, value] : model_settings(model)) {
+        settings[key] = std::visit([](auto&& v) -> SettingValue { return std::move(v); }, std::move(value));
+    }
 }
 
 std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings) {

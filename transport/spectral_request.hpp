@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "materials/model_options.hpp"
 #include "spectral/wavelength_grid.hpp"
 
 namespace skinspec {
@@ -106,6 +107,12 @@ struct ResultWarning {
 // One line per kind, in order of first appearance:
 // "KIND: epidermis at 31 of them (400 nm to 700 nm, values 0.62 to 0.89); papillary_dermis at 400 nm (0.87)".
 std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings);
+
+// InputError "incidence angle A deg is outside [0, 90)" unless 0 <= A < 90 (every solver's one incidence check).
+void check_incidence_deg(double incidence_deg);
+
+// Every [model] switch of `model` (materials/material_fields.hpp, model_settings) into `settings`.
+void add_model_settings(std::map<std::string, SettingValue>& settings, const ModelOptions& model);
 
 // What a result was computed from, so that a script can re-run or audit it.
 struct Provenance {

@@ -13,7 +13,7 @@
 #include "transport/diffusion/dipole.hpp"
 #include "transport/diffusion/multipole.hpp"
 #include "transport/adding_doubling/adding_doubling.hpp"
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "transport/rte/rte_model.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"

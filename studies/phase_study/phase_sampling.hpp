@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "transport/random_stream.hpp"
 
 namespace skinspec {

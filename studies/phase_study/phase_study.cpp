@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "spectral/data_paths.hpp"
 #include "spectral/data_table.hpp"
 

@@ -155,3 +155,13 @@ def test_volumetric_profiles_equal_the_cli_with_standard_errors():
         skinspec.profiles("biospec-moderately", radii, [550], rays=100)
     with pytest.raises(skinspec.InputError, match="equal steps"):
         skinspec.profiles("biospec-moderately", [0.1, 0.2, 0.3], [550], mode="rte", rays=100)
+
+
+def test_profiles_honour_the_boundaries_switch():
+    # The volumetric walk's split boundaries reach profiles as they reach spectrum; a solver without the switch refuses it.
+    radii = np.arange(0.0, 1.01, 0.25)
+    split = skinspec.profiles("biospec-moderately", radii, [550], mode="rte", rays=20000, seed=4, boundaries="split")
+    random = skinspec.profiles("biospec-moderately", radii, [550], mode="rte", rays=20000, seed=4, boundaries="random")
+    assert not np.array_equal(split.R_per_mm2, random.R_per_mm2)
+    with pytest.raises(skinspec.InputError, match="does not take the switch 'boundaries'"):
+        skinspec.profiles("biospec-moderately", radii, [550], mode="multipole", boundaries="split")

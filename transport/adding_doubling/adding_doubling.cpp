@@ -412,9 +412,7 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
 
 AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options, AdPhaseCache* cache) {
     validate(stack);
-    if (!incidence.diffuse && !(std::isfinite(incidence.angle_deg) && incidence.angle_deg >= 0.0 && incidence.angle_deg < 90.0)) {
-        throw InputError("incidence angle " + format_number(incidence.angle_deg) + " deg is outside [0, 90)");
-    }
+    if (!incidence.diffuse) check_incidence_deg(incidence.angle_deg);
     if (options.channels < 4 || options.channels > 256) {
         throw InputError("adding-doubling channels " + std::to_string(options.channels) + " is outside [4, 256]");
     }

@@ -48,9 +48,7 @@ private:
 
 void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOptions& o) {
     if (stack.layers.empty()) throw InputError("material '" + stack.name + "': no layers to simulate");
-    if (!std::isfinite(r.incidence_deg) || r.incidence_deg < 0.0 || r.incidence_deg >= 90.0) {
-        throw InputError("incidence angle " + format_number(r.incidence_deg) + " deg is outside [0, 90)");
-    }
+    check_incidence_deg(r.incidence_deg);
     if (r.geometry == MeasurementGeometry::zero_45 && r.incidence_deg != 0.0) {
         throw InputError("geometry 0-45 defines normal incidence; incidence " + format_number(r.incidence_deg) + " deg given");
     }
@@ -78,19 +76,7 @@ void validate(const LayerStack& stack, const SpectralRequest& r, const BiospecOp
 }
 
 std::map<std::string, SettingValue> settings(const LayerStack& stack, const SpectralRequest& r, const BiospecOptions& o) {
-    const auto& m = stack.model;
     std::map<std::string, SettingValue> s{
-        {"variant", m.variant},
-        {"dermal_rayleigh", m.dermal_rayleigh},
-        {"ln10_molar_tables", m.molar_tables == DecadicConversion::multiply_ln10},
-        {"ln10_melanin_tables", m.melanin_tables == DecadicConversion::multiply_ln10},
-        {"baseline_absorption", m.baseline_absorption},
-        {"hemoglobin_molar_mass_g_per_mol", m.hemoglobin_molar_mass_g_per_mol},
-        {"rayleigh_turn", std::string(to_string(m.rayleigh_turn))},
-        {"swapped_upward_indices", m.swapped_upward_indices},
-        {"bottom_exit_fresnel", m.bottom_exit_fresnel},
-        {"redraw_reversals_in_stratum_corneum", m.redraw_reversals_in_stratum_corneum},
-        {"fold_formula", std::string(to_string(m.fold_formula))},
         {"geometry", std::string(to_string(r.geometry))},
         {"absorption_estimator", std::string(to_string(o.estimator))},
         {"fold_into_skin", std::string(to_string(o.fold_into_skin))},
@@ -108,6 +94,7 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
         {"thin_layer_phase", o.thin_layer_hg ? "henyey_greenstein (" + o.thin_layer_hg->source + ")" : std::string("measured")},
     };
     if (r.stderr_target) s["stderr_target"] = *r.stderr_target;
+    add_model_settings(s, stack.model);
     return s;
 }
 

@@ -23,7 +23,7 @@
 #include "transport/biospec/biospec_packet.hpp"
 #include "transport/biospec/exit_paths.hpp"
 #include "transport/direction.hpp"
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 #include "transport/random_stream.hpp"
 #include "transport/ray_tally.hpp"
 #include "materials/layer_stack.hpp"

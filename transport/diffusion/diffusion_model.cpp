@@ -82,9 +82,7 @@ struct Surface {
 };
 
 Surface surface(double n_above, double n_top, const DiffusionOptions& options, double incidence_deg) {
-    if (!(incidence_deg >= 0.0 && incidence_deg < 90.0)) {
-        throw InputError("incidence = " + fmt::format("{:g}", incidence_deg) + " deg is outside [0, 90)");
-    }
+    check_incidence_deg(incidence_deg);
     const double mu = std::cos(incidence_deg * std::numbers::pi / 180.0);
     if (options.surface_roughness) {
         // Seed 002 Sec. 2.4: rho_d replaces F_dr (Eq. 24) and rho_dt the Fresnel transmittance (Eq. 25-26).
@@ -130,12 +128,6 @@ DiffusionMaterial build(std::vector<SlabSpec> specs, double n_above, double n_be
 }
 
 }  // namespace
-
-DiffusionMode parse_diffusion_mode(std::string_view text, std::string_view what) {
-    if (text == "dipole") return DiffusionMode::dipole;
-    if (text == "multipole") return DiffusionMode::multipole;
-    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a diffusion mode (allowed: dipole, multipole)");
-}
 
 std::string_view to_string(DiffusionMode mode) { return mode == DiffusionMode::dipole ? "dipole" : "multipole"; }
 

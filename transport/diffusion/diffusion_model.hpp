@@ -23,7 +23,6 @@
 namespace skinspec {
 
 enum class DiffusionMode { dipole, multipole };
-DiffusionMode parse_diffusion_mode(std::string_view text, std::string_view what);
 std::string_view to_string(DiffusionMode mode);
 
 struct DiffusionOptions {

@@ -373,9 +373,7 @@ namespace {
 // Runs the walk (MCML's way without `mu_a_sets`, white with them) and returns one result per set.
 std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets) {
     validate(request.stack);
-    if (!std::isfinite(request.incidence_deg) || request.incidence_deg < 0.0 || request.incidence_deg >= 90.0) {
-        throw InputError("incidence angle " + format_number(request.incidence_deg) + " deg is outside [0, 90)");
-    }
+    check_incidence_deg(request.incidence_deg);
     if (request.photons < 1) throw InputError("photon count 0 is outside [1, inf)");
     if (request.max_steps_per_photon < 1 || request.max_steps_per_photon > 2147483647) {
         throw InputError("maximum steps per photon " + std::to_string(request.max_steps_per_photon) + " is outside [1, 2147483647]");

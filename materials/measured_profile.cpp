@@ -1,4 +1,4 @@
-#include "transport/measured_profile.hpp"
+#include "materials/measured_profile.hpp"
 
 #include <algorithm>
 #include <cmath>
