@@ -1,5 +1,7 @@
 #include "cli/solver_options.hpp"
 
+#include <algorithm>
+
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -8,15 +10,17 @@ void add_solver_options(CLI::App& command, SolverOptions& o, const std::string& 
     std::string modes;
     for (const auto* s : solver_registry()) modes += "\n  " + std::string(s->name()) + ": " + std::string(s->description());
     command.add_option("--mode", o.mode, "Solver (default " + default_text + "):" + modes);
-    command.add_option("--estimator", o.estimator, "biospec: absorption estimator, weighted (default) or random (per-crossing test)");
-    command.add_option("--fold-into-skin", o.fold_into_skin,
-                       "biospec: fold-perturbed reflections pointing into the skin, drop (default, as the 2004 code) or resample");
-    command.add_option("--boundaries", o.boundaries, "rte: Fresnel at the outer boundaries, random (default, as MCML) or split");
-    command.add_option("--roughness", o.roughness, "dipole, multipole: Beckmann RMS slope of a rough top surface, (0, 2] (default smooth)")
-        ->check(CLI::Range(1e-6, 2.0));
-    command.add_option("--channels", o.channels,
-                       "adding-doubling: quadrature channels per hemisphere, [4, 256] (default 24; the stated accuracy falls about as 1/channels, "
-                       "the time grows as channels^3)");
+    for (const auto& d : switch_descriptors()) {
+        if (!d.parse) continue;
+        std::string takers;
+        for (const auto* s : solver_registry()) {
+            const auto& declared = s->capabilities().switches;
+            if (std::find(declared.begin(), declared.end(), d.id) != declared.end()) takers += (takers.empty() ? "" : ", ") + std::string(s->name());
+        }
+        command.add_option_function<std::string>(
+            "--" + std::string(d.name), [&o, name = std::string(d.name)](const std::string& value) { o.switches[name] = value; },
+            takers + ": " + std::string(d.values));
+    }
 }
 
 const SpectralSolver& chosen_solver(const SolverOptions& o, std::string_view fallback) {
@@ -25,11 +29,10 @@ const SpectralSolver& chosen_solver(const SolverOptions& o, std::string_view fal
 
 SolverSwitches solver_switches(const SolverOptions& o) {
     SolverSwitches s;
-    if (!o.estimator.empty()) s.estimator = parse_absorption_estimator(o.estimator, "--estimator");
-    if (!o.fold_into_skin.empty()) s.fold_into_skin = parse_fold_into_skin(o.fold_into_skin, "--fold-into-skin");
-    if (!o.boundaries.empty()) s.boundaries = parse_boundary_mode(o.boundaries, "--boundaries");
-    if (o.roughness > 0.0) s.surface_roughness = o.roughness;
-    if (o.channels > 0) s.quadrature_channels = o.channels;
+    for (const auto& d : switch_descriptors()) {
+        const auto given = o.switches.find(std::string(d.name));
+        if (d.parse && given != o.switches.end() && given->second) d.parse(s, *given->second, "--" + std::string(d.name));
+    }
     return s;
 }
 

@@ -2,6 +2,8 @@
 // The command-line face of the solver registry, shared by every command that solves: `--mode` and the solver
 // switches. A switch left unset keeps the solver's default; a switch the chosen solver does not take is
 // refused by the registry (solvers/spectral_solver.hpp), never ignored.
+#include <map>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -11,16 +13,12 @@
 namespace skinspec::cli {
 
 struct SolverOptions {
-    std::string mode;            // "" = the command's default
-    std::string estimator;       // "" = unset
-    std::string fold_into_skin;  // "" = unset
-    std::string boundaries;      // "" = unset
-    double roughness = 0.0;      // 0 = unset (smooth)
-    std::size_t channels = 0;    // 0 = unset (the solver's default)
+    std::string mode;  // "" = the command's default
+    std::map<std::string, std::optional<std::string>> switches;  // by switch name (solvers/solver_switches.hpp); unset: not given
     std::string geometry = "sci";
 };
 
-// Adds --mode and the switches with help texts that name the solvers taking each. `default_text` describes
+// Adds --mode and one option per switch descriptor, with help texts naming the solvers that declare each. `default_text` describes
 // the default of --mode ("biospec"); an empty options.mode means "the command's default".
 void add_solver_options(CLI::App& command, SolverOptions& options, const std::string& default_text = "biospec");
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "skinspec/version.hpp"
+#include "transport/result_quantities.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
@@ -21,7 +22,8 @@ Json setting_json(const SettingValue& v) {
     return std::visit([](const auto& x) { return Json(x); }, v);
 }
 
-// Column names, in order, with a getter each; shared by JSON and CSV so both carry the same quantities.
+// Column names, in order, with a getter each, from the result quantity table (transport/result_quantities.hpp);
+// shared by CSV and the terminal tables.
 struct Column {
     std::string name;
     std::function<Estimate(const WavelengthResult&)> get;
@@ -29,28 +31,8 @@ struct Column {
 
 std::vector<Column> scalar_columns(const SpectralResult& r) {
     std::vector<Column> cols;
-    const auto& q = r.quantities;
-    if (q.reflectance) {
-        cols.push_back({"R", [](const WavelengthResult& w) { return w.reflectance; }});
-        cols.push_back({"R_specular", [](const WavelengthResult& w) { return w.specular_reflectance; }});
-    }
-    if (q.transmittance) cols.push_back({"T", [](const WavelengthResult& w) { return w.transmittance; }});
-    if (q.absorptance) {
-        for (std::size_t k = 0; k < r.layer_names.size(); ++k) {
-            cols.push_back({"A_" + r.layer_names[k], [k](const WavelengthResult& w) { return w.absorptance_layers[k]; }});
-        }
-        cols.push_back({"A_surface", [](const WavelengthResult& w) { return w.absorptance_surface; }});
-    }
-    if (q.angular) {
-        const auto& e = r.angular_bin_edges_deg;
-        for (std::size_t b = 0; b + 1 < e.size(); ++b) {
-            cols.push_back({fmt::format("BRDF_{:g}-{:g}deg_per_sr", e[b], e[b + 1]),
-                            [b](const WavelengthResult& w) { return w.brdf_per_sr[b]; }});
-        }
-        for (std::size_t b = 0; b + 1 < e.size(); ++b) {
-            cols.push_back({fmt::format("BTDF_{:g}-{:g}deg_per_sr", e[b], e[b + 1]),
-                            [b](const WavelengthResult& w) { return w.btdf_per_sr[b]; }});
-        }
+    for (const auto* q : quantities_of(r)) {
+        for (std::size_t i = 0; i < q->count(r); ++i) cols.push_back({q->column(r, i), [q, i](const WavelengthResult& w) { return q->values(w)[i]; }});
     }
     return cols;
 }
@@ -89,53 +71,28 @@ Json result_json(const ReportedSpectrum& s) {
     }
     if (r.bands.empty()) j["wavelength_nm"] = nm;
     else j["band"] = r.bands;
-    const auto series = [&](const std::function<Estimate(const WavelengthResult&)>& get, const std::string& key) {
-        std::vector<double> v, e;
+    if (r.quantities.angular) j["angular_bin_edges_deg"] = r.angular_bin_edges_deg;
+    for (const auto* q : quantities_of(r)) {
+        // A scalar is one array over the wavelengths, the others one array per wavelength; every one has a
+        // *_stderr twin when the solver states standard errors.
+        Json values = Json::array(), errors = Json::array();
         for (const auto& w : r.wavelengths) {
-            v.push_back(get(w).value);
-            e.push_back(get(w).stderr);
-        }
-        j[key] = v;
-        if (r.has_uncertainty) j[key + "_stderr"] = e;
-    };
-    const auto& q = r.quantities;
-    if (q.reflectance) {
-        series([](const WavelengthResult& w) { return w.reflectance; }, "R");
-        series([](const WavelengthResult& w) { return w.specular_reflectance; }, "R_specular");
-    }
-    if (q.transmittance) series([](const WavelengthResult& w) { return w.transmittance; }, "T");
-    if (q.absorptance) {
-        Json a = Json::array(), ae = Json::array();
-        for (const auto& w : r.wavelengths) {
+            const auto estimates = q->values(w);
+            if (q->shape == QuantityShape::scalar) {
+                values.push_back(estimates.front().value);
+                errors.push_back(estimates.front().stderr);
+                continue;
+            }
             std::vector<double> v, e;
-            for (const auto& x : w.absorptance_layers) {
+            for (const auto& x : estimates) {
                 v.push_back(x.value);
                 e.push_back(x.stderr);
             }
-            a.push_back(v);
-            ae.push_back(e);
+            values.push_back(std::move(v));
+            errors.push_back(std::move(e));
         }
-        j["A_layers"] = a;
-        j["A_layers_stderr"] = ae;
-        series([](const WavelengthResult& w) { return w.absorptance_surface; }, "A_surface");
-    }
-    if (q.angular) {
-        j["angular_bin_edges_deg"] = r.angular_bin_edges_deg;
-        for (const auto* key : {"BRDF_per_sr", "BTDF_per_sr"}) {
-            Json v = Json::array(), e = Json::array();
-            const bool brdf = std::string(key) == "BRDF_per_sr";
-            for (const auto& w : r.wavelengths) {
-                std::vector<double> vv, ee;
-                for (const auto& x : brdf ? w.brdf_per_sr : w.btdf_per_sr) {
-                    vv.push_back(x.value);
-                    ee.push_back(x.stderr);
-                }
-                v.push_back(vv);
-                e.push_back(ee);
-            }
-            j[key] = v;
-            j[std::string(key) + "_stderr"] = e;
-        }
+        j[std::string(q->key)] = std::move(values);
+        if (r.has_uncertainty) j[std::string(q->key) + "_stderr"] = std::move(errors);
     }
     if (r.has_uncertainty) {
         j["rays"] = rays;
@@ -176,8 +133,12 @@ Json to_json(const std::vector<ReportedSpectrum>& spectra) {
 
 std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
     std::string out = fmt::format("# skinspec {} spectral result (docs/RESULTS_SCHEMA.md)\n", version);
-    out += "# units: wavelength_nm [nm]; R, R_specular, T, A_* [fraction of incident flux]; BRDF/BTDF [1/sr]; "
-           "*_stderr: standard error of the column before it\n";
+    out += "# units: wavelength_nm [nm]";
+    for (const auto& q : result_quantities()) {
+        const auto column = q.shape == QuantityShape::scalar ? std::string(q.key) : std::string(q.key.substr(0, q.key.find('_'))) + "_*";
+        out += "; " + column + " [" + (q.unit == "1" ? std::string("fraction of incident flux") : std::string(q.unit)) + "]";
+    }
+    out += "; *_stderr: standard error of the column before it\n";
     // A sweep's members share their settings and base material: each is written once, each member's overrides
     // on its own provenance line.
     const SpectralResult* previous = nullptr;

@@ -1,5 +1,6 @@
 // skinspec.spectrum, skinspec.profiles and skinspec.solvers (docs/PYTHON.md "Spectra"): the solver registry,
 // its central refusals and replayed sweeps, exactly as `skinspec spectrum` / `skinspec profile` call them.
+#include <algorithm>
 #include <chrono>
 
 #include <pybind11/stl.h>
@@ -7,6 +8,7 @@
 #include "python/bindings.hpp"
 #include "solvers/spectral_solver.hpp"
 #include "spectral/input_error.hpp"
+#include "transport/result_quantities.hpp"
 
 namespace skinspec::python {
 namespace {
@@ -38,14 +40,25 @@ py::dict provenance_dict(const SpectralResult& r) {
                     py::arg("version") = r.provenance.version);
 }
 
-SolverSwitches solver_switches(const py::object& estimator, const py::object& fold_into_skin, const py::object& boundaries,
-                               const py::object& roughness, const py::object& channels) {
+// Switch keywords (solvers/solver_switches.hpp: NAME with '_' for '-'), read by the same descriptors as the program's options.
+SolverSwitches solver_switches(const py::kwargs& keywords) {
     SolverSwitches s;
-    if (!estimator.is_none()) s.estimator = parse_absorption_estimator(estimator.cast<std::string>(), "estimator");
-    if (!fold_into_skin.is_none()) s.fold_into_skin = parse_fold_into_skin(fold_into_skin.cast<std::string>(), "fold_into_skin");
-    if (!boundaries.is_none()) s.boundaries = parse_boundary_mode(boundaries.cast<std::string>(), "boundaries");
-    if (!roughness.is_none()) s.surface_roughness = one_number(roughness, "roughness");
-    if (!channels.is_none()) s.quadrature_channels = whole_number(channels, 1, 1e6, "channels");
+    for (const auto& [key, value] : keywords) {
+        const auto name = py::str(key).cast<std::string>();
+        const auto* d = find_switch(name);
+        if (!d) {
+            std::string allowed;
+            for (const auto& sd : switch_descriptors()) {
+                std::string keyword(sd.name);
+                std::replace(keyword.begin(), keyword.end(), '-', '_');
+                if (sd.parse) allowed += (allowed.empty() ? "" : ", ") + keyword;
+            }
+            throw InputError("'" + name + "' is not a keyword (solver switches: " + allowed + ")");
+        }
+        if (value.is_none()) continue;
+        if (py::isinstance<py::bool_>(value)) throw InputError(name + " = " + py::str(value).cast<std::string>() + " is not allowed (" + std::string(d->values) + ")");
+        d->parse(s, py::str(value).cast<std::string>(), name);
+    }
     return s;
 }
 
@@ -140,36 +153,19 @@ py::object spectrum_result(const std::vector<SpectralResult>& results, const std
         d["wavelength_nm"] = py::none();
     }
     d["bands"] = first.bands;
-    const auto estimate = [&](const char* name, auto member) {
-        d[name] = layout.gather<double>(results, 0, [&](const WavelengthResult& w, std::size_t) { return (w.*member).value; });
-        d[(std::string(name) + "_stderr").c_str()] =
-            stderrs ? py::object(layout.gather<double>(results, 0, [&](const WavelengthResult& w, std::size_t) { return (w.*member).stderr; }))
-                    : py::none();
-    };
-    const auto per_bin = [&](const char* name, auto member, std::size_t count) {
-        d[name] = layout.gather<double>(results, count, [&](const WavelengthResult& w, std::size_t k) { return (w.*member)[k].value; });
-        d[(std::string(name) + "_stderr").c_str()] =
-            stderrs ? py::object(layout.gather<double>(results, count, [&](const WavelengthResult& w, std::size_t k) { return (w.*member)[k].stderr; }))
-                    : py::none();
-    };
-    const auto& q = first.quantities;
-    for (const char* name : {"R", "R_stderr", "R_specular", "R_specular_stderr", "T", "T_stderr", "A", "A_stderr", "A_surface", "A_surface_stderr",
-                             "brdf_per_sr", "brdf_per_sr_stderr", "btdf_per_sr", "btdf_per_sr_stderr"}) {
-        d[name] = py::none();
-    }
-    if (q.reflectance) {
-        estimate("R", &WavelengthResult::reflectance);
-        estimate("R_specular", &WavelengthResult::specular_reflectance);
-    }
-    if (q.transmittance) estimate("T", &WavelengthResult::transmittance);
-    if (q.absorptance) {
-        per_bin("A", &WavelengthResult::absorptance_layers, first.layer_names.size());
-        estimate("A_surface", &WavelengthResult::absorptance_surface);
-    }
-    if (q.angular) {
-        const auto bins = first.angular_bin_edges_deg.empty() ? 0 : first.angular_bin_edges_deg.size() - 1;
-        per_bin("brdf_per_sr", &WavelengthResult::brdf_per_sr, bins);
-        if (q.transmittance) per_bin("btdf_per_sr", &WavelengthResult::btdf_per_sr, bins);
+    // Every quantity of the table (transport/result_quantities.hpp) by its Python name; None where not requested.
+    for (const auto& q : result_quantities()) {
+        const std::string name(q.python_name);
+        const bool asked = q.requested(first.quantities);
+        const std::size_t inner = q.shape == QuantityShape::scalar ? 0 : q.count(first);
+        const auto gather = [&](bool error) {
+            return layout.gather<double>(results, inner, [&](const WavelengthResult& w, std::size_t k) {
+                const auto& e = q.values(w)[k];
+                return error ? e.stderr : e.value;
+            });
+        };
+        d[name.c_str()] = asked ? py::object(gather(false)) : py::none();
+        d[(name + "_stderr").c_str()] = asked && stderrs ? py::object(gather(true)) : py::none();
     }
     d["angular_bin_edges_deg"] = first.angular_bin_edges_deg;
     if (stderrs) {
@@ -203,16 +199,15 @@ py::object spectrum_result(const std::vector<SpectralResult>& results, const std
 py::object spectrum(const py::object& material, const py::object& wavelengths, const std::string& mode, const py::object& quantities,
                     const py::object& stderr_target, const py::object& rays, const py::object& max_rays, const std::string& geometry,
                     const py::object& incidence_deg, const py::object& seed, const py::object& threads, const py::object& reflector,
-                    const py::object& variant, const py::object& layers, const py::object& estimator, const py::object& fold_into_skin,
-                    const py::object& boundaries, const py::object& roughness, const py::object& channels, const py::object& vary,
-                    const py::object& progress) {
+                    const py::object& variant, const py::object& layers, const py::object& vary, const py::object& progress,
+                    const py::kwargs& switches) {
     const auto& solver = find_solver(mode, "mode");
     const auto base = material_argument(material, "material");
     SolverRequest request;
     const auto extra = option_overrides(variant, reflector);
     request.overrides = base.overrides;
     request.overrides.insert(request.overrides.end(), extra.begin(), extra.end());
-    request.switches = solver_switches(estimator, fold_into_skin, boundaries, roughness, channels);
+    request.switches = solver_switches(switches);
     auto& spectral = request.spectral;
     spectral.wavelengths = wavelength_argument(wavelengths);
     std::string quantity_text;
@@ -262,14 +257,14 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
 }
 
 py::object profiles(const py::object& material, const py::object& radii_mm, const py::object& wavelengths, const std::string& mode,
-                    bool transmittance, const py::object& roughness, const py::object& boundaries, const py::object& rays, const py::object& seed) {
+                    bool transmittance, const py::object& rays, const py::object& seed, const py::kwargs& switches) {
     const auto& solver = find_solver(mode, "mode");
     const auto base = material_argument(material, "material");
     ProfileRequest request;
     request.wavelengths = wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths);
     request.radii_mm = finite_vector(radii_mm, "radii_mm");
     request.transmittance = transmittance;
-    request.switches = solver_switches(py::none(), py::none(), boundaries, roughness, py::none());
+    request.switches = solver_switches(switches);
     if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
     request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
     SpectralProfiles p;
@@ -333,6 +328,28 @@ py::list solvers() {
     return out;
 }
 
+// The result quantity table: what skinspec.Spectrum holds, in order.
+py::list quantities() {
+    py::list out;
+    for (const auto& q : result_quantities()) {
+        out.append(py::dict(py::arg("python_name") = std::string(q.python_name), py::arg("key") = std::string(q.key), py::arg("unit") = std::string(q.unit),
+                            py::arg("doc") = std::string(q.doc)));
+    }
+    return out;
+}
+
+// The solver switches a call can give as keywords, from their descriptors.
+py::list switches() {
+    py::list out;
+    for (const auto& d : switch_descriptors()) {
+        if (!d.parse) continue;
+        std::string keyword(d.name);
+        std::replace(keyword.begin(), keyword.end(), '-', '_');
+        out.append(py::dict(py::arg("keyword") = keyword, py::arg("option") = "--" + std::string(d.name), py::arg("values") = std::string(d.values)));
+    }
+    return out;
+}
+
 }  // namespace
 
 void bind_spectra(py::module_& m) {
@@ -344,23 +361,25 @@ void bind_spectra(py::module_& m) {
     one or more fields (a grid): every array then has the sweep's shape in front, R[i, j, w] at the i-th value of
     the first field and the j-th of the second; fields that only absorb are replayed from one set of traced paths.
     progress: a callable taking {rays_done, rays_expected, done, total}, called on this thread. Ctrl-C raises
-    KeyboardInterrupt within about a batch of rays and keeps nothing. Returns a skinspec.Spectrum.)doc",
+    KeyboardInterrupt within about a batch of rays and keeps nothing. Solver switches as keywords, one per switch
+    the registry knows (skinspec.switches(): estimator, fold_into_skin, boundaries, roughness, channels); one the
+    solver does not take is refused. Returns a skinspec.Spectrum.)doc",
           py::arg("material"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = "biospec", py::arg("quantities") = "R",
           py::arg("stderr") = py::none(), py::arg("rays") = py::none(), py::arg("max_rays") = 10'000'000, py::arg("geometry") = "sci",
           py::arg("incidence_deg") = 0.0, py::arg("seed") = 1, py::arg("threads") = py::none(), py::arg("reflector") = py::none(),
-          py::arg("variant") = py::none(), py::arg("layers") = py::none(), py::arg("estimator") = py::none(),
-          py::arg("fold_into_skin") = py::none(), py::arg("boundaries") = py::none(), py::arg("roughness") = py::none(),
-          py::arg("channels") = py::none(), py::arg("vary") = py::none(), py::arg("progress") = py::none());
+          py::arg("variant") = py::none(), py::arg("layers") = py::none(), py::arg("vary") = py::none(), py::arg("progress") = py::none());
     m.def("profiles", &profiles, R"doc(Radial diffuse reflectance R(r) (and T(r)) in 1/mm^2, as `skinspec profile` computes it.
 
     radii_mm: 1-D array; wavelengths (layered materials; default 450, 550, 650 nm); mode: a solver with radial
     profiles (multipole, dipole, rte: the volumetric walk, radii from 0 in equal steps, rays photons per wavelength
-    (default 1e6), seed, boundaries random|split; its R_stderr_per_mm2). A switch the solver does not take is refused.
+    (default 1e6), seed; its R_stderr_per_mm2). Solver switches as keywords (roughness=, boundaries=, ...); a switch the
+    solver does not take is refused.
     Returns a skinspec.Profiles.)doc",
           py::arg("material"), py::arg("radii_mm"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = "multipole",
-          py::arg("transmittance") = false, py::arg("roughness") = py::none(), py::arg("boundaries") = py::none(), py::arg("rays") = py::none(),
-          py::arg("seed") = 1);
+          py::arg("transmittance") = false, py::arg("rays") = py::none(), py::arg("seed") = 1);
     m.def("solvers", &solvers, "The registered solvers and what each declares it supports.");
+    m.def("result_quantities", &quantities, "The result quantities (the rows of skinspec.Spectrum's arrays), with units.");
+    m.def("switches", &switches, "The solver switches (keywords of spectrum and profiles), with the values each takes.");
 }
 
 }  // namespace skinspec::python

@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "spectral/input_error.hpp"
+#include "transport/result_quantities.hpp"
 
 namespace skinspec {
 namespace {
@@ -19,8 +20,9 @@ void transfer(Archive& a, Result& r) {
 }
 template <class Archive, class Wavelength>
 void transfer_wavelength(Archive& a, Wavelength& x) {
-    a(x.wavelength_nm), a(x.reflectance), a(x.specular_reflectance), a(x.transmittance), a(x.absorptance_layers);
-    a(x.absorptance_surface), a(x.brdf_per_sr), a(x.btdf_per_sr), a(x.rays), a(x.truncated_rays), a(x.converged);
+    a(x.wavelength_nm);
+    for (const auto& q : result_quantities()) std::visit([&](auto member) { a(x.*member); }, q.member);  // every quantity of the table
+    a(x.rays), a(x.truncated_rays), a(x.converged);
 }
 template <class Archive, class Warning>
 void transfer_warning(Archive& a, Warning& w) {

@@ -80,29 +80,6 @@ void check_switches(const SpectralSolver& solver, const SolverSwitches& switches
 
 }  // namespace
 
-std::string_view to_string(SolverSwitch s) {
-    switch (s) {
-        case SolverSwitch::estimator: return "estimator";
-        case SolverSwitch::fold_into_skin: return "fold-into-skin";
-        case SolverSwitch::roughness: return "roughness";
-        case SolverSwitch::boundaries: return "boundaries";
-        case SolverSwitch::thin_layer_phase: return "thin-layer-phase";
-        case SolverSwitch::channels: return "channels";
-    }
-    return "?";
-}
-
-std::vector<SolverSwitch> SolverSwitches::set() const {
-    std::vector<SolverSwitch> out;
-    if (estimator) out.push_back(SolverSwitch::estimator);
-    if (fold_into_skin) out.push_back(SolverSwitch::fold_into_skin);
-    if (surface_roughness) out.push_back(SolverSwitch::roughness);
-    if (boundaries) out.push_back(SolverSwitch::boundaries);
-    if (thin_layer_hg) out.push_back(SolverSwitch::thin_layer_phase);
-    if (quadrature_channels) out.push_back(SolverSwitch::channels);
-    return out;
-}
-
 std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const {
     std::vector<SpectralResult> results;
     for (const auto* m : materials) {

@@ -14,6 +14,7 @@
 
 #include "materials/material_file.hpp"
 #include "materials/parameter_sweep.hpp"
+#include "solvers/solver_switches.hpp"
 #include "solvers/work_share.hpp"
 #include "transport/biospec/biospec_options.hpp"
 #include "transport/diffusion/diffusion_profiles.hpp"
@@ -21,21 +22,6 @@
 #include "transport/spectral_request.hpp"
 
 namespace skinspec {
-
-// Options that are not properties of the skin. Unset: the solver's default. Set for a solver that does not
-// declare the switch: refused.
-enum class SolverSwitch { estimator, fold_into_skin, roughness, boundaries, thin_layer_phase, channels };
-std::string_view to_string(SolverSwitch s);
-
-struct SolverSwitches {
-    std::optional<AbsorptionEstimator> estimator;  // BioSpec walk: weighted or per-crossing random test
-    std::optional<FoldIntoSkin> fold_into_skin;    // BioSpec walk: drop or resample fold reflections into the skin
-    std::optional<double> surface_roughness;       // diffusion: Beckmann RMS slope of a rough top surface
-    std::optional<BoundaryMode> boundaries;        // volumetric walk: all-or-none or split Fresnel boundaries
-    std::optional<ThinLayerHg> thin_layer_hg;      // BioSpec walk: HG in place of the measured thin-layer profiles
-    std::optional<std::size_t> quadrature_channels;  // adding-doubling: channels per hemisphere
-    std::vector<SolverSwitch> set() const;
-};
 
 struct SolverCapabilities {
     Quantities quantities;           // which of R, T, A (per layer), brdf (angular bins) it computes

@@ -82,6 +82,28 @@ TEST_CASE("every declared capability is served", "[solver]") {
             for (const auto& a : w.absorptance_layers) sum += a.value;
             CHECK(sum == Approx(1.0).margin(1e-9));
         }
+        // Every geometry it declares is served; every switch it declares is taken and every other one refused.
+        for (const auto g : caps.geometries) {
+            auto in_geometry = request;
+            in_geometry.spectral.geometry = g;
+            in_geometry.spectral.quantities = Quantities{true, false, false, false};
+            CHECK(std::isfinite(solve_spectrum(*solver, skin, in_geometry).wavelengths.front().reflectance.value));
+        }
+        for (const auto& d : switch_descriptors()) {
+            if (!d.parse) continue;
+            auto with_switch = request;
+            d.parse(with_switch.switches, d.example, std::string(d.name));
+            INFO(solver->name() << " --" << d.name << " " << d.example);
+            if (std::find(caps.switches.begin(), caps.switches.end(), d.id) != caps.switches.end()) {
+                CHECK(std::isfinite(solve_spectrum(*solver, skin, with_switch).wavelengths.front().reflectance.value));
+            } else {
+                CHECK_THROWS_WITH(solve_spectrum(*solver, skin, with_switch), Catch::Contains("does not take the switch '" + std::string(d.name) + "'"));
+            }
+        }
+        // Radial profiles where declared, refused elsewhere.
+        const ProfileRequest profile{WavelengthGrid::list({550.0}), {0.0, 0.5, 1.0}, false, {}, caps.uncertainty ? std::optional<std::uint64_t>(2000) : std::nullopt, 1};
+        if (caps.radial_profiles) CHECK(solve_profiles(*solver, skin, profile).channels.size() == 1);
+        else CHECK_THROWS_WITH(solve_profiles(*solver, skin, profile), Catch::Contains("does not compute radial profiles"));
     }
 }
 

@@ -14,7 +14,7 @@ import os as _os
 
 from . import _skinspec
 from ._skinspec import (InputError, Material, __version__, absorption_only_fields, color, color_spaces, data_directory,
-                        delta_e2000, fields, fit_spectrum, presets, profiles, solvers, spectrum)
+                        delta_e2000, fields, fit_spectrum, presets, profiles, result_quantities, solvers, spectrum, switches)
 from .results import Color, Fit, Profiles, Spectrum
 
 # An installed package (cmake --install ... --component python) carries its own copy of the data tables.
@@ -23,4 +23,5 @@ if _os.path.isdir(_packaged_data):
     _skinspec._set_default_data_directory(_packaged_data)
 
 __all__ = ["InputError", "Material", "Spectrum", "Profiles", "Color", "Fit", "absorption_only_fields", "color", "color_spaces",
-           "data_directory", "delta_e2000", "fields", "fit_spectrum", "presets", "profiles", "solvers", "spectrum", "__version__"]
+           "data_directory", "delta_e2000", "fields", "fit_spectrum", "presets", "profiles", "result_quantities", "solvers", "spectrum", "switches",
+           "__version__"]

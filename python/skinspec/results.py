@@ -3,55 +3,41 @@
 Quantities a request did not ask for are None, never zeros; standard errors are None for deterministic
 solvers (has_uncertainty False). Units are in the names (nm, mm, per sr, per mm^2).
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, make_dataclass
 from typing import Any, Optional
 
 import numpy as np
+
+from . import _skinspec
 
 
 def _shape(a: Optional[np.ndarray]) -> str:
     return "None" if a is None else "x".join(str(n) for n in a.shape)
 
 
-@dataclass(frozen=True, repr=False)
-class Spectrum:
-    """What skinspec.spectrum computed. Arrays have the sweep's shape (one axis per vary field, in order)
-    in front of the wavelength axis: R[..., w]; A[..., w, layer]; brdf_per_sr[..., w, bin]."""
-    wavelength_nm: Optional[np.ndarray]  # None for band materials (see bands)
-    bands: list
-    R: Optional[np.ndarray]
-    R_stderr: Optional[np.ndarray]
-    R_specular: Optional[np.ndarray]
-    R_specular_stderr: Optional[np.ndarray]
-    T: Optional[np.ndarray]
-    T_stderr: Optional[np.ndarray]
-    A: Optional[np.ndarray]
-    A_stderr: Optional[np.ndarray]
-    A_surface: Optional[np.ndarray]
-    A_surface_stderr: Optional[np.ndarray]
-    brdf_per_sr: Optional[np.ndarray]
-    brdf_per_sr_stderr: Optional[np.ndarray]
-    btdf_per_sr: Optional[np.ndarray]
-    btdf_per_sr_stderr: Optional[np.ndarray]
-    angular_bin_edges_deg: list
-    rays: Optional[np.ndarray]
-    truncated_rays: Optional[np.ndarray]
-    converged: Optional[np.ndarray]
-    has_uncertainty: bool
-    layer_names: list
-    solver: str
-    model: str
-    material: str
-    settings: dict
-    vary: dict  # field -> its values (the sweep axes, in order)
-    provenance: Any  # a dict, or an object array of dicts shaped by the sweep
-    warnings: list = field(default_factory=list)  # one line per kind, as the CLI prints them
-    seconds: float = 0.0
+def _spectrum_repr(self) -> str:
+    sweep = ", ".join(f"{k}: {len(v)} values" for k, v in self.vary.items())
+    return (f"<skinspec.Spectrum {self.material} by {self.solver}: R {_shape(self.R)}"
+            + (f", sweep {sweep}" if sweep else "") + f", {self.seconds:.3g} s>")
 
-    def __repr__(self) -> str:
-        sweep = ", ".join(f"{k}: {len(v)} values" for k, v in self.vary.items())
-        return (f"<skinspec.Spectrum {self.material} by {self.solver}: R {_shape(self.R)}"
-                + (f", sweep {sweep}" if sweep else "") + f", {self.seconds:.3g} s>")
+
+# The quantity arrays come from the module's result quantity table (transport/result_quantities.hpp), each with its
+# standard errors: a new quantity appears here with no edit.
+Spectrum = make_dataclass(
+    "Spectrum",
+    [("wavelength_nm", Optional[np.ndarray]), ("bands", list)]  # wavelength_nm None for band materials (see bands)
+    + [(name, Optional[np.ndarray]) for q in _skinspec.result_quantities() for name in (q["python_name"], q["python_name"] + "_stderr")]
+    + [("angular_bin_edges_deg", list), ("rays", Optional[np.ndarray]), ("truncated_rays", Optional[np.ndarray]),
+       ("converged", Optional[np.ndarray]), ("has_uncertainty", bool), ("layer_names", list), ("solver", str), ("model", str),
+       ("material", str), ("settings", dict),
+       ("vary", dict),  # field -> its values (the sweep axes, in order)
+       ("provenance", Any),  # a dict, or an object array of dicts shaped by the sweep
+       ("warnings", list, field(default_factory=list)),  # one line per kind, as the CLI prints them
+       ("seconds", float, field(default=0.0))],
+    frozen=True, repr=False, namespace={"__repr__": _spectrum_repr, "__module__": __name__})
+Spectrum.__doc__ = """What skinspec.spectrum computed. Arrays have the sweep's shape (one axis per vary field, in order)
+in front of the wavelength axis: R[..., w]; A[..., w, layer]; brdf_per_sr[..., w, bin]. One array (and its
+_stderr) per row of skinspec.result_quantities()."""
 
 
 @dataclass(frozen=True, repr=False)

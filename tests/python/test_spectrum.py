@@ -96,6 +96,9 @@ def test_threads_do_not_change_the_numbers():
     (dict(mode="dipole", quantities="brdf"), "does not compute brdf"),
     (dict(mode="dipole", stderr=0.01), "is deterministic"),
     (dict(mode="rte", estimator="random"), "estimator"),
+    (dict(mode="adding-doubling", channels=3), r"channels = 3 is outside \[4, 256\]"),
+    (dict(mode="dipole", roughness=-0.1), r"roughness = -0.1 is outside \(0, 2\]"),
+    (dict(estimater="random"), r"'estimater' is not a keyword \(solver switches: estimator, fold_into_skin, roughness, boundaries, channels\)"),
     (dict(mode="mcml"), "allowed"),
     (dict(quantities="R,X"), "'X' is not a quantity"),
     (dict(wavelengths=[[400, 500], [600, 700]]), r"expected a 1-D array, got shape \(2, 2\)"),
@@ -165,3 +168,19 @@ def test_profiles_honour_the_boundaries_switch():
     assert not np.array_equal(split.R_per_mm2, random.R_per_mm2)
     with pytest.raises(skinspec.InputError, match="does not take the switch 'boundaries'"):
         skinspec.profiles("biospec-moderately", radii, [550], mode="multipole", boundaries="split")
+
+
+def test_switch_keywords_come_from_the_descriptors():
+    assert [s["keyword"] for s in skinspec.switches()] == ["estimator", "fold_into_skin", "roughness", "boundaries", "channels"]
+    for solver in skinspec.solvers():
+        for switch in solver["switches"]:
+            assert switch == "thin-layer-phase" or switch.replace("-", "_") in [s["keyword"] for s in skinspec.switches()]
+
+
+def test_spectrum_arrays_follow_the_result_quantity_table():
+    names = [q["python_name"] for q in skinspec.result_quantities()]
+    assert names == ["R", "R_specular", "T", "A", "A_surface", "brdf_per_sr", "btdf_per_sr"]
+    s = skinspec.spectrum("biospec-lightly", [500, 600], quantities="R,A,brdf", rays=500)
+    for name in names:
+        assert hasattr(s, name) and hasattr(s, name + "_stderr")
+    assert s.T is None and s.A.shape == (2, 4) and s.brdf_per_sr.shape[0] == 2 and s.btdf_per_sr.shape == s.brdf_per_sr.shape
