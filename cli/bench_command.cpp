@@ -8,16 +8,17 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/common_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/spectral_output.hpp"
-#include "studies/benchmark/error_fits.hpp"
-#include "studies/benchmark/runtime_benchmark.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
+#include "studies/benchmark/error_fits.hpp"
+#include "studies/benchmark/runtime_benchmark.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -299,12 +300,12 @@ void add_bench_command(CLI::App& app) {
     auto o = std::make_shared<BenchCommandOptions>();
     auto* cmd = app.add_subcommand("bench", "Run time against error for every solver: slopes, Pareto front, thread scaling, time per colour");
     cmd->add_flag("--quick", o->quick, "The short form (under a minute): fewer budgets and seeds, shorter references");
-    cmd->add_option("--seed", o->seed, "Seed of the swept runs (the references use a different one)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Seed of the swept runs (the references use a different one)");
     cmd->add_option("--tolerance", o->tolerance_percent, "Relative error (%) for 'which solver is fastest'")->capture_default_str();
     cmd->add_option("--output", o->output, "Write every point to FILE.csv, or the whole report to FILE.json");
     cmd->add_flag("--json", o->json, "Print the whole report as JSON on standard output (instead of the tables)");
     cmd->add_option("--plot", o->plot, "Log-log plot of error against time, FILE.png or FILE.svg");
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->callback([o] { run_bench(*o); });
 }
 

@@ -8,14 +8,15 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
-#include "studies/phase_study/phase_comparison.hpp"
-#include "studies/phase_study/phase_study.hpp"
 #include "materials/material_file.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
+#include "studies/phase_study/phase_comparison.hpp"
+#include "studies/phase_study/phase_study.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -150,10 +151,10 @@ void add_compare_phase_command(CLI::App& app) {
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--stderr", o->stderr_target, "Standard error target per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Random seed");
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--plot", o->plot, "Plot the spectra to FILE.png or FILE.svg");
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace the --plot file if it exists");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace the --plot file if it exists");
     cmd->add_flag("--json", o->json, "Print the comparison as JSON");
     cmd->callback([o] { run_compare_phase(*o); });
 }

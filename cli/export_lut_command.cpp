@@ -1,4 +1,5 @@
 // `skinspec export lut`: a melanosome-fraction x blood-fraction look-up texture of diffuse skin albedo (as the
+
 // maps of Jimenez et al. 2010 and Donner & Jensen 2006 are indexed), computed by the swatch engine
 // (appearance/swatch_chart.hpp: the registry's solver, replayed in chunks, each texel to a CIEDE2000 target).
 #include <chrono>
@@ -10,12 +11,13 @@
 #include <tbb/global_control.h>
 
 #include "appearance/swatch_chart.hpp"
+#include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
+#include "cli/process_group.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
-#include "cli/process_group.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
@@ -262,10 +264,10 @@ void add_export_lut_command(CLI::App& exporter) {
     cmd->add_option("--preview", o->preview, "Also write a display-referred preview with labelled axes: .png or .tif");
     cmd->add_option("--display", o->display, "OCIO display of the preview")->capture_default_str();
     cmd->add_option("--view", o->view, "OCIO view of the preview")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Random seed");
     cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and texel")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--threads", o->threads, "Worker threads per process (default: all cores)")->check(CLI::Range(1u, 1024u));
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the summary as JSON");
     add_solver_options(*cmd, o->solver);
     add_geometry_option(*cmd, o->solver);

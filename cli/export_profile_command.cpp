@@ -1,4 +1,5 @@
 // `skinspec export profile`: a material's radial diffuse reflectance R(r) from a registered solver that computes
+
 // profiles, fitted as a sum of Gaussians (inverse/gaussian_sum/gaussian_sum_fit.hpp) per colour band (the
 // profile's colour at each radius, in a linear RGB space) or per wavelength, as JSON and a table.
 #include <iostream>
@@ -7,6 +8,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
 #include "cli/solver_options.hpp"
@@ -196,7 +198,7 @@ void add_export_profile_command(CLI::App& exporter) {
     add_profile_ray_options(*cmd, o->rays, o->seed);
     cmd->add_option("-o,--output", o->output, "JSON file of the fit (default: the JSON on standard output)");
     cmd->add_option("--table", o->table, "CSV table of variances and weights");
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->callback([o] { run_export_profile(*o); });
 }
 

@@ -1,4 +1,5 @@
 // `skinspec export pbrt|mitsuba`: the layered skin as a renderer's media in a minimal lit-slab scene
+
 // (formats/renderer_media.hpp, formats/pbrt_scene.hpp, formats/mitsuba_scene.hpp), read back after writing to
 // check that the renderer's files hold the coefficients they were given.
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
 #include "formats/mitsuba_scene.hpp"
@@ -139,7 +141,7 @@ void add_scene_command(CLI::App& exporter, Renderer renderer) {
                                               : "own (default: HG, isotropic, measured phases as tabphase) or hg (every layer HG of its mean cosine)");
     cmd->add_option("--phase-wavelength", o->phase_wavelength_nm, "Wavelength (nm) of the phase functions (neither renderer's are spectral)")->capture_default_str();
     cmd->add_option("-o,--output", o->output, pbrt ? "Scene file .pbrt" : "Scene file .xml")->required();
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->callback([o, renderer] { run_export_scene(*o, renderer); });
 }
 

@@ -10,9 +10,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/common_options.hpp"
 #include "cli/spectral_output.hpp"
-#include "inverse/profile_fit/profile_fit.hpp"
 #include "formats/profile_inputs.hpp"
+#include "inverse/profile_fit/profile_fit.hpp"
 #include "inverse/profile_fit/synthetic_scene.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
@@ -213,7 +214,7 @@ void add_fit_profile_command(CLI::App& app) {
     cmd->add_option("--total-reflectance", o->total_reflectance, "Measured total diffuse reflectance: constrains sigma_a (Jensen et al. 2001 Sec. 3)");
     cmd->add_option("--fit-from", o->fit_from_mm, "Leave distances below this (mm) out of the dipole fit")->capture_default_str();
     cmd->add_option("--output-dir", o->output_dir, "Write profile_estimate.csv, profile_fit.png and resynthesised.exr here");
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the result as JSON");
     cmd->callback([o] { run_fit_profile(*o); });
 }

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
@@ -341,14 +342,14 @@ void add_fit_spectrum_command(CLI::App& app) {
     cmd->add_option("--rays", o->rays, "Traced rays per wavelength (the model's Monte Carlo noise ~ 0.4 / sqrt(rays))")
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}));
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Random seed");
     cmd->add_option("--starts", o->starts, "Local searches per spectrum, from the best points of a 64-point scan")
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, std::size_t{64}));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--output", o->output, "Write the fits to FILE.csv (one row per spectrum) or FILE.json");
     cmd->add_option("--plot", o->plot, "Plot measured vs fitted to FILE.png|.svg (and the residuals to FILE-residuals.png|.svg)");
-    cmd->add_flag("--overwrite,--force", o->force, "Replace the --output / --plot files if they exist");
+    add_overwrite_flag(*cmd, o->force, "Replace the --output / --plot files if they exist");
     cmd->add_flag("--json", o->json, "Print the fits as JSON");
     cmd->callback([o] { run_fit_spectrum(*o); });
 }

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
 #include "materials/material_fields.hpp"
 #include "materials/material_file.hpp"
@@ -205,7 +206,7 @@ void add_materials_command(CLI::App& app) {
     auto* save = cmd->add_subcommand("save", "Write a material (with --set overrides applied) as a TOML file");
     add_material_options(save);
     save->add_option("output", options->output, "Output .toml file")->required();
-    save->add_flag("--overwrite,--force", options->force, "Replace the output file if it exists");
+    add_overwrite_flag(*save, options->force, "Replace the output file if it exists");
     save->callback([options] { run_save(*options); });
 }
 

@@ -9,13 +9,14 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include "cli/common_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/spectral_output.hpp"
 #include "formats/mcml_files.hpp"
-#include "transport/adding_doubling/adding_doubling.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -176,7 +177,7 @@ void add_mcml_command(CLI::App& app) {
     auto* cmd = app.add_subcommand("mcml", "Run an MCML .mci file with the volumetric walk; writes MCML .mco files (and JSON with standard errors)");
     cmd->add_option("file", o->file, "MCML input file (.mci)")->required();
     cmd->add_option("--photons", o->photons, "Override the photon count of every run")->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
-    cmd->add_option("--seed", o->seed, "Random seed (identical results for any thread count)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Random seed (identical results for any thread count)");
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--boundaries", o->boundaries, "Fresnel at the outer boundaries: random (all-or-none, MCML; default) or split");
     cmd->add_option("--solver", o->solver,
@@ -184,7 +185,7 @@ void add_mcml_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--output-dir", o->output_dir, "Write the .mco files here (default: the current folder, as MCML does)");
     cmd->add_option("--output", o->json_output, "Also write the results with standard errors as JSON to this file");
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing .mco / JSON files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing .mco / JSON files");
     cmd->add_flag("--json", o->json, "Print the JSON on standard output");
     cmd->callback([o] { run_mcml(*o); });
 }

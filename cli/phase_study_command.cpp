@@ -7,9 +7,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/common_options.hpp"
 #include "cli/spectral_output.hpp"
-#include "studies/phase_study/phantom_sheet.hpp"
-#include "studies/phase_study/phase_study.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
@@ -17,6 +16,8 @@
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
+#include "studies/phase_study/phantom_sheet.hpp"
+#include "studies/phase_study/phase_study.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -168,9 +169,9 @@ void add_phase_study_command(CLI::App& app) {
     cmd->add_option("--output-dir", o->output_dir, "Write goniometer CSV and plots and phantom-sheet images here");
     cmd->add_option("--background", o->background, "Phantom background image (any OpenImageIO format; default data/images/phantom_background.png)");
     cmd->add_option("--separations", o->separations, "Sheet-to-background separations, comma list (background is 8 units wide)")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Random seed");
     cmd->add_flag("--json", o->json, "Print every table's numbers as one JSON object");
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing files in --output-dir");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing files in --output-dir");
     cmd->callback([o] { run_phase_study_command(*o); });
 }
 

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
@@ -127,7 +128,7 @@ void add_profile_command(CLI::App& app) {
     cmd->add_option("--output", o->output, "CSV file (default: standard output)");
     cmd->add_option("--plot", o->plot, "Log-scale plot, FILE.png or FILE.svg");
     add_profile_ray_options(*cmd, o->rays, o->seed);
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->callback([o] { run_profile(*o); });
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "cli/common_options.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -48,7 +49,7 @@ MeasurementGeometry measurement_geometry(const SolverOptions& o) { return parse_
 void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64_t& seed) {
     command.add_option("--rays", rays, "rte: photons per wavelength for R(r) (default 1000000); refused by deterministic solvers")
         ->check(CLI::PositiveNumber);
-    command.add_option("--seed", seed, "rte: random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(command, seed, "rte: random seed");
 }
 
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
 #include "cli/process_group.hpp"
 #include "cli/progress.hpp"
@@ -175,7 +176,7 @@ void add_spectrum_command(CLI::App& app) {
                    ->check(CLI::PositiveNumber);
     rays->excludes(se);
     cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength with --stderr")->capture_default_str()->check(CLI::PositiveNumber);
-    cmd->add_option("--seed", o->seed, "Random seed (results are identical for any thread count)")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Random seed (results are identical for any thread count)");
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
     cmd->add_option("--reflector", o->reflector, "Hypodermis reflector on|off (off: light leaving the bottom is transmittance)");
@@ -186,7 +187,7 @@ void add_spectrum_command(CLI::App& app) {
     add_geometry_option(*cmd, o->solver);
     cmd->add_option("--output", o->output, "Write the result to FILE.csv or FILE.json");
     cmd->add_option("--plot", o->plot, "Plot R (and T) with +-2 standard-error bands to FILE.png or FILE.svg");
-    cmd->add_flag("--overwrite,--force", o->force, "Replace the --output / --plot files if they exist");
+    add_overwrite_flag(*cmd, o->force, "Replace the --output / --plot files if they exist");
     cmd->add_flag("--json", o->json, "Print the JSON result on standard output");
     cmd->add_option("--illuminant", o->illuminant, "Illuminant for the colour summary: D65, D50, A, E")->capture_default_str();
     cmd->add_option("--observer", o->observer, "Observer for the colour summary: 2 or 10")->capture_default_str();

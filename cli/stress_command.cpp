@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/common_options.hpp"
 #include "cli/progress.hpp"
 #include "studies/benchmark/stress_grid.hpp"
 
@@ -57,7 +58,7 @@ void add_stress_command(CLI::App& app) {
     auto* cmd = app.add_subcommand("stress", "The stability suite: every solver over a grid of extremes (finite, in [0, 1], energy, order, time)");
     cmd->add_flag("--full", o->full, "The full grid (minutes); default the short one ctest runs");
     cmd->add_flag("--verbose", o->verbose, "A line for every case, not only failures and limits");
-    cmd->add_option("--seed", o->seed, "Seed of the walks")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Seed of the walks");
     cmd->add_option("--max-seconds", o->max_seconds, "Run-time bound per case")->capture_default_str()->check(CLI::Range(1e-3, 86400.0));
     cmd->callback([o] {
         const int status = run_stress(*o);

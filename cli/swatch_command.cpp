@@ -8,13 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "cli/material_options.hpp"
+#include "appearance/lit_patch.hpp"
+#include "appearance/swatch_chart.hpp"
 #include "cli/color_output.hpp"
+#include "cli/common_options.hpp"
+#include "cli/material_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
-#include "appearance/lit_patch.hpp"
-#include "appearance/swatch_chart.hpp"
 #include "materials/material_fields.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/chart_image.hpp"
@@ -310,10 +311,10 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--display", o->display, "OCIO display for PNG/TIFF")->capture_default_str();
     cmd->add_option("--view", o->view, "OCIO view for PNG/TIFF")->capture_default_str();
     cmd->add_option("--patch-size", o->patch_px, "Patch size in pixels")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+    add_seed_option(*cmd, o->seed, "Random seed");
     cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and patch")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
-    cmd->add_flag("--overwrite,--force", o->overwrite, "Replace existing output files");
+    add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the patches as JSON");
     cmd->add_option("--lit", o->lit,
                     "Render one patch in a diffusion mode under structured light: spot, edge, or pattern FILE (an image "

@@ -287,8 +287,14 @@ Lab lab_of(const SpectralResult& result, const TristimulusWeights& weights) {
 void skin_modes(Benchmark& bench) {
     const auto grid = WavelengthGrid::range(400.0, 700.0, 10.0);
     const TristimulusWeights weights(grid.nm(), IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
-    std::vector<std::string> solvers{"adding-doubling", "multipole", "dipole", "biospec"};
-    if (bench.plan().skin_volumetric_walk) solvers.push_back("rte");
+    // Every registered solver for layered materials (a new one appears with no edit), adding-doubling first: the
+    // reference the others are compared with.
+    std::vector<std::string> solvers{"adding-doubling"};
+    for (const auto* s : solver_registry()) {
+        if (s->name() == "adding-doubling" || !s->capabilities().layered_materials) continue;
+        if (s->name() == "rte" && !bench.plan().skin_volumetric_walk) continue;
+        solvers.emplace_back(s->name());
+    }
     for (const auto& name : bench.plan().skin_presets) {
         const auto material = load_material(name);
         SpectralResult exact;
@@ -311,7 +317,9 @@ void skin_modes(Benchmark& bench) {
             const double seconds = seconds_since(start);
             bench.check_cancel();
             if (solver == "adding-doubling") exact = result;
-            SkinModeRow row{name, solver, solver != "biospec", seconds, 0, 0.0, 0.0, 1e300, -1e300, 0.0};
+            // The same skin where the solver solves the volumetric or reduced description adding-doubling solves; the
+            // BioSpec walk (no extra description needed) solves its own per-crossing one.
+            SkinModeRow row{name, solver, !chosen.capabilities().material_needs.empty(), seconds, 0, 0.0, 0.0, 1e300, -1e300, 0.0};
             for (std::size_t w = 0; w < grid.size(); ++w) {
                 const auto& x = result.wavelengths[w];
                 const auto& e = exact.wavelengths[w];
