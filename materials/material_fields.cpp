@@ -42,16 +42,19 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
     static const std::vector<NumberField<L>> fields{
         {"thickness_cm", "cm", positive, &L::thickness_cm, true, "layer thickness"},
         {"refractive_index", "1", refractive_index, &L::refractive_index, true, "refractive index of the layer"},
-        {"melanosome_fraction", "1", fraction, &L::melanosome_fraction, false, "volume fraction of melanosomes (v_m)", true},
+        {"melanosome_fraction", "1", fraction, &L::melanosome_fraction, false, "volume fraction of melanosomes (v_m)", true,
+         std::pair{0.001, 0.45}},  // shared spec: lightly 0.019 ... up to 0.42
         {"eumelanin_mg_per_ml", "mg/mL", non_negative, &L::eumelanin_mg_per_ml, false, "eumelanin inside the melanosomes", true},
         {"pheomelanin_mg_per_ml", "mg/mL", non_negative, &L::pheomelanin_mg_per_ml, false, "pheomelanin inside the melanosomes", true},
-        {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b)", true},
-        {"oxygen_saturation", "1", fraction, &L::oxygen_saturation, false, "haemoglobin oxygen saturation S", true},
+        {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b)", true, std::pair{0.0005, 0.2}},
+        {"oxygen_saturation", "1", fraction, &L::oxygen_saturation, false, "haemoglobin oxygen saturation S", true, std::pair{0.0, 1.0}},
         {"hemoglobin_g_per_l", "g/L", non_negative, &L::hemoglobin_g_per_l, false, "haemoglobin in whole blood", true},
-        {"bilirubin_g_per_l", "g/L", non_negative, &L::bilirubin_g_per_l, false, "bilirubin in whole blood", true},
-        {"carotene_g_per_l", "g/L", non_negative, &L::carotene_g_per_l, false, "beta-carotene in the background tissue", true},
+        {"bilirubin_g_per_l", "g/L", non_negative, &L::bilirubin_g_per_l, false, "bilirubin in whole blood", true,
+         std::pair{0.0, 0.5}},  // normal 0.003-0.012 g/L in serum, jaundice above 0.05
+        {"carotene_g_per_l", "g/L", non_negative, &L::carotene_g_per_l, false, "beta-carotene in the background tissue", true,
+         std::pair{0.0, 2e-3}},  // ~10x the spec's 2.1e-4 g/L
         {"vessel_radius_um", "um", vessel_radius, &L::vessel_radius_um, false,
-         "mean blood-vessel radius for the packaging correction (0: off, blood spread evenly)", true},
+         "mean blood-vessel radius for the packaging correction (0: off, blood spread evenly)", true, std::pair{0.0, 100.0}},
         {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein"},
         {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)"},
         {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius"},

@@ -34,6 +34,8 @@ struct NumberField {
     bool required;          // must be in the file; otherwise the member's default stands
     std::string_view doc;
     bool absorption_only = false;  // changes mu_a only, never a ray's path (replayable)
+    // fit-spectrum's default search range for the field when free (unset: a factor-of-two band around its value).
+    std::optional<std::pair<double, double>> fit_bounds = std::nullopt;
 };
 
 // A [model] switch: a boolean, a decadic-conversion switch (written as true = multiply by ln 10), a number or

@@ -43,13 +43,8 @@ std::vector<FitParameter> default_free_parameters() {
             {"dermis.oxygen_saturation", {}, {}}};
 }
 
-std::pair<double, double> default_fit_bounds(std::string_view field, double current) {
-    if (field == "melanosome_fraction") return {0.001, 0.45};   // shared spec: lightly 0.019 ... up to 0.42
-    if (field == "blood_fraction") return {0.0005, 0.2};
-    if (field == "oxygen_saturation") return {0.0, 1.0};
-    if (field == "carotene_g_per_l") return {0.0, 2e-3};         // ~10x the spec's 2.1e-4 g/L
-    if (field == "bilirubin_g_per_l") return {0.0, 0.5};         // normal 0.003-0.012 g/L in serum, jaundice above 0.05
-    if (field == "vessel_radius_um") return {0.0, 100.0};
+std::pair<double, double> default_fit_bounds(const NumberField<TissueLayer>& field, double current) {
+    if (field.fit_bounds) return *field.fit_bounds;             // the field table's range (materials/material_fields.cpp)
     if (current > 0.0) return {0.5 * current, 2.0 * current};   // thicknesses, concentrations: a factor-of-two band
     return {0.0, 1.0};
 }
@@ -100,7 +95,7 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
         for (const auto& other : keys_) {
             if (other == p.key) throw InputError("--free '" + p.key + "' is given twice");
         }
-        const auto [lo0, hi0] = default_fit_bounds(f.key, handle.get(base));
+        const auto [lo0, hi0] = default_fit_bounds(f, handle.get(base));
         const double lo = p.lo.value_or(lo0), hi = p.hi.value_or(hi0);
         if (!f.range.contains(lo) || !f.range.contains(hi)) {
             throw InputError("--bounds " + p.key + "=" + format_number(lo) + ":" + format_number(hi) + ": outside the field's range " + f.range.text());

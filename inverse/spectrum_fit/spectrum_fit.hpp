@@ -51,9 +51,9 @@ struct SpectrumFitSettings {
 
 // The default free parameters: melanosome fraction, papillary and reticular blood fraction, oxygen saturation.
 std::vector<FitParameter> default_free_parameters();
-// Default bounds of a free field given its current value (a fraction's physiological range, a thickness's
-// factor-of-two band, ...).
-std::pair<double, double> default_fit_bounds(std::string_view field, double current);
+// Default bounds of a free field given its current value: the field table's fit_bounds (a fraction's physiological
+// range, ...), else a factor-of-two band around a positive value, else [0, 1].
+std::pair<double, double> default_fit_bounds(const NumberField<TissueLayer>& field, double current);
 
 struct SpectrumFit {
     std::string name;
