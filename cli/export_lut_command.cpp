@@ -249,9 +249,7 @@ void add_export_lut_command(CLI::App& exporter) {
     auto o = std::make_shared<LutOptions>();
     o->solver.geometry = "sce";
     auto* cmd = exporter.add_subcommand("lut", "Melanosome x blood look-up texture of diffuse skin albedo (linear EXR), spectra and a preview");
-    cmd->add_option("--preset", o->preset, "Base preset (default biospec-moderately)");
-    cmd->add_option("--material", o->material_file, "Base material TOML file");
-    cmd->add_option("--set", o->overrides, set_option_help);
+    add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     cmd->add_option("--melanin", o->melanin, "epidermis.melanosome_fraction per column: FIRST:LAST:STEPS[:log]")->capture_default_str();
     cmd->add_option("--blood", o->blood, "dermis.blood_fraction per row (top to bottom): FIRST:LAST:STEPS[:log]")->capture_default_str();
     cmd->add_option("--illuminant", o->illuminant, "D65, D50, A or E")->capture_default_str();

@@ -183,9 +183,7 @@ void run_export_profile(const ProfileExportOptions& o) {
 void add_export_profile_command(CLI::App& exporter) {
     auto o = std::make_shared<ProfileExportOptions>();
     auto* cmd = exporter.add_subcommand("profile", "R(r) fitted as a sum of Gaussians with shared variances (d'Eon et al. 2007), JSON and a table");
-    cmd->add_option("--preset", o->preset, "Preset name (default biospec-moderately)");
-    cmd->add_option("--material", o->material_file, "Material TOML file");
-    cmd->add_option("--set", o->overrides, set_option_help);
+    add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     add_solver_options(*cmd, o->solver, "multipole");
     cmd->add_option("--per", o->channels, "rgb: one fit per colour band (the profile's colour in linear --space); wavelength: one per --wavelengths")
         ->capture_default_str();

@@ -132,9 +132,7 @@ void add_scene_command(CLI::App& exporter, Renderer renderer) {
     const bool pbrt = renderer == Renderer::pbrt;
     auto* cmd = exporter.add_subcommand(pbrt ? "pbrt" : "mitsuba", pbrt ? "The layered skin as pbrt-v4 media in a lit-slab scene (.pbrt and .spd files)"
                                                                         : "The layered skin as Mitsuba 3 media in a lit-slab scene (.xml and .spd files)");
-    cmd->add_option("--preset", o->preset, "Preset name (default biospec-moderately)");
-    cmd->add_option("--material", o->material_file, "Material TOML file");
-    cmd->add_option("--set", o->overrides, set_option_help);
+    add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     cmd->add_option("--wavelengths", o->wavelengths, "Spectral media at these wavelengths (nm), one .spd file per layer and coefficient")->capture_default_str();
     cmd->add_option("--rgb", o->rgb, "RGB media instead: three wavelengths (nm) whose coefficients are taken as R, G, B, e.g. 650,550,450");
     cmd->add_option("--phase", o->phase, pbrt ? "hg (default: pbrt-v4 media take HG only; measured phases as HG of their mean cosine) or own"

@@ -52,8 +52,6 @@ struct FitSpectrumOptions {
     bool json = false;
 };
 
-constexpr const char* default_base = "biospec-moderately";
-
 // "FROM:TO" (two finite numbers).
 std::pair<double, double> parse_range(std::string_view text, const std::string& what) {
     const auto colon = text.find(':');
@@ -224,8 +222,7 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     std::vector<MaterialOverride> overrides;
     if (!o.variant.empty()) overrides.push_back({"model.variant", o.variant, "--variant"});
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
-    if (!o.preset.empty() && !o.material.empty()) throw InputError("--preset and --material: give one base material");
-    const std::string base_name = !o.material.empty() ? o.material : !o.preset.empty() ? o.preset : default_base;
+    const std::string base_name = chosen_material(o.preset, o.material);
     const auto material = load_material(base_name, overrides);
     const auto* base = std::get_if<LayerStack>(&material);
     if (!base) throw InputError("material '" + base_name + "' is homogeneous: the fit needs a layered skin for the BioSpec walk");
@@ -324,9 +321,7 @@ void add_fit_spectrum_command(CLI::App& app) {
                                    "Fit biophysical parameters (melanin, blood, oxygenation, ...) to measured skin reflectance spectra "
                                    "with the BioSpec walk on replayed paths");
     cmd->add_option("measured", o->measured, "CSV: wavelength_nm, then one column per spectrum (header = name)")->required();
-    cmd->add_option("--preset", o->preset, std::string("Base material preset (default ") + default_base + "); the free fields start from it");
-    cmd->add_option("--material", o->material, "Base material TOML file");
-    cmd->add_option("--set", o->overrides, set_option_help);
+    add_base_material_options(*cmd, o->preset, o->material, o->overrides);
     cmd->add_option("--variant", o->variant, "Model variant: biospec (default), biospec-2004, biospec-authors-code");
     cmd->add_option("--free", o->free,
                     "Free fields, LAYER.FIELD (comma list; default epidermis.melanosome_fraction, papillary_dermis.blood_fraction, "

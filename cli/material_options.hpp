@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 
@@ -18,6 +20,15 @@ inline constexpr const char* set_option_help =
 inline std::string chosen_material(const std::string& preset, const std::string& material_file) {
     if (!preset.empty() && !material_file.empty()) throw InputError("give --preset or --material, not both");
     return !material_file.empty() ? material_file : preset.empty() ? "biospec-moderately" : preset;
+}
+
+// --preset, --material and --set of a command that takes one base material, declared once (chosen_material picks
+// between the first two).
+inline void add_base_material_options(CLI::App& command, std::string& preset, std::string& material_file, std::vector<std::string>& overrides,
+                                      const std::string& default_preset = "biospec-moderately") {
+    command.add_option("--preset", preset, "Preset name (default " + default_preset + "; see 'skinspec materials list')");
+    command.add_option("--material", material_file, "Material TOML file (instead of --preset)");
+    command.add_option("--set", overrides, set_option_help);
 }
 
 inline std::vector<MaterialOverride> parsed_overrides(const std::vector<std::string>& texts) {

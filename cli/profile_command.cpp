@@ -119,9 +119,7 @@ void run_profile(const ProfileOptions& o) {
 void add_profile_command(CLI::App& app) {
     auto o = std::make_shared<ProfileOptions>();
     auto* cmd = app.add_subcommand("profile", "Radial diffuse reflectance R(r) and transmittance T(r) of a solver that computes them (CSV, plot)");
-    cmd->add_option("--preset", o->preset, "Preset name (default biospec-moderately)");
-    cmd->add_option("--material", o->material_file, "Material TOML file");
-    cmd->add_option("--set", o->overrides, set_option_help);
+    add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     add_solver_options(*cmd, o->solver, "multipole");
     cmd->add_option("--wavelengths", o->wavelengths, "Wavelengths (nm) for layered materials; homogeneous ones use their bands")->capture_default_str();
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm")->capture_default_str();

@@ -295,9 +295,7 @@ void run_swatch(const SwatchOptions& o) {
 void add_swatch_command(CLI::App& app) {
     auto o = std::make_shared<SwatchOptions>();
     auto* cmd = app.add_subcommand("swatch", "Chart image of simulated skin colours over one or two stack fields");
-    cmd->add_option("--preset", o->preset, "Base preset (default biospec-moderately)");
-    cmd->add_option("--material", o->material_file, "Base material TOML file");
-    cmd->add_option("--set", o->overrides, set_option_help);
+    add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     cmd->add_option("--vary", o->vary,
                     "FIELD=FIRST:LAST:STEPS[:log], columns then rows (default epidermis.melanosome_fraction=0.01:0.42:8:log and "
                     "dermis.blood_fraction=0.002:0.05:5 for skin stacks; one patch otherwise); ':log' spaces the values evenly in "

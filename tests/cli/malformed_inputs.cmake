@@ -151,3 +151,4 @@ skinspec_malformed_input("export mitsuba bad phase" 2 "--phase: 'mie' is not a p
 skinspec_malformed_input("export mitsuba wrong extension" 2 "s6.pbrt: .*allowed: .xml" "${out}/s6.pbrt" export mitsuba -o ${out}/s6.pbrt)
 skinspec_malformed_input("export mitsuba wavelength outside the data" 2 "900 nm is outside the tabulated domain" "${out}/s7.xml;${out}/s7_spectra" export mitsuba --wavelengths 900 -o ${out}/s7.xml)
 skinspec_malformed_input("export lut sce from multipole" 2 "solver 'multipole' does not measure R in geometry sce" "${out}/lut6.exr" export lut --mode multipole -o ${out}/lut6.exr)
+skinspec_malformed_input("fit preset and material" 2 "give --preset or --material, not both" "${out}/fit_both.csv" fit-spectrum fit_two.csv --preset biospec-lightly --material ../../data/materials/biospec-heavily.toml --output ${out}/fit_both.csv)
