@@ -44,16 +44,19 @@ Json override_value(const std::string& text) {
     return text;
 }
 
-Json provenance_json(const Provenance& p) {
+// `same_as`: the index of an earlier result whose material_toml is the same text (a sweep's base), written in its place.
+Json provenance_json(const Provenance& p, std::optional<std::size_t> same_as) {
     Json overrides = Json::array();
     for (const auto& [key, value] : p.overrides) overrides.push_back(Json{{"key", key}, {"value", override_value(value)}});
     Json varied = Json::object();
     for (const auto& [field, value] : p.varied) varied[field] = value;
-    return Json{{"solver", p.solver},     {"skinspec_version", p.version}, {"overrides", overrides},
-                {"varied", varied},       {"material_toml", p.material_toml}};
+    Json j{{"solver", p.solver}, {"skinspec_version", p.version}, {"overrides", overrides}, {"varied", varied}};
+    if (same_as) j["material_toml_same_as"] = *same_as;
+    else j["material_toml"] = p.material_toml;
+    return j;
 }
 
-Json result_json(const ReportedSpectrum& s) {
+Json result_json(const ReportedSpectrum& s, std::optional<std::size_t> same_material_as) {
     const auto& r = s.result;
     Json j{{"model", r.model}, {"material", r.material}, {"partial", r.partial}};
     Json settings = Json::object();
@@ -102,7 +105,7 @@ Json result_json(const ReportedSpectrum& s) {
     Json warnings = Json::array();
     for (const auto& w : r.warnings) warnings.push_back(Json{{"kind", w.kind}, {"subject", w.subject}, {"at", w.at}, {"value", w.value}});
     j["warnings"] = warnings;
-    j["provenance"] = provenance_json(r.provenance);
+    j["provenance"] = provenance_json(r.provenance, same_material_as);
     j["seconds"] = s.seconds;
     if (s.color) j["color"] = to_json(*s.color);
     return j;
@@ -127,7 +130,15 @@ std::optional<ColorSummary> reflectance_color(const SpectralResult& result, Illu
 
 Json to_json(const std::vector<ReportedSpectrum>& spectra) {
     Json results = Json::array();
-    for (const auto& s : spectra) results.push_back(result_json(s));
+    // A sweep's members share their base material: its text is written once, in the first result that has it.
+    std::vector<std::pair<const std::string*, std::size_t>> first_with;  // (material TOML, result index)
+    for (std::size_t i = 0; i < spectra.size(); ++i) {
+        const auto& toml = spectra[i].result.provenance.material_toml;
+        const auto earlier = std::find_if(first_with.begin(), first_with.end(), [&](const auto& f) { return *f.first == toml; });
+        const auto same_as = earlier == first_with.end() ? std::nullopt : std::optional(earlier->second);
+        if (!same_as) first_with.emplace_back(&toml, i);
+        results.push_back(result_json(spectra[i], same_as));
+    }
     return Json{{"skinspec_version", version}, {"schema", "skinspec-spectral-result/1"}, {"results", results}};
 }
 
