@@ -1,6 +1,9 @@
 // skinspec: spectral simulator of human skin appearance. Command-line entry point: parses arguments,
 // dispatches to one command per file in cli/, and turns input errors into one-line messages with exit 2.
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
@@ -108,6 +111,14 @@ int main(int argc, char** argv) {
         return skinspec::cli::error_exit(1);
     } catch (const std::exception& e) {
         std::cerr << "skinspec: internal error: " << e.what() << '\n';
+        return skinspec::cli::error_exit(1);
+    }
+    // What the command printed must have reached standard output: a full disk or a closed pipe is a failure.
+    errno = 0;
+    std::cout.flush();
+    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        const int cause = errno;
+        std::cerr << "skinspec: error: writing to standard output failed" << (cause ? std::string(": ") + std::strerror(cause) : std::string()) << '\n';
         return skinspec::cli::error_exit(1);
     }
     return 0;
