@@ -44,7 +44,8 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     // The material is read once; each patch sets its swept values on a copy in memory.
     const auto base_material = load_material(request.material, request.overrides);
     const auto base_toml = std::make_shared<const std::string>(to_toml(base_material));
-    const auto material_of = [&](std::size_t i) { return with_overrides(base_material, sweep_overrides(sweep_axes(request.sweeps), parameters[i])); };
+    const auto axes = sweep_axes(request.sweeps);
+    const auto material_of = [&](std::size_t i) { return with_overrides(base_material, sweep_overrides(axes, parameters[i])); };
     SolverRequest base;
     base.switches = request.switches;
     base.overrides = request.overrides;
@@ -109,7 +110,9 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         for (std::size_t i = begin; i < end; ++i) {
             std::vector<std::pair<std::string, double>> varied;
             for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
-            members.push_back({material_of(i), sweep_overrides(sweep_axes(request.sweeps), parameters[i]), std::move(varied), base_toml});
+            auto overrides = sweep_overrides(axes, parameters[i]);
+            auto material = with_overrides(base_material, overrides);
+            members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml});
         }
         auto results = solve_sweep(solver, members, base);
         if (share) {

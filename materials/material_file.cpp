@@ -572,10 +572,10 @@ bool set_number_in_place(LayerStack& stack, const MaterialOverride& o) {
     if (layers.empty()) return false;
     if (const auto* f = number_field(layer_number_fields(), name)) {
         if (!f->range.contains(*value)) return false;
-        for (auto* l : layers) {
-            auto changed = *l;
-            changed.*(f->member) = *value;
-            if (changed.melanosome_fraction + changed.blood_fraction > 1.0) return false;
+        for (const auto* l : layers) {
+            const double v_m = f->member == &TissueLayer::melanosome_fraction ? *value : l->melanosome_fraction;
+            const double v_b = f->member == &TissueLayer::blood_fraction ? *value : l->blood_fraction;
+            if (v_m + v_b > 1.0) return false;
         }
         for (auto* l : layers) l->*(f->member) = *value;
         return true;

@@ -82,4 +82,14 @@ std::string path_difference(const LayerStack& a, const LayerStack& b) {
     return "a field";
 }
 
+void require_shared_paths(const std::vector<const LayerStack*>& stacks) {
+    if (stacks.size() < 2) return;
+    const auto first = path_key(*stacks.front());
+    for (const auto* stack : stacks) {
+        if (path_key(*stack) == first) continue;
+        throw InputError("absorption sets '" + stacks.front()->name + "' and '" + stack->name + "' differ in " +
+                         path_difference(*stacks.front(), *stack) + ", which changes paths (trace them separately)");
+    }
+}
+
 }  // namespace skinspec

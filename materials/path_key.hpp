@@ -5,6 +5,7 @@
 // scattering in any description, indices, model switches, names) separates them, so a new field is safe by default.
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "materials/layer_stack.hpp"
 
@@ -24,5 +25,9 @@ bool is_absorption_only_key(const std::string& key);
 // The first field besides absorption in which two stacks differ, as --set names it ("papillary_dermis.thickness_cm",
 // "model.dermal_rayleigh", "the number of layers"); empty when one trace serves both.
 std::string path_difference(const LayerStack& a, const LayerStack& b);
+
+// InputError "absorption sets 'A' and 'B' differ in FIELD, which changes paths" unless every stack traces like the
+// first (the walks' check before replaying a group; the first's key is computed once).
+void require_shared_paths(const std::vector<const LayerStack*>& stacks);
 
 }  // namespace skinspec

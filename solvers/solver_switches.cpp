@@ -1,7 +1,6 @@
 #include "solvers/solver_switches.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 
 #include "spectral/input_error.hpp"
@@ -13,12 +12,11 @@ namespace {
 // A finite number in [lo, hi] (lo excluded when lo_open), or InputError "WHAT = TEXT is outside RANGE".
 double number_in(std::string_view text, const std::string& what, double lo, double hi, bool lo_open) {
     const std::string t(trim(text));
-    double v = 0.0;
-    const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), v);
+    const auto v = parse_double(t);
     const std::string range = std::string(lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) + "]";
-    if (t.empty() || error != std::errc{} || end != t.data() + t.size()) throw InputError(what + " '" + t + "' is not a number in " + range);
-    if (!std::isfinite(v) || (lo_open ? v <= lo : v < lo) || v > hi) throw InputError(what + " = " + t + " is outside " + range);
-    return v;
+    if (!v) throw InputError(what + " '" + t + "' is not a number in " + range);
+    if (!std::isfinite(*v) || (lo_open ? *v <= lo : *v < lo) || *v > hi) throw InputError(what + " = " + t + " is outside " + range);
+    return *v;
 }
 
 }  // namespace

@@ -94,7 +94,6 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
         {"thin_layer_phase", o.thin_layer_hg ? "henyey_greenstein (" + o.thin_layer_hg->source + ")" : std::string("measured")},
     };
     if (r.stderr_target) s["stderr_target"] = *r.stderr_target;
-    add_model_settings(s, stack.model);
     return s;
 }
 

@@ -119,12 +119,9 @@ BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets,
     if (sets_ > 1 && options.estimator != AbsorptionEstimator::weighted) {
         throw InputError("absorption replay needs the weighted estimator (the random test makes paths depend on absorption)");
     }
+    require_shared_paths(sets);
     packet_.mu_a_per_cm.assign(layers_ * sets_, 0.0f);
     for (std::size_t s = 0; s < sets_; ++s) {
-        if (const auto why = path_difference(*sets.front(), *sets[s]); !why.empty()) {
-            throw InputError("absorption sets '" + sets.front()->name + "' and '" + sets[s]->name + "' differ in " + why +
-                             ", which changes paths (trace them separately)");
-        }
         for (std::size_t k = 0; k < layers_; ++k) {
             packet_.mu_a_per_cm[s * layers_ + k] = static_cast<float>(absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model));
         }

@@ -469,12 +469,7 @@ std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack
                                               BoundaryMode boundaries, bool white) {
     if (stacks.empty()) throw InputError("absorption replay: no stacks to simulate");
     const bool replay = stacks.size() > 1 || white;
-    for (const auto* stack : stacks) {
-        if (const auto why = path_difference(*stacks.front(), *stack); !why.empty()) {
-            throw InputError("absorption sets '" + stacks.front()->name + "' and '" + stack->name + "' differ in " + why +
-                             ", which changes paths (trace them separately)");
-        }
-    }
+    require_shared_paths(stacks);
     std::vector<SpectralResult> out(stacks.size());
     for (std::size_t s = 0; s < stacks.size(); ++s) {
         auto& o = out[s];
