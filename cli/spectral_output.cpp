@@ -52,7 +52,7 @@ Json provenance_json(const Provenance& p, std::optional<std::size_t> same_as) {
     for (const auto& [field, value] : p.varied) varied[field] = value;
     Json j{{"solver", p.solver}, {"skinspec_version", p.version}, {"overrides", overrides}, {"varied", varied}};
     if (same_as) j["material_toml_same_as"] = *same_as;
-    else j["material_toml"] = p.material_toml;
+    else j["material_toml"] = *p.material_toml;
     return j;
 }
 
@@ -133,10 +133,11 @@ Json to_json(const std::vector<ReportedSpectrum>& spectra) {
     // A sweep's members share their base material: its text is written once, in the first result that has it.
     std::vector<std::pair<const std::string*, std::size_t>> first_with;  // (material TOML, result index)
     for (std::size_t i = 0; i < spectra.size(); ++i) {
-        const auto& toml = spectra[i].result.provenance.material_toml;
-        const auto earlier = std::find_if(first_with.begin(), first_with.end(), [&](const auto& f) { return *f.first == toml; });
-        const auto same_as = earlier == first_with.end() ? std::nullopt : std::optional(earlier->second);
-        if (!same_as) first_with.emplace_back(&toml, i);
+        const auto* toml = spectra[i].result.provenance.material_toml.get();
+        const auto earlier = std::find_if(first_with.begin(), first_with.end(), [&](const auto& f) { return f.first == toml || *f.first == *toml; });
+        std::optional<std::size_t> same_as;
+        if (earlier != first_with.end()) same_as = earlier->second;
+        else first_with.emplace_back(toml, i);
         results.push_back(result_json(spectra[i], same_as));
     }
     return Json{{"skinspec_version", version}, {"schema", "skinspec-spectral-result/1"}, {"results", results}};
@@ -169,15 +170,16 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
         out += fmt::format("# provenance {}: solver {}, skinspec {}, overrides{}\n", s.result.material, p.solver, p.version,
                            overrides.empty() ? std::string(" none") : overrides);
         if (std::any_of(written_materials.begin(), written_materials.end(),
-                        [&](const auto& w) { return w.first == s.result.material && *w.second == p.material_toml; })) {
+                        [&](const auto& w) { return w.first == s.result.material && (w.second == p.material_toml.get() || *w.second == *p.material_toml); })) {
             continue;
         }
-        written_materials.emplace_back(s.result.material, &p.material_toml);
+        written_materials.emplace_back(s.result.material, p.material_toml.get());
         out += "# material_toml " + s.result.material + ":\n";
+        const auto& toml = *p.material_toml;
         std::size_t from = 0;
-        while (from < p.material_toml.size()) {
-            const auto to = std::min(p.material_toml.find('\n', from), p.material_toml.size());
-            out += "#   " + p.material_toml.substr(from, to - from) + "\n";
+        while (from < toml.size()) {
+            const auto to = std::min(toml.find('\n', from), toml.size());
+            out += "#   " + toml.substr(from, to - from) + "\n";
             from = to + 1;
         }
     }

@@ -35,7 +35,7 @@ py::dict provenance_dict(const SpectralResult& r) {
     py::dict varied;
     for (const auto& [field, value] : r.provenance.varied) varied[py::str(field)] = value;
     return py::dict(py::arg("solver") = r.provenance.solver, py::arg("material") = r.material, py::arg("model") = r.model,
-                    py::arg("material_toml") = r.provenance.material_toml, py::arg("overrides") = r.provenance.overrides,
+                    py::arg("material_toml") = *r.provenance.material_toml, py::arg("overrides") = r.provenance.overrides,
                     py::arg("varied") = varied, py::arg("settings") = settings_dict(r.settings), py::arg("warnings") = warnings_list(r.warnings),
                     py::arg("version") = r.provenance.version);
 }

@@ -57,6 +57,8 @@ public:
         std::visit([&](const auto& x) { (*this)(x); }, v);
         return *this;
     }
+    // A material text; unset (provenance not yet recorded) travels as empty, which no material writes.
+    Writer& operator()(const std::shared_ptr<const std::string>& s) { return (*this)(s ? *s : std::string()); }
     template <class A, class B>
     Writer& operator()(const std::pair<A, B>& p) {
         return (*this)(p.first)(p.second);
@@ -124,6 +126,12 @@ public:
             case 3: read(std::string()); break;
             default: throw InputError("result bytes: unknown setting type " + std::to_string(kind));
         }
+        return *this;
+    }
+    Reader& operator()(std::shared_ptr<const std::string>& s) {
+        std::string text;
+        (*this)(text);
+        s = text.empty() ? nullptr : std::make_shared<const std::string>(std::move(text));
         return *this;
     }
     template <class A, class B>

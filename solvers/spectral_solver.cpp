@@ -219,7 +219,7 @@ SolverRequest effective_request(const SolverRequest& request) {
     return out;
 }
 
-void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material, std::string material_toml,
+void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material, std::shared_ptr<const std::string> material_toml,
                        const std::vector<MaterialOverride>& overrides, std::vector<std::pair<std::string, double>> varied) {
     result.provenance.solver = std::string(solver.name());
     if (const auto* stack = std::get_if<LayerStack>(&material)) add_model_settings(result.settings, stack->model);
@@ -234,7 +234,7 @@ void record_provenance(SpectralResult& result, const SpectralSolver& solver, con
 SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
     check_request(solver, material, request);
     auto result = solver.solve(material, effective_request(request));
-    record_provenance(result, solver, material, to_toml(material), request.overrides, {});
+    record_provenance(result, solver, material, std::make_shared<const std::string>(to_toml(material)), request.overrides, {});
     return result;
 }
 
@@ -297,7 +297,7 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
     for (std::size_t i = 0; i < results.size(); ++i) {
         auto overrides = request.overrides;
         overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());
-        record_provenance(results[i], solver, members[i].material, members[i].base_toml ? *members[i].base_toml : to_toml(members[i].material), overrides,
+        record_provenance(results[i], solver, members[i].material, members[i].base_toml ? members[i].base_toml : std::make_shared<const std::string>(to_toml(members[i].material)), overrides,
                           members[i].varied);
     }
     return results;

@@ -52,7 +52,7 @@ TEST_CASE("results read back from bytes equal the results written, bit for bit",
     }
     CHECK(r.warnings.back().kind == "a kind");
     CHECK(r.warnings.back().value == 0.25);
-    CHECK(r.provenance.material_toml == original.provenance.material_toml);
+    CHECK(*r.provenance.material_toml == *original.provenance.material_toml);
     CHECK(r.provenance.overrides == original.provenance.overrides);
     CHECK(results_from_bytes(results_to_bytes({})).empty());
 }

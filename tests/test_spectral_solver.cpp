@@ -117,7 +117,7 @@ TEST_CASE("a result records its provenance: resolved material, overrides, solver
     CHECK(result.provenance.solver == "biospec");
     REQUIRE(result.provenance.overrides.size() == 1);
     CHECK(result.provenance.overrides.front() == std::pair<std::string, std::string>{"epidermis.melanosome_fraction", "0.03"});
-    CHECK(parse_material(result.provenance.material_toml, "provenance") == skin);
+    CHECK(parse_material(*result.provenance.material_toml, "provenance") == skin);
     CHECK(std::get<std::uint64_t>(result.settings.at("seed")) == 42);
     CHECK(std::get<std::uint64_t>(result.settings.at("max_rays_per_wavelength")) == 300);
 }
@@ -205,7 +205,7 @@ TEST_CASE("a sweep shared among processes gives rank 0 the one-process results b
             CHECK(shared[i].wavelengths.front().reflectance.stderr == one[i].wavelengths.front().reflectance.stderr);
             CHECK(shared[i].settings == one[i].settings);
             CHECK(shared[i].provenance.varied == one[i].provenance.varied);
-            CHECK(shared[i].provenance.material_toml == one[i].provenance.material_toml);
+            CHECK(*shared[i].provenance.material_toml == *one[i].provenance.material_toml);
         }
     }
 }

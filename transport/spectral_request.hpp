@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -117,7 +118,8 @@ void add_model_settings(std::map<std::string, SettingValue>& settings, const Mod
 // What a result was computed from, so that a script can re-run or audit it.
 struct Provenance {
     std::string solver;
-    std::string material_toml;  // the resolved material, every override applied, as `materials save` writes it
+    // The material as `materials save` writes it, before `overrides` (a sweep's members share their base's text).
+    std::shared_ptr<const std::string> material_toml;
     std::vector<std::pair<std::string, std::string>> overrides;  // every --set / --vary KEY=VALUE, in order
     std::vector<std::pair<std::string, double>> varied;         // the swept fields' values (--vary)
     std::string version;
