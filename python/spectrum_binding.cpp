@@ -323,7 +323,7 @@ py::list solvers() {
                             py::arg("band_materials") = c.band_materials, py::arg("uncertainty") = c.uncertainty,
                             py::arg("radial_profiles") = c.radial_profiles, py::arg("switches") = switches,
                             py::arg("replay_fields") = c.replay_fields, py::arg("geometries") = geometries,
-                            py::arg("material_needs") = c.material_needs));
+                            py::arg("material_needs") = c.material_needs, py::arg("bottom") = c.bottom));
     }
     return out;
 }

@@ -15,17 +15,23 @@ public:
                                                  : "semi-infinite dipole diffusion (Jensen et al. 2001), deterministic";
     }
     const SolverCapabilities& capabilities() const override {
-        static const SolverCapabilities caps{
-            .quantities = {true, true, false, false},
-            .layered_materials = true,
-            .band_materials = true,
-            .uncertainty = false,
-            .radial_profiles = true,
-            .switches = {SolverSwitch::roughness},
-            .replay_fields = {},
-            .material_needs = "reduced_scattering_table or reduced_scattering_* in every layer",
+        // The dipole is one semi-infinite medium: nothing leaves through a bottom, so it computes no T and
+        // refuses a request to change the bottom (it would be ignored).
+        static const auto caps = [](bool semi_infinite) {
+            return SolverCapabilities{
+                .quantities = {true, !semi_infinite, false, false},
+                .layered_materials = true,
+                .band_materials = true,
+                .uncertainty = false,
+                .radial_profiles = true,
+                .switches = {SolverSwitch::roughness},
+                .replay_fields = {},
+                .material_needs = "reduced_scattering_table or reduced_scattering_* in every layer",
+                .bottom = !semi_infinite,
+            };
         };
-        return caps;
+        static const SolverCapabilities multipole = caps(false), dipole = caps(true);
+        return mode_ == DiffusionMode::dipole ? dipole : multipole;
     }
     SpectralResult solve(const Material& material, const SolverRequest& request) const override {
         const auto options = diffusion_options(request.switches);

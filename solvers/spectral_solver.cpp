@@ -65,6 +65,17 @@ void check_material(const SpectralSolver& solver, const Material& material) {
     }
 }
 
+// A solver without a bottom would ignore an override of it (--reflector, --set/--vary bottom.FIELD).
+void check_overrides(const SpectralSolver& solver, const std::vector<MaterialOverride>& overrides) {
+    if (solver.capabilities().bottom) return;
+    for (const auto& o : overrides) {
+        if (!o.key.starts_with("bottom.")) continue;
+        throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", but solver '" + std::string(solver.name()) +
+                         "' treats the skin as one semi-infinite medium, which has no bottom (solvers that model it: " +
+                         offered_by([](const SolverCapabilities& c) { return c.bottom; }) + ")");
+    }
+}
+
 void check_switches(const SpectralSolver& solver, const SolverSwitches& switches) {
     const auto& caps = solver.capabilities();
     for (const auto s : switches.set()) {
@@ -190,6 +201,7 @@ void check_request(const SpectralSolver& solver, const Material& material, const
                          offered_by([](const SolverCapabilities& c) { return c.uncertainty; }) + ")");
     }
     check_switches(solver, request.switches);
+    check_overrides(solver, request.overrides);
 }
 
 void check_request(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
@@ -251,6 +263,7 @@ std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const Solve
         auto overrides = sweep_overrides(axes, values);
         auto material = with_overrides(cut, overrides);
         check_request(solver, material, request);
+        check_overrides(solver, overrides);
         std::vector<std::pair<std::string, double>> varied;
         for (std::size_t a = 0; a < axes.size(); ++a) varied.emplace_back(axes[a].field, values[a]);
         members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml});

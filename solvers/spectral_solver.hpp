@@ -33,6 +33,7 @@ struct SolverCapabilities {
     std::vector<std::string> replay_fields;  // material fields re-weighted from traced paths (absorption replay)
     std::string material_needs;      // what a layered material must describe for this solver, "" when nothing
     std::vector<MeasurementGeometry> geometries{MeasurementGeometry::sci};  // what its R can be measured as
+    bool bottom = true;  // models the material's bottom (false: semi-infinite; a bottom.* override is refused)
 };
 
 // A request for one material. `spectral` is what the transport solvers consume; `overrides` are recorded in

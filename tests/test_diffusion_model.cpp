@@ -64,6 +64,27 @@ TEST_CASE("skin in diffusion mode: plausible spectra, merged thin layers, trust 
     CHECK(rough.specular_reflectance != Approx(m.specular_reflectance));
 }
 
+TEST_CASE("multipole skin is continuous in wavelength where a thin layer's merge fades in", "[diffusion-model]") {
+    // biospec-lightly's stratum corneum + epidermis crosses one transport mean free path near 481 nm (it jumped from
+    // R 0.3565 to 0.3201 there). At 0.25 nm steps the largest change must be of the spectrum's own slope (< 1e-3),
+    // and where two stacks are blended their weights sum to 1.
+    const auto light = std::get<LayerStack>(load_material("biospec-lightly"));
+    double previous = -1.0, largest_step = 0.0;
+    bool blended = false;
+    for (double nm = 440.0; nm <= 520.0; nm += 0.25) {
+        const auto m = diffusion_material(light, nm, {});
+        double weights = 0.0;
+        for (const auto& s : m.stacks) weights += s.weight;
+        CHECK(weights == Approx(1.0).epsilon(1e-12));
+        blended = blended || m.stacks.size() > 1;
+        const double r = m.total_reflectance();
+        if (previous >= 0.0) largest_step = std::max(largest_step, std::abs(r - previous));
+        previous = r;
+    }
+    CHECK(blended);
+    CHECK(largest_step < 1e-3);
+}
+
 TEST_CASE("diffusion mode refuses what it cannot compute", "[diffusion-model]") {
     auto light = std::get<LayerStack>(load_material("biospec-lightly"));
     light.layers[1].reduced.reset();

@@ -18,7 +18,7 @@ CASES = [
      dict(quantities=["R", "T"], rays=400, seed=3, boundaries="split")),
     ("adding-doubling", ["--quantities", "R,T", "--channels", "8"], dict(quantities="R,T", channels=8)),
     ("multipole", ["--quantities", "R,T"], dict(quantities="R,T")),
-    ("dipole", ["--quantities", "R,T", "--roughness", "0.3"], dict(quantities="R,T", roughness=0.3)),
+    ("dipole", ["--roughness", "0.3"], dict(roughness=0.3)),
 ]
 
 
@@ -31,11 +31,13 @@ def test_module_spectrum_equals_the_cli(cli, mode, cli_args, kwargs):
     m = skinspec.Material("biospec-moderately")
     m["epidermis.melanosome_fraction"] = 0.03
     wavelengths = np.arange(450, 701, 50)
-    ours = skinspec.spectrum(m, wavelengths, mode=mode, reflector=False, **kwargs)
+    # A solver with a bottom sees it opened; a semi-infinite one (the dipole) refuses that, and computes no T.
+    bottom = next(s["bottom"] for s in skinspec.solvers() if s["name"] == mode)
+    ours = skinspec.spectrum(m, wavelengths, mode=mode, **(dict(reflector=False) if bottom else {}), **kwargs)
     theirs = cli("spectrum", "--preset", "biospec-moderately", "--set", "epidermis.melanosome_fraction=0.03", "--mode", mode,
-                 "--reflector", "off", "--wavelengths", "450:700:50", *cli_args)["results"][0]
+                 *(["--reflector", "off"] if bottom else []), "--wavelengths", "450:700:50", *cli_args)["results"][0]
     np.testing.assert_array_equal(ours.wavelength_nm, theirs["wavelength_nm"])
-    for key in ("R", "R_specular", "T"):
+    for key in ("R", "R_specular", "T") if bottom else ("R", "R_specular"):
         np.testing.assert_allclose(getattr(ours, key), cli_arrays(theirs, key), rtol=0, atol=1e-12)
         if ours.has_uncertainty:
             np.testing.assert_allclose(getattr(ours, key + "_stderr"), cli_arrays(theirs, key + "_stderr"), rtol=0, atol=1e-12)

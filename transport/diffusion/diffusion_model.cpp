@@ -38,28 +38,55 @@ SlabSpec merge(const SlabSpec& upper, const SlabSpec& lower) {
             mix(upper.sigma_s_reduced_per_mm, lower.sigma_s_reduced_per_mm), upper.n_top, lower.n_bottom};
 }
 
-// Layers thinner than one transport mean free path are merged with the layer below (the last with the one above).
-std::vector<SlabSpec> merge_thin(std::vector<SlabSpec> slabs, std::vector<TrustWarning>& warnings) {
-    for (std::size_t i = 0; slabs.size() > 1 && i < slabs.size();) {
+// Seed 002 has no rule for a layer thinner than diffusion resolves; merging it with its neighbour is ours. A hard
+// threshold makes R jump at the wavelength where a layer crosses it (0.3565 -> 0.3201 between 480 and 482 nm on
+// biospec-lightly), so the merge fades in: fully merged below diffusion_merge_fully_below_mfp, kept above
+// diffusion_merge_none_above_mfp, and in between both stacks are solved and blended with a weight smooth (C1) in log
+// thickness: R, T and R(r) are continuous in wavelength.
+double merge_weight(double mean_free_paths) {
+    if (mean_free_paths <= diffusion_merge_fully_below_mfp) return 1.0;
+    if (mean_free_paths >= diffusion_merge_none_above_mfp) return 0.0;
+    const double t = std::log(mean_free_paths / diffusion_merge_fully_below_mfp) /
+                     std::log(diffusion_merge_none_above_mfp / diffusion_merge_fully_below_mfp);
+    return 1.0 - t * t * (3.0 - 2.0 * t);
+}
+
+struct WeightedSpecs {
+    double weight;
+    std::vector<SlabSpec> slabs;
+};
+
+// Merges slab i with the one below (the last with the one above); the index of the merged slab.
+std::size_t merge_at(std::vector<SlabSpec>& slabs, std::size_t i) {
+    if (i + 1 == slabs.size()) {
+        slabs[i - 1] = merge(slabs[i - 1], slabs[i]);
+        slabs.pop_back();
+        return i - 1;
+    }
+    slabs[i] = merge(slabs[i], slabs[i + 1]);
+    slabs.erase(slabs.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+    return i;
+}
+
+// Every stack the thin layers from slab `i` on can become, with its weight (they sum to `weight`).
+void merge_thin(std::vector<SlabSpec> slabs, std::size_t i, double weight, std::vector<WeightedSpecs>& out,
+                std::vector<TrustWarning>& warnings) {
+    while (slabs.size() > 1 && i < slabs.size()) {
         const double mfp = slabs[i].thickness_mm / slabs[i].mean_free_path_mm();
-        if (mfp >= 1.0) {
+        const double w = merge_weight(mfp);
+        if (w == 0.0) {
             ++i;
             continue;
         }
         const bool last = i + 1 == slabs.size();
         warnings.push_back({slabs[i].name, "merged", mfp,
-                            fmt::format("{} is {:.2g} transport mean free paths thick; merged with {}", slabs[i].name, mfp,
-                                        last ? slabs[i - 1].name : slabs[i + 1].name)});
-        if (last) {
-            slabs[i - 1] = merge(slabs[i - 1], slabs[i]);
-            slabs.pop_back();
-            i = i - 1;
-        } else {
-            slabs[i] = merge(slabs[i], slabs[i + 1]);
-            slabs.erase(slabs.begin() + static_cast<std::ptrdiff_t>(i) + 1);
-        }
+                            fmt::format("{} is {:.2g} transport mean free paths thick; merged with {} (weight {:.2g})", slabs[i].name, mfp,
+                                        last ? slabs[i - 1].name : slabs[i + 1].name, w)});
+        if (w < 1.0) merge_thin(slabs, i + 1, weight * (1.0 - w), out, warnings);
+        weight *= w;
+        i = merge_at(slabs, i);
     }
-    return slabs;
+    out.push_back({weight, std::move(slabs)});
 }
 
 void check_trust(const SlabSpec& s, bool finite, std::vector<TrustWarning>& warnings) {
@@ -106,41 +133,85 @@ DiffusionMaterial build(std::vector<SlabSpec> specs, double n_above, double n_be
         specs = {all};
         semi_infinite = true;
     }
-    if (!semi_infinite) specs = merge_thin(std::move(specs), warnings);
-    const auto top = surface(n_above, specs.front().n_top, options, incidence_deg);
-    std::vector<Multipole> slabs;
-    std::vector<std::string> names;
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-        const auto& s = specs[i];
-        const bool last = i + 1 == specs.size();
-        const double n_next = last ? (bottom == DiffusionBottom::reflector ? s.n_bottom : n_below) : specs[i + 1].n_top;
-        const double n_prev = i == 0 ? n_above : specs[i - 1].n_bottom;
-        DiffusionSlab slab{s.sigma_s_reduced_per_mm, s.sigma_a_per_mm,
-                           semi_infinite ? std::numeric_limits<double>::infinity() : s.thickness_mm,
-                           i == 0 ? top.top_internal_reflectance : face_reflectance(s.n_top, n_prev),
-                           face_reflectance(s.n_bottom, n_next)};
-        check_trust(s, !semi_infinite, warnings);
-        slabs.emplace_back(slab);
-        names.push_back(s.name);
+    std::vector<WeightedSpecs> configurations;
+    if (semi_infinite) configurations.push_back({1.0, std::move(specs)});
+    else merge_thin(std::move(specs), 0, 1.0, configurations, warnings);
+    // Every configuration keeps the top slab's top face: one surface for all.
+    const auto top = surface(n_above, configurations.front().slabs.front().n_top, options, incidence_deg);
+    DiffusionMaterial out{{}, {}, top.specular, 1.0 - top.specular, {}};
+    double heaviest = -1.0;
+    for (const auto& [weight, slab_specs] : configurations) {
+        std::vector<Multipole> slabs;
+        std::vector<std::string> names;
+        for (std::size_t i = 0; i < slab_specs.size(); ++i) {
+            const auto& s = slab_specs[i];
+            const bool last = i + 1 == slab_specs.size();
+            const double n_next = last ? (bottom == DiffusionBottom::reflector ? s.n_bottom : n_below) : slab_specs[i + 1].n_top;
+            const double n_prev = i == 0 ? n_above : slab_specs[i - 1].n_bottom;
+            DiffusionSlab slab{s.sigma_s_reduced_per_mm, s.sigma_a_per_mm,
+                               semi_infinite ? std::numeric_limits<double>::infinity() : s.thickness_mm,
+                               i == 0 ? top.top_internal_reflectance : face_reflectance(s.n_top, n_prev),
+                               face_reflectance(s.n_bottom, n_next)};
+            check_trust(s, !semi_infinite, warnings);
+            slabs.emplace_back(slab);
+            names.push_back(s.name);
+        }
+        if (weight > heaviest) {
+            heaviest = weight;
+            out.slab_names = std::move(names);
+        }
+        out.stacks.push_back({weight, LayeredDiffusion(std::move(slabs), semi_infinite ? DiffusionBottom::open : bottom)});
     }
-    return {std::move(names), LayeredDiffusion(std::move(slabs), semi_infinite ? DiffusionBottom::open : bottom), top.specular,
-            1.0 - top.specular, std::move(warnings)};
+    // A slab both branches keep is judged once.
+    for (const auto& w : warnings) {
+        const bool seen = std::any_of(out.warnings.begin(), out.warnings.end(),
+                                      [&](const TrustWarning& o) { return o.slab == w.slab && o.kind == w.kind && o.value == w.value; });
+        if (!seen) out.warnings.push_back(w);
+    }
+    return out;
 }
 
 }  // namespace
 
 std::string_view to_string(DiffusionMode mode) { return mode == DiffusionMode::dipole ? "dipole" : "multipole"; }
 
+namespace {
+
+// The configurations' profiles blended by their weights, times what enters.
+template <class Profile>
+RadialProfile blended(const std::vector<WeightedStack>& stacks, double entry_transmittance, std::span<const double> radii_mm, Profile profile) {
+    RadialProfile out;
+    out.values.assign(radii_mm.size(), 0.0);
+    for (const auto& s : stacks) {
+        const auto p = profile(s.stack, radii_mm);
+        for (std::size_t i = 0; i < radii_mm.size(); ++i) out.values[i] += s.weight * entry_transmittance * p.values[i];
+        out.max_pairs = std::max(out.max_pairs, p.max_pairs);
+        out.frequencies = std::max(out.frequencies, p.frequencies);
+        out.converged = out.converged && p.converged;
+    }
+    return out;
+}
+
+}  // namespace
+
+double DiffusionMaterial::diffuse_reflectance() const {
+    double r = 0.0;
+    for (const auto& s : stacks) r += s.weight * s.stack.total_reflectance();
+    return entry_transmittance * r;
+}
+
+double DiffusionMaterial::total_transmittance() const {
+    double t = 0.0;
+    for (const auto& s : stacks) t += s.weight * s.stack.total_transmittance();
+    return entry_transmittance * t;
+}
+
 RadialProfile DiffusionMaterial::reflectance_profile(std::span<const double> radii_mm) const {
-    auto p = stack.reflectance_profile(radii_mm);
-    for (auto& v : p.values) v *= entry_transmittance;
-    return p;
+    return blended(stacks, entry_transmittance, radii_mm, [](const LayeredDiffusion& s, std::span<const double> r) { return s.reflectance_profile(r); });
 }
 
 RadialProfile DiffusionMaterial::transmittance_profile(std::span<const double> radii_mm) const {
-    auto p = stack.transmittance_profile(radii_mm);
-    for (auto& v : p.values) v *= entry_transmittance;
-    return p;
+    return blended(stacks, entry_transmittance, radii_mm, [](const LayeredDiffusion& s, std::span<const double> r) { return s.transmittance_profile(r); });
 }
 
 DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_nm, const DiffusionOptions& options, double incidence_deg) {
@@ -223,7 +294,8 @@ ResultWarning result_warning(const TrustWarning& w, const std::string& at) {
     std::string kind;
     if (w.kind == "albedo") kind = fmt::format("diffusion: reduced albedo below {} (not trustworthy there)", diffusion_min_reduced_albedo);
     else if (w.kind == "thin") kind = fmt::format("diffusion: slab thinner than {} transport mean free paths (not trustworthy there)", diffusion_min_slab_mean_free_paths);
-    else kind = "diffusion: layer thinner than one transport mean free path, merged with its neighbour";
+    else kind = fmt::format("diffusion: layer thinner than {} transport mean free paths, merged with its neighbour (fully below {})",
+                            diffusion_merge_none_above_mfp, diffusion_merge_fully_below_mfp);
     return {kind, w.slab, at, w.value};
 }
 

@@ -5,9 +5,10 @@
 // Per layer: sigma_a from the materials model (the same mu_a as the walks), sigma_s' from the layer's reduced
 // scattering description (Salomatina's measured epidermis/dermis tables or a power law; docs/DIFFUSION.md),
 // index of refraction per layer. Units: mm and 1/mm (profiles are per mm^2).
-//   multipole: every layer a slab (seed 002), composed in frequency space; layers thinner than one transport
-//              mean free path are merged with the next (thickness-weighted coefficients) because diffusion
-//              cannot resolve them; the hypodermis reflector or the open bottom as the material says.
+//   multipole: every layer a slab (seed 002), composed in frequency space; layers thinner than 0.7 transport
+//              mean free paths are merged with the next (thickness-weighted coefficients) because diffusion
+//              cannot resolve them, layers of 0.7-1.4 are merged and kept, the two stacks blended smoothly (no
+//              jump in wavelength); the hypodermis reflector or the open bottom as the material says.
 //   dipole:    the whole material as one semi-infinite medium (seed 004) with depth-averaged coefficients.
 // Trust (docs/DIFFUSION.md, backed by bench/diffusion_validation.cpp): reduced albedo >= 0.9 and, for
 // finite slabs, thickness >= 2 transport mean free paths; results outside carry warnings.
@@ -32,6 +33,9 @@ struct DiffusionOptions {
 
 constexpr double diffusion_min_reduced_albedo = 0.9;
 constexpr double diffusion_min_slab_mean_free_paths = 2.0;
+// Around the one transport mean free path below which a layer used to be merged (a factor sqrt(2) each way):
+constexpr double diffusion_merge_fully_below_mfp = 0.7;  // a thinner layer is merged with its neighbour
+constexpr double diffusion_merge_none_above_mfp = 1.4;   // a thicker one is kept; in between, both, blended
 
 // One finding outside the trusted range, e.g. {"epidermis", "reduced albedo 0.62 is below 0.9"}.
 struct TrustWarning {
@@ -41,16 +45,22 @@ struct TrustWarning {
     std::string text;
 };
 
+struct WeightedStack {
+    double weight;
+    LayeredDiffusion stack;
+};
+
 // A material at one wavelength (or band), ready to evaluate.
 struct DiffusionMaterial {
-    std::vector<std::string> slab_names;  // merged layers are joined with '+'
-    LayeredDiffusion stack;
-    double specular_reflectance = 0.0;  // first-surface reflection at the incidence
-    double entry_transmittance = 1.0;   // 1 - specular: what enters and diffuses
+    std::vector<std::string> slab_names;  // of the heaviest stack; merged layers are joined with '+'
+    std::vector<WeightedStack> stacks;    // one, or where a layer is half merged each way, weights summing to 1
+    double specular_reflectance = 0.0;    // first-surface reflection at the incidence
+    double entry_transmittance = 1.0;     // 1 - specular: what enters and diffuses
     std::vector<TrustWarning> warnings;
 
-    double total_reflectance() const { return specular_reflectance + entry_transmittance * stack.total_reflectance(); }
-    double total_transmittance() const { return entry_transmittance * stack.total_transmittance(); }
+    double diffuse_reflectance() const;  // per unit incident power (entry transmittance included)
+    double total_reflectance() const { return specular_reflectance + diffuse_reflectance(); }
+    double total_transmittance() const;
     // Diffuse profiles per unit incident power (entry transmittance included), per mm^2 at radii in mm.
     RadialProfile reflectance_profile(std::span<const double> radii_mm) const;
     RadialProfile transmittance_profile(std::span<const double> radii_mm) const;

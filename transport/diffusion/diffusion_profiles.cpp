@@ -22,7 +22,7 @@ SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGr
     out.model = std::string(to_string(options.mode));
     out.radii_mm.assign(radii_mm.begin(), radii_mm.end());
     const auto add = [&](const DiffusionMaterial& m, std::string label, double nm) {
-        ChannelProfile c{std::move(label), nm, {}, {}, m.stack.total_reflectance() * m.entry_transmittance,
+        ChannelProfile c{std::move(label), nm, {}, {}, m.diffuse_reflectance(),
                          m.total_transmittance(), m.specular_reflectance, {}, {}};
         auto r = m.reflectance_profile(radii_mm);
         c.reflectance_per_mm2 = std::move(r.values);
