@@ -88,7 +88,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
             }
             patch.xyz = weights.integrate(patch.reflectance);
             patch.lab = xyz_to_lab(patch.xyz, chart.white);
-            patch.delta_e_uncertainty = ciede2000_uncertainty(weights, patch.reflectance, patch.reflectance_stderr);
+            patch.uncertainty = color_uncertainty(weights, patch.reflectance, patch.reflectance_stderr, result.stated_error ? result.stated_error->R : 0.0);
             for (auto w : result.warnings) {
                 w.at = "patch " + std::to_string(i + 1) + ", " + w.at;
                 chart.warnings.push_back(std::move(w));

@@ -10,6 +10,7 @@
 #include "materials/parameter_sweep.hpp"
 #include "solvers/spectral_solver.hpp"
 #include "materials/material_file.hpp"
+#include "spectral/color_uncertainty.hpp"
 #include "spectral/colorimetry.hpp"
 
 namespace skinspec {
@@ -44,7 +45,7 @@ struct SwatchPatch {
     std::vector<double> parameters;  // one value per sweep
     XYZ xyz;                         // perfect reflector Y = 1 under the request's illuminant
     Lab lab;
-    double delta_e_uncertainty = 0.0;  // RMS CIEDE2000 error propagated from the spectral standard errors
+    ColorUncertainty uncertainty;  // from the spectral standard errors and the solver's stated error (color_uncertainty.hpp)
     std::vector<double> reflectance;         // R at the chart's wavelengths (the request's geometry)
     std::vector<double> reflectance_stderr;  // its standard errors (0 for deterministic solvers)
     std::uint64_t rays = 0;

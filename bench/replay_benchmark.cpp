@@ -102,8 +102,8 @@ int main() {
     chart.patches_per_sweep = 1;
     const double t_chart_direct = seconds_of([&] { without = compute_swatch(chart); });
     double worst_with = 0.0, worst_without = 0.0;
-    for (const auto& p : with.patches) worst_with = std::max(worst_with, p.delta_e_uncertainty);
-    for (const auto& p : without.patches) worst_without = std::max(worst_without, p.delta_e_uncertainty);
+    for (const auto& p : with.patches) worst_with = std::max(worst_with, p.uncertainty.delta_e2000);
+    for (const auto& p : without.patches) worst_without = std::max(worst_without, p.uncertainty.delta_e2000);
     std::cout << fmt::format("  default swatch (40 patches, Delta E 0.3): replayed {:.3f} s (worst dE {:.3f}), patch by patch {:.3f} s "
                              "(worst dE {:.3f}): {:.1f}x faster\n",
                              t_chart, worst_with, t_chart_direct, worst_without, t_chart_direct / t_chart);

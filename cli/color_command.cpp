@@ -34,9 +34,11 @@ void run_color(const ColorOptions& o) {
     rules.material = o.material;
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
-    const auto spectrum = read_spectrum_csv(file, rules);
+    const auto [spectrum, standard_errors] = read_spectrum_file(file, rules);
     const TristimulusWeights weights(spectrum.wavelengths_nm(), illuminant, observer, spectrum.outside());
-    const auto summary = summarize_color(weights.integrate(spectrum.values()), weights, illuminant, observer, o.spaces);
+    std::optional<ColorUncertainty> uncertainty;
+    if (!standard_errors.empty()) uncertainty = color_uncertainty(weights, spectrum.values(), standard_errors);
+    const auto summary = summarize_color(weights.integrate(spectrum.values()), weights, illuminant, observer, o.spaces, uncertainty);
 
     const auto samples = spectrum.wavelengths_nm().size();
     const auto lo = spectrum.domain_min_nm();
@@ -71,7 +73,7 @@ void add_color_command(CLI::App& app) {
     cmd->add_flag("--transmittance", options->transmittance, "The file holds a transmittance (only changes messages)");
     cmd->add_option("--column", options->column,
                     "Value column by header name, e.g. R or T of a 'skinspec spectrum --output F.csv' file (default: the second of "
-                    "two columns, else R)");
+                    "two columns, else R); a column VALUE_stderr next to it gives the colour's standard uncertainty");
     cmd->add_option("--material", options->material, "The rows of this material, in a file with a material column (e.g. spectrum's CSV)");
     cmd->callback([options] { run_color(*options); });
 }

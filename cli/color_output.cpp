@@ -24,16 +24,20 @@ std::string hex(const RGB& encoded) {
 }  // namespace
 
 ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, IlluminantKind illuminant,
-                             ObserverKind observer, const std::vector<std::string>& extra_spaces) {
+                             ObserverKind observer, const std::vector<std::string>& extra_spaces,
+                             const std::optional<ColorUncertainty>& uncertainty) {
     const auto& cm = ColorManagement::builtin();
     ColorSummary s{illuminant, observer, xyz, weights.white(), chromaticity(xyz), xyz_to_lab(xyz, weights.white()),
                    cm.from_xyz(xyz, weights.white(), "sRGB"), true, "", cm.from_xyz(xyz, weights.white(), "Linear Rec.709"),
-                   cm.from_xyz(xyz, weights.white(), "ACEScg"), {}};
+                   cm.from_xyz(xyz, weights.white(), "ACEScg"), {}, {}};
     s.srgb_in_gamut = std::all_of(s.srgb.begin(), s.srgb.end(), [](double c) { return c >= 0.0 && c <= 1.0; });
     s.srgb_hex = hex(s.srgb);
     for (const auto& space : extra_spaces) {
         const auto name = cm.canonical_space(space, "--space");
         s.extra_spaces[name] = cm.from_xyz(xyz, weights.white(), name);
+    }
+    if (uncertainty) {
+        s.uncertainty = ColorSpread{uncertainty->lab, uncertainty->delta_e2000, rgb_uncertainty(xyz, weights.white(), uncertainty->xyz_covariance, "sRGB")};
     }
     return s;
 }
@@ -46,6 +50,13 @@ nlohmann::ordered_json to_json(const ColorSummary& s) {
     j["white_XYZ"] = {s.white.X, s.white.Y, s.white.Z};
     j["xy"] = {s.xy.x, s.xy.y};
     j["Lab"] = {s.lab.L, s.lab.a, s.lab.b};
+    if (s.uncertainty) {
+        const auto& u = *s.uncertainty;
+        j["Lab_uncertainty"] = {u.lab.L, u.lab.a, u.lab.b};
+        j["delta_e2000_uncertainty"] = u.delta_e2000;
+        j["srgb_uncertainty"] = rgb_json(u.srgb);
+        j["uncertainty_meaning"] = "standard uncertainties, R's standard errors (and a solver's stated error, common to every wavelength) propagated linearly through the CIE integrals";
+    }
     j["srgb"] = rgb_json(s.srgb);
     j["srgb_hex"] = s.srgb_hex;
     j["srgb_in_gamut"] = s.srgb_in_gamut;
@@ -68,7 +79,12 @@ std::string to_table(const ColorSummary& s) {
     out += row("XYZ", {s.xyz.X, s.xyz.Y, s.xyz.Z});
     out += fmt::format("{:<16}{:9.6f} {:9.6f}\n", "xy", s.xy.x, s.xy.y);
     out += fmt::format("{:<16}{:9.4f} {:9.4f} {:9.4f}\n", "Lab", s.lab.L, s.lab.a, s.lab.b);
+    if (s.uncertainty) {
+        out += fmt::format("{:<16}{:9.4f} {:9.4f} {:9.4f}   (standard uncertainty; CIEDE2000 {:.4f})\n", "  +-", s.uncertainty->lab.L,
+                           s.uncertainty->lab.a, s.uncertainty->lab.b, s.uncertainty->delta_e2000);
+    }
     out += row("sRGB", s.srgb);
+    if (s.uncertainty) out += row("  +-", s.uncertainty->srgb);
     out += fmt::format("{:<16}{}{}\n", "sRGB hex", s.srgb_hex,
                        s.srgb_in_gamut ? "" : "  (outside the sRGB gamut: channels clipped to [0, 1] for the hex code)");
     out += row("Linear Rec.709", s.linear_rec709);

@@ -2,15 +2,24 @@
 // Colour summaries shared by every command that reports colours: one computation, two renderings
 // (a readable table and JSON).
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "spectral/color_management.hpp"
+#include "spectral/color_uncertainty.hpp"
 #include "spectral/colorimetry.hpp"
 
 namespace skinspec::cli {
+
+// Standard uncertainties of a colour (spectral/color_uncertainty.hpp: linear propagation through the CIE integrals).
+struct ColorSpread {
+    Lab lab;
+    double delta_e2000 = 0.0;  // RMS CIEDE2000 from the true colour
+    RGB srgb{};                // of the encoded sRGB values (its Jacobian by central differences of the OCIO transform)
+};
 
 struct ColorSummary {
     IlluminantKind illuminant;
@@ -25,10 +34,12 @@ struct ColorSummary {
     RGB linear_rec709;
     RGB acescg;
     std::map<std::string, RGB> extra_spaces;  // spaces asked for with --space
+    std::optional<ColorSpread> uncertainty;   // when the spectrum came with standard errors or a stated error
 };
 
 ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, IlluminantKind illuminant,
-                             ObserverKind observer, const std::vector<std::string>& extra_spaces);
+                             ObserverKind observer, const std::vector<std::string>& extra_spaces,
+                             const std::optional<ColorUncertainty>& uncertainty = std::nullopt);
 
 nlohmann::ordered_json to_json(const ColorSummary& summary);
 std::string to_table(const ColorSummary& summary);

@@ -82,14 +82,15 @@ std::string spectral_channel(double nm) {
 std::string spectra_csv(const SwatchChart& chart, const ParameterSweep& u, const ParameterSweep& v, const std::string& material) {
     std::string out = fmt::format("# skinspec {} look-up spectra: material {}, texel (column, row) = ({}, {})\n", version, material, u.field, v.field);
     out += "# units: fractions unitless; R and R_stderr unitless (reflectance in the LUT's geometry); rays per texel\n";
-    out += "column,row," + u.field + "," + v.field + ",delta_e_uncertainty,rays,converged";
+    out += "column,row," + u.field + "," + v.field + ",delta_e_uncertainty,L_uncertainty,a_uncertainty,b_uncertainty,rays,converged";
     for (const double nm : chart.wavelengths.nm()) out += fmt::format(",R_{}nm", format_number(nm));
     for (const double nm : chart.wavelengths.nm()) out += fmt::format(",R_stderr_{}nm", format_number(nm));
     out += '\n';
     for (std::size_t i = 0; i < chart.patches.size(); ++i) {
         const auto& p = chart.patches[i];
-        out += fmt::format("{},{},{},{},{:.4g},{},{}", i % chart.columns, i / chart.columns, format_number(p.parameters[0]),
-                           format_number(p.parameters[1]), p.delta_e_uncertainty, p.rays, p.converged ? 1 : 0);
+        out += fmt::format("{},{},{},{},{:.4g},{:.4g},{:.4g},{:.4g},{},{}", i % chart.columns, i / chart.columns, format_number(p.parameters[0]),
+                           format_number(p.parameters[1]), p.uncertainty.delta_e2000, p.uncertainty.lab.L, p.uncertainty.lab.a, p.uncertainty.lab.b,
+                           p.rays, p.converged ? 1 : 0);
         for (const double r : p.reflectance) out += fmt::format(",{:.9g}", r);
         for (const double s : p.reflectance_stderr) out += fmt::format(",{:.3g}", s);
         out += '\n';
@@ -180,7 +181,7 @@ void run_export_lut(const LutOptions& o) {
     for (const auto& p : chart.patches) {
         albedo.push_back(cm.from_xyz(p.xyz, chart.white, space));
         rays += p.rays;
-        worst = std::max(worst, p.delta_e_uncertainty);
+        worst = std::max(worst, p.uncertainty.delta_e2000);
     }
     ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
                            {"skinspec:content", "diffuse albedo: the colour of R (" + std::string(to_string(request.geometry)) +

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "skinspec/version.hpp"
+#include "transport/diffusion/diffusion_model.hpp"
 #include "transport/result_quantities.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/input_error.hpp"
@@ -105,6 +106,10 @@ Json result_json(const ReportedSpectrum& s, std::optional<std::size_t> same_mate
     Json warnings = Json::array();
     for (const auto& w : r.warnings) warnings.push_back(Json{{"kind", w.kind}, {"subject", w.subject}, {"at", w.at}, {"value", w.value}});
     j["warnings"] = warnings;
+    if (const auto& e = r.stated_error) {
+        j["stated_error"] = Json{{"R", e->R}, {"meaning", e->meaning}};
+        if (e->delta_e2000) j["stated_error"]["delta_e2000"] = *e->delta_e2000;
+    }
     j["provenance"] = provenance_json(r.provenance, same_material_as);
     j["seconds"] = s.seconds;
     if (s.color) j["color"] = to_json(*s.color);
@@ -114,18 +119,19 @@ Json result_json(const ReportedSpectrum& s, std::optional<std::size_t> same_mate
 }  // namespace
 
 std::optional<ColorSummary> reflectance_color(const SpectralResult& result, IlluminantKind illuminant, ObserverKind observer) {
-    if (!result.quantities.reflectance || result.wavelengths.size() < 2) return std::nullopt;
-    std::vector<double> nm, r;
+    if (!result.quantities.reflectance) return std::nullopt;
+    std::vector<double> nm, r, stderrs;
     for (const auto& w : result.wavelengths) {
         nm.push_back(w.wavelength_nm);
         r.push_back(w.reflectance.value);
+        stderrs.push_back(result.has_uncertainty ? w.reflectance.stderr : 0.0);
     }
-    if (nm.front() > 400.0 || nm.back() < 700.0) return std::nullopt;
-    for (std::size_t i = 1; i < nm.size(); ++i) {
-        if (nm[i] - nm[i - 1] > max_color_step_nm) return std::nullopt;
-    }
+    if (!has_color_span(nm)) return std::nullopt;
     const TristimulusWeights weights(nm, illuminant, observer, OutOfRangePolicy::hold);
-    return summarize_color(weights.integrate(r), weights, illuminant, observer, {});
+    const double stated = result.stated_error ? result.stated_error->R : 0.0;
+    std::optional<ColorUncertainty> uncertainty;
+    if (result.has_uncertainty || result.stated_error) uncertainty = color_uncertainty(weights, r, stderrs, stated);
+    return summarize_color(weights.integrate(r), weights, illuminant, observer, {}, uncertainty);
 }
 
 Json to_json(const std::vector<ReportedSpectrum>& spectra) {
@@ -167,8 +173,13 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
         const auto& p = s.result.provenance;
         std::string overrides;
         for (const auto& [key, value] : p.overrides) overrides += " " + key + "=" + value;
-        out += fmt::format("# provenance {}: solver {}, skinspec {}, overrides{}\n", s.result.material, p.solver, p.version,
-                           overrides.empty() ? std::string(" none") : overrides);
+        std::string stated;
+        if (const auto& e = s.result.stated_error) {
+            stated = fmt::format(", stated error of R {:.6g}{} ({})", e->R, e->delta_e2000 ? fmt::format(", CIEDE2000 {:.4g}", *e->delta_e2000) : std::string(),
+                                 e->meaning);
+        }
+        out += fmt::format("# provenance {}: solver {}, skinspec {}, overrides{}{}\n", s.result.material, p.solver, p.version,
+                           overrides.empty() ? std::string(" none") : overrides, stated);
         if (std::any_of(written_materials.begin(), written_materials.end(),
                         [&](const auto& w) { return w.first == s.result.material && (w.second == p.material_toml.get() || *w.second == *p.material_toml); })) {
             continue;
@@ -263,12 +274,18 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
                                s.result.bands.empty() ? "wavelengths" : "bands", s.result.model, s.seconds,
                                s.result.partial ? "; PARTIAL (interrupted)" : "");
         }
+        if (const auto& e = s.result.stated_error) {
+            out += fmt::format("  stated error of R: {:.4f}{} ({})\n", e->R,
+                               e->delta_e2000 ? fmt::format(", colour CIEDE2000 {:.2f}", *e->delta_e2000) : std::string(), e->meaning);
+        }
         if (s.color) {
+            const auto& u = s.color->uncertainty;
             out += fmt::format("  colour of R under {} ({} observer, held outside {:g}-{:g} nm): XYZ {:.4f} {:.4f} {:.4f}, "
-                               "Lab {:.2f} {:.2f} {:.2f}, sRGB {}{}\n",
+                               "Lab {:.2f} {:.2f} {:.2f}{}, sRGB {}{}\n",
                                short_name(s.color->illuminant), display_name(s.color->observer),
                                s.result.wavelengths.front().wavelength_nm, s.result.wavelengths.back().wavelength_nm,
                                s.color->xyz.X, s.color->xyz.Y, s.color->xyz.Z, s.color->lab.L, s.color->lab.a, s.color->lab.b,
+                               u ? fmt::format(" +- {:.2f} {:.2f} {:.2f} (CIEDE2000 +- {:.2f})", u->lab.L, u->lab.a, u->lab.b, u->delta_e2000) : std::string(),
                                s.color->srgb_hex, s.color->srgb_in_gamut ? "" : " (clipped: outside sRGB)");
         }
     }
@@ -281,7 +298,7 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
     const auto& first = spectra.front().result;
     out += fmt::format("{:<22}", "material");
     for (const auto& [field, value] : first.provenance.varied) out += fmt::format("  {:>30}", field.substr(0, 30));
-    out += fmt::format("  {:>9}  {:<22}  {:>12}  {:>10}\n", "sRGB", "Lab", "worst stderr", "rays");
+    out += fmt::format("  {:>9}  {:<22}  {:>9}  {:>12}  {:>10}\n", "sRGB", "Lab", "dE00 +-", "worst stderr", "rays");
     for (const auto& s : spectra) {
         out += fmt::format("{:<22}", s.result.material.substr(0, 22));
         for (const auto& [field, value] : s.result.provenance.varied) out += fmt::format("  {:>30.6g}", value);
@@ -292,7 +309,8 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
             rays += w.rays;
         }
         const auto lab = s.color ? fmt::format("{:.2f} {:.2f} {:.2f}", s.color->lab.L, s.color->lab.a, s.color->lab.b) : std::string("-");
-        out += fmt::format("  {:>9}  {:<22}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab,
+        const auto spread = s.color && s.color->uncertainty ? fmt::format("{:.2f}", s.color->uncertainty->delta_e2000) : std::string("-");
+        out += fmt::format("  {:>9}  {:<22}  {:>9}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab, spread,
                            s.result.has_uncertainty ? fmt::format("{:.4f}", worst) : std::string("-"), s.result.has_uncertainty ? rays : 0);
     }
     const bool partial = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.partial; });
@@ -326,8 +344,29 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
                     "Wavelength (nm)", any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
 }
 
-void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings) {
-    for (const auto& line : summarise_warnings(warnings)) std::cerr << "skinspec: warning: " << subject << ": " << line << '\n';
+void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings, const std::vector<const SpectralResult*>& results) {
+    // A stated model error says with a number what diffusion's trust findings only hint at: when every result
+    // states one, it replaces them on the terminal (they stay in the JSON), and it is printed once when it matters.
+    const bool all_stated = !results.empty() && std::all_of(results.begin(), results.end(), [](const auto* r) { return r->stated_error.has_value(); });
+    const SpectralResult* worst = nullptr;
+    for (const auto* r : results) {
+        if (!r->stated_error) continue;
+        const auto size = [](const SpectralResult& x) { return x.stated_error->delta_e2000.value_or(0.0) * 1e3 + x.stated_error->R; };
+        if (!worst || size(*r) > size(*worst)) worst = r;
+    }
+    if (worst && (worst->stated_error->delta_e2000.value_or(0.0) > stated_color_error_worth_a_warning ||
+                  (!worst->stated_error->delta_e2000 && worst->stated_error->R > stated_R_error_worth_a_warning))) {
+        const auto& e = *worst->stated_error;
+        std::cerr << fmt::format("skinspec: warning: {}: {} model error{}: R off by up to {:.3f}{} ({}){}\n", subject, worst->model,
+                                 results.size() > 1 ? " (the largest of the results)" : "", e.R,
+                                 e.delta_e2000 ? fmt::format(", colour by CIEDE2000 {:.1f}", *e.delta_e2000) : std::string(), e.meaning,
+                                 all_stated ? "; the trust findings per layer are in the JSON" : "");
+    }
+    std::vector<ResultWarning> shown;
+    for (const auto& w : warnings) {
+        if (!(all_stated && w.kind.starts_with(diffusion_warning_prefix))) shown.push_back(w);
+    }
+    for (const auto& line : summarise_warnings(shown)) std::cerr << "skinspec: warning: " << subject << ": " << line << '\n';
 }
 
 }  // namespace skinspec::cli

@@ -19,10 +19,8 @@ struct ReportedSpectrum {
     double seconds = 0.0;
 };
 
-// Colour of the total reflectance, held outside the computed wavelengths; nullopt when the computed
-// wavelengths do not span 400-700 nm or are further apart than max_color_step_nm (linear interpolation
-// between them would misstate the colour).
-inline constexpr double max_color_step_nm = 20.0;
+// Colour of the total reflectance, held outside the computed wavelengths, with its uncertainty from R's standard
+// errors and the solver's stated error; nullopt unless the wavelengths have a colour (has_color_span).
 std::optional<ColorSummary> reflectance_color(const SpectralResult& result, IlluminantKind illuminant, ObserverKind observer);
 
 nlohmann::ordered_json to_json(const std::vector<ReportedSpectrum>& spectra);
@@ -35,7 +33,11 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra);
 // material's simulated sRGB colour, as PNG or SVG.
 void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra);
 
-// One line on standard error per kind of warning (the full list goes to the JSON output).
-void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings);
+// One line on standard error per kind of warning (the full list goes to the JSON output), and the results' stated
+// model error when it is above these (then diffusion's trust findings are left to the JSON).
+inline constexpr double stated_color_error_worth_a_warning = 1.0;  // CIEDE2000
+inline constexpr double stated_R_error_worth_a_warning = 0.01;     // without a colour
+void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings,
+                           const std::vector<const SpectralResult*>& results = {});
 
 }  // namespace skinspec::cli

@@ -213,7 +213,7 @@ void run_swatch(const SwatchOptions& o) {
     const TristimulusWeights weights(chart.wavelengths.nm(), request.illuminant, request.observer, OutOfRangePolicy::hold);
     for (const auto& p : chart.patches) {
         working.push_back(cm.from_xyz(p.xyz, chart.white, space));
-        colours.push_back(summarize_color(p.xyz, weights, request.illuminant, request.observer, {}));
+        colours.push_back(summarize_color(p.xyz, weights, request.illuminant, request.observer, {}, p.uncertainty));
         labels.push_back(colours.back().srgb_hex);  // the parameters are on the chart's axes
     }
 
@@ -226,6 +226,15 @@ void run_swatch(const SwatchOptions& o) {
     for (const auto& s : request.sweeps) parameters += fmt::format("{}{}={:g}:{:g}:{}", parameters.empty() ? "" : "; ", s.field, s.first, s.last, s.steps);
     for (const auto& ov : request.overrides) parameters += "; set " + ov.key + "=" + ov.value;
     metadata.push_back({"skinspec:parameters", parameters});
+    // Each patch's standard uncertainty (from R's standard errors and the solver's stated error), in patch order.
+    std::string lab_uncertainty, worst_text;
+    double worst = 0.0;
+    for (const auto& p : chart.patches) {
+        lab_uncertainty += fmt::format("{}{:.3g} {:.3g} {:.3g}", lab_uncertainty.empty() ? "" : "; ", p.uncertainty.lab.L, p.uncertainty.lab.a, p.uncertainty.lab.b);
+        worst = std::max(worst, p.uncertainty.delta_e2000);
+    }
+    metadata.push_back({"skinspec:lab_uncertainty", lab_uncertainty});
+    metadata.push_back({"skinspec:worst_delta_e2000_uncertainty", fmt::format("{:.4g}", worst)});
     for (const auto& [k, v] : chart.settings) {
         metadata.push_back({"skinspec:" + k, std::visit([](const auto& x) { return fmt::format("{}", x); }, v)});
     }
@@ -248,18 +257,14 @@ void run_swatch(const SwatchOptions& o) {
     }
 
     std::uint64_t rays = 0;
-    double worst = 0.0;
-    for (const auto& p : chart.patches) {
-        rays += p.rays;
-        worst = std::max(worst, p.delta_e_uncertainty);
-    }
+    for (const auto& p : chart.patches) rays += p.rays;
     if (o.json) {
         Json patches = Json::array();
         for (std::size_t i = 0; i < chart.patches.size(); ++i) {
             const auto& p = chart.patches[i];
             auto c = to_json(colours[i]);
             c["parameters"] = p.parameters;
-            c["delta_e_uncertainty"] = p.delta_e_uncertainty;
+            c["delta_e_uncertainty"] = p.uncertainty.delta_e2000;
             c["rays"] = p.rays;
             c["converged"] = p.converged;
             c[space] = working[i];
@@ -274,13 +279,15 @@ void run_swatch(const SwatchOptions& o) {
                          .dump(2)
                   << '\n';
     } else {
-        std::cout << fmt::format("{:<28}{:>9}  {:<26}{:>8}{:>12}\n", "parameters", "sRGB", "Lab", "dE unc", "rays");
+        std::cout << fmt::format("{:<28}{:>9}  {:<26}{:<22}{:>8}{:>12}\n", "parameters", "sRGB", "Lab", "Lab +-", "dE unc", "rays");
         for (std::size_t i = 0; i < chart.patches.size(); ++i) {
             const auto& p = chart.patches[i];
             std::string params;
             for (const double v : p.parameters) params += fmt::format("{:<10.4g}", v);
-            std::cout << fmt::format("{:<28}{:>9}  {:<26}{:>8.3f}{:>12}\n", params, colours[i].srgb_hex,
-                                     fmt::format("{:.2f} {:.2f} {:.2f}", p.lab.L, p.lab.a, p.lab.b), p.delta_e_uncertainty, p.rays);
+            std::cout << fmt::format("{:<28}{:>9}  {:<26}{:<22}{:>8.3f}{:>12}\n", params, colours[i].srgb_hex,
+                                     fmt::format("{:.2f} {:.2f} {:.2f}", p.lab.L, p.lab.a, p.lab.b),
+                                     fmt::format("{:.2f} {:.2f} {:.2f}", p.uncertainty.lab.L, p.uncertainty.lab.a, p.uncertainty.lab.b),
+                                     p.uncertainty.delta_e2000, p.rays);
         }
         std::cout << fmt::format("{} patches, {} rays in {:.2f} s; colour uncertainty (CIEDE2000, RMS) at most {:.3f} "
                                  "(target {}); wavelengths {}{}\n",

@@ -12,7 +12,7 @@
 
 namespace skinspec {
 
-TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const SpectrumFileRules& rules) {
+SpectrumFile read_spectrum_file(const std::filesystem::path& file, const SpectrumFileRules& rules) {
     const std::string name = file.string();
     if (!std::filesystem::exists(file)) throw InputError(name + ": file not found");
     if (std::filesystem::is_directory(file)) throw InputError(name + ": is a folder, not a spectrum file");
@@ -22,7 +22,7 @@ TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const Spe
     const std::string value_range = rules.allow_over_one ? "[0, inf)" : "[0, 1] (use --allow-over-one for values above 1)";
     std::vector<std::string> header;
     std::size_t wavelength_column = 0, value_column = 1;
-    std::optional<std::size_t> material_column;
+    std::optional<std::size_t> material_column, stderr_column;
     std::string value_field = rules.quantity;
     std::vector<std::string> materials_seen;
     // Chooses the columns once the header (or the first data row, without one) is known.
@@ -56,9 +56,10 @@ TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const Spe
             throw InputError(where + std::to_string(header.size()) + " columns; choose the value column with --column (columns: " + names + ")");
         }
         value_field = header[value_column];
+        stderr_column = find(value_field + "_stderr");
     };
     std::vector<double> wavelengths;
-    std::vector<double> values;
+    std::vector<double> values, standard_errors;
     std::string line;
     std::size_t line_number = 0;
     bool seen_first_row = false;
@@ -108,6 +109,14 @@ TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const Spe
             throw InputError(where + "field 'wavelength_nm' = " + wavelength_text + " does not follow " +
                              format_number(wavelengths.back()) + " nm (allowed: strictly increasing wavelengths)");
         }
+        if (stderr_column) {
+            const std::string text(fields[*stderr_column]);
+            const auto error = parse_double(text);
+            if (!error || !std::isfinite(*error) || *error < 0.0) {
+                throw InputError(where + "field '" + value_field + "_stderr' = '" + text + "' is not allowed (allowed: a number in [0, inf))");
+            }
+            standard_errors.push_back(*error);
+        }
         wavelengths.push_back(*wavelength);
         values.push_back(*value);
     }
@@ -124,7 +133,11 @@ TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const Spe
                          format_number(wavelengths.back()) + " nm (allowed: must span at least " +
                          format_number(rules.must_cover_from_nm) + "-" + format_number(rules.must_cover_to_nm) + " nm)");
     }
-    return TabulatedSpectrum(name, std::move(wavelengths), std::move(values), rules.outside);
+    return {TabulatedSpectrum(name, std::move(wavelengths), std::move(values), rules.outside), std::move(standard_errors)};
+}
+
+TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const SpectrumFileRules& rules) {
+    return read_spectrum_file(file, rules).spectrum;
 }
 
 }  // namespace skinspec

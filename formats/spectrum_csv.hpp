@@ -2,9 +2,11 @@
 // Reader for spectrum files: CSV "wavelength_nm,value" (comma- or blank-separated), an optional header line,
 // '#' comments and blank lines allowed; also files with more columns under a header, such as `skinspec
 // spectrum --output F.csv` writes (material,wavelength_nm,R,R_stderr,...): the value column is chosen by name
-// (default R when there is one) and, when a `material` column holds several materials, the rows of one.
+// (default R when there is one) and, when a `material` column holds several materials, the rows of one; a column
+// named VALUE_stderr next to it is read as the value's standard errors.
 // Every problem is an InputError of one line naming file, line, field, value and the allowed range.
 #include <filesystem>
+#include <vector>
 
 #include "spectral/tabulated_spectrum.hpp"
 
@@ -20,6 +22,13 @@ struct SpectrumFileRules {
     std::string material;  // rows whose `material` column is this ("" = the only material in the file)
 };
 
+struct SpectrumFile {
+    TabulatedSpectrum spectrum;
+    std::vector<double> standard_errors;  // the VALUE_stderr column (e.g. R_stderr), one per sample; empty without one
+};
+
+SpectrumFile read_spectrum_file(const std::filesystem::path& file, const SpectrumFileRules& rules = {});
+// The spectrum alone.
 TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const SpectrumFileRules& rules = {});
 
 }  // namespace skinspec

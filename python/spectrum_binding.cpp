@@ -31,12 +31,19 @@ py::list warnings_list(const std::vector<ResultWarning>& warnings) {
     return out;
 }
 
+py::object stated_error_object(const std::optional<StatedError>& e) {
+    if (!e) return py::none();
+    return py::dict(py::arg("R") = e->R, py::arg("meaning") = e->meaning,
+                    py::arg("delta_e2000") = e->delta_e2000 ? py::object(py::float_(*e->delta_e2000)) : py::none());
+}
+
 py::dict provenance_dict(const SpectralResult& r) {
     py::dict varied;
     for (const auto& [field, value] : r.provenance.varied) varied[py::str(field)] = value;
     return py::dict(py::arg("solver") = r.provenance.solver, py::arg("material") = r.material, py::arg("model") = r.model,
                     py::arg("material_toml") = *r.provenance.material_toml, py::arg("overrides") = r.provenance.overrides,
                     py::arg("varied") = varied, py::arg("settings") = settings_dict(r.settings), py::arg("warnings") = warnings_list(r.warnings),
+                    py::arg("stated_error") = stated_error_object(r.stated_error),
                     py::arg("version") = r.provenance.version);
 }
 

@@ -15,7 +15,7 @@ template <class Archive, class Result>
 void transfer(Archive& a, Result& r) {
     a(r.model), a(r.material), a(r.settings), a(r.layer_names), a(r.angular_bin_edges_deg);
     a(r.quantities.reflectance), a(r.quantities.transmittance), a(r.quantities.absorptance), a(r.quantities.angular);
-    a(r.wavelengths), a(r.partial), a(r.has_uncertainty), a(r.bands), a(r.warnings);
+    a(r.wavelengths), a(r.partial), a(r.has_uncertainty), a(r.bands), a(r.warnings), a(r.stated_error);
     a(r.provenance.solver), a(r.provenance.material_toml), a(r.provenance.overrides), a(r.provenance.varied), a(r.provenance.version);
 }
 template <class Archive, class Wavelength>
@@ -58,6 +58,13 @@ public:
         return *this;
     }
     // A material text; unset (provenance not yet recorded) travels as empty, which no material writes.
+    Writer& operator()(const StatedError& e) { return (*this)(e.R)(e.meaning)(e.delta_e2000); }
+    template <class T>
+    Writer& operator()(const std::optional<T>& v) {
+        (*this)(static_cast<std::uint8_t>(v.has_value()));
+        if (v) (*this)(*v);
+        return *this;
+    }
     Writer& operator()(const std::shared_ptr<const std::string>& s) { return (*this)(s ? *s : std::string()); }
     template <class A, class B>
     Writer& operator()(const std::pair<A, B>& p) {
@@ -126,6 +133,16 @@ public:
             case 3: read(std::string()); break;
             default: throw InputError("result bytes: unknown setting type " + std::to_string(kind));
         }
+        return *this;
+    }
+    Reader& operator()(StatedError& e) { return (*this)(e.R)(e.meaning)(e.delta_e2000); }
+    template <class T>
+    Reader& operator()(std::optional<T>& v) {
+        std::uint8_t has = 0;
+        (*this)(has);
+        if (has > 1) throw InputError("result bytes: an optional flag of " + std::to_string(has));
+        v.reset();
+        if (has) (*this)(v.emplace());
         return *this;
     }
     Reader& operator()(std::shared_ptr<const std::string>& s) {

@@ -1,15 +1,31 @@
 #include "spectral/color_uncertainty.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "spectral/ciede2000.hpp"
+#include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec {
 namespace {
 
-using Matrix3 = std::array<std::array<double, 3>, 3>;
+// A B and A^T (3x3).
+Matrix3 product(const Matrix3& a, const Matrix3& b) {
+    Matrix3 out{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) out[r][c] += a[r][k] * b[k][c];
+    return out;
+}
+
+Matrix3 transposed(const Matrix3& a) {
+    Matrix3 out{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out[r][c] = a[c][r];
+    return out;
+}
 
 // d Lab / d XYZ (CIE 015:2018 Eq. 8.1-8.3): f'(t) = t^(-2/3) / 3 above (6/29)^3, 1 / (3 (6/29)^2) below.
 Matrix3 lab_jacobian(const XYZ& xyz, const XYZ& white) {
@@ -51,14 +67,7 @@ std::vector<double> ciede2000_sensitivities(const TristimulusWeights& weights, s
     const Matrix3 j = lab_jacobian(xyz, weights.white());
     const Matrix3 g = ciede2000_metric(xyz_to_lab(xyz, weights.white()));
     // M = J^T G J (3x3 in XYZ), then a_i = w_i^T M w_i.
-    Matrix3 gj{};
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            for (int k = 0; k < 3; ++k) gj[r][c] += g[r][k] * j[k][c];
-    Matrix3 m{};
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            for (int k = 0; k < 3; ++k) m[r][c] += j[k][r] * gj[k][c];
+    const Matrix3 m = product(transposed(j), product(g, j));
     std::vector<double> a(weights.size());
     for (std::size_t i = 0; i < a.size(); ++i) {
         const auto w = weights.weights(i);
@@ -70,16 +79,62 @@ std::vector<double> ciede2000_sensitivities(const TristimulusWeights& weights, s
     return a;
 }
 
-double ciede2000_uncertainty(const TristimulusWeights& weights, std::span<const double> samples,
-                             std::span<const double> standard_errors) {
+ColorUncertainty color_uncertainty(const TristimulusWeights& weights, std::span<const double> samples,
+                                   std::span<const double> standard_errors, double stated_error) {
     if (standard_errors.size() != samples.size()) {
         throw InputError("colour uncertainty: " + std::to_string(standard_errors.size()) + " standard errors for " +
                          std::to_string(samples.size()) + " samples");
     }
-    const auto a = ciede2000_sensitivities(weights, samples);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) sum += a[i] * standard_errors[i] * standard_errors[i];
-    return std::sqrt(sum);
+    for (const double s : standard_errors) {
+        if (!std::isfinite(s) || s < 0.0) throw InputError("colour uncertainty: a standard error of " + std::to_string(s) + " is outside [0, inf)");
+    }
+    if (!std::isfinite(stated_error) || stated_error < 0.0) {
+        throw InputError("colour uncertainty: a stated error of " + std::to_string(stated_error) + " is outside [0, inf)");
+    }
+    ColorUncertainty out;
+    std::array<double, 3> common{};
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const auto w = weights.weights(i);
+        const double v = standard_errors[i] * standard_errors[i];
+        for (int r = 0; r < 3; ++r) {
+            common[r] += w[r];
+            for (int c = 0; c < 3; ++c) out.xyz_covariance[r][c] += v * w[r] * w[c];
+        }
+    }
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out.xyz_covariance[r][c] += stated_error * stated_error * common[r] * common[c];
+    const XYZ xyz = weights.integrate(samples);
+    const Matrix3 j = lab_jacobian(xyz, weights.white());
+    const Matrix3 lab_covariance = product(j, product(out.xyz_covariance, transposed(j)));
+    out.lab = {std::sqrt(lab_covariance[0][0]), std::sqrt(lab_covariance[1][1]), std::sqrt(lab_covariance[2][2])};
+    // E[d^T G d] = trace(G Cov(Lab)).
+    const Matrix3 g = ciede2000_metric(xyz_to_lab(xyz, weights.white()));
+    double expected = 0.0;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) expected += g[r][c] * lab_covariance[c][r];
+    out.delta_e2000 = std::sqrt(std::max(expected, 0.0));
+    return out;
+}
+
+std::array<double, 3> rgb_uncertainty(const XYZ& xyz, const XYZ& white, const Matrix3& xyz_covariance, std::string_view space) {
+    const auto& cm = ColorManagement::builtin();
+    constexpr double h = 1e-3;
+    Matrix3 j{};
+    for (int k = 0; k < 3; ++k) {
+        XYZ up = xyz, down = xyz;
+        (k == 0 ? up.X : k == 1 ? up.Y : up.Z) += h;
+        (k == 0 ? down.X : k == 1 ? down.Y : down.Z) -= h;
+        const auto a = cm.from_xyz(up, white, space);
+        const auto b = cm.from_xyz(down, white, space);
+        for (int c = 0; c < 3; ++c) j[c][k] = (a[c] - b[c]) / (2.0 * h);
+    }
+    const Matrix3 covariance = product(j, product(xyz_covariance, transposed(j)));
+    return {std::sqrt(std::max(covariance[0][0], 0.0)), std::sqrt(std::max(covariance[1][1], 0.0)), std::sqrt(std::max(covariance[2][2], 0.0))};
+}
+
+double ciede2000_uncertainty(const TristimulusWeights& weights, std::span<const double> samples,
+                             std::span<const double> standard_errors) {
+    return color_uncertainty(weights, samples, standard_errors).delta_e2000;
 }
 
 }  // namespace skinspec

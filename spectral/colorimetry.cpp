@@ -77,6 +77,14 @@ TristimulusWeights::TristimulusWeights(std::span<const double> wavelengths_nm, I
     white_ = {white[0] / y_white, 1.0, white[2] / y_white};
 }
 
+bool has_color_span(std::span<const double> nm) {
+    if (nm.size() < 2 || nm.front() > 400.0 || nm.back() < 700.0) return false;
+    for (std::size_t i = 1; i < nm.size(); ++i) {
+        if (nm[i] - nm[i - 1] > max_color_step_nm) return false;
+    }
+    return true;
+}
+
 XYZ TristimulusWeights::integrate(std::span<const double> samples) const {
     if (samples.size() != weights_.size()) {
         throw InputError("tristimulus weights: " + std::to_string(samples.size()) + " samples for " +

@@ -33,6 +33,11 @@ Chromaticity chromaticity(const XYZ& xyz);
 // CIE 015:2018 Eq. 8.1-8.3 (CIELAB), relative to the reference white `white` (Y_n = 1 scale).
 Lab xyz_to_lab(const XYZ& xyz, const XYZ& white);
 
+// A reflectance sampled at `nm` (increasing) has a trustworthy colour when the samples span 400-700 nm and are at
+// most max_color_step_nm apart (linear interpolation across a wider gap would misstate it).
+inline constexpr double max_color_step_nm = 20.0;
+bool has_color_span(std::span<const double> nm);
+
 // Linear map from samples of a spectrum to XYZ. The spectrum is taken as piecewise-linear between its
 // samples and treated outside them by `outside`, then summed at 1 nm over 360-830 nm with the illuminant
 // and observer (CIE 015:2018 Eq. 7.1-7.2, k chosen so the perfect reflector has Y = 1). Because the

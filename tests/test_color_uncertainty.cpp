@@ -36,6 +36,45 @@ TEST_CASE("propagated CIEDE2000 uncertainty matches a Monte Carlo of noisy spect
     }
 }
 
+TEST_CASE("propagated L*, a*, b* uncertainties match the spread of noisy spectra, with and without a common error", "[color_uncertainty]") {
+    // Brute force: many spectra with independent Gaussian noise of the standard errors (and, second, an error
+    // common to every sample, as a deterministic solver's stated error is taken); the standard deviations of
+    // their L*, a*, b* and the RMS CIEDE2000 from the truth must match the linear propagation within 10 %.
+    std::vector<double> nm, r, se;
+    for (double w = 400.0; w <= 700.0; w += 10.0) {
+        nm.push_back(w);
+        r.push_back(0.08 + 0.3 / (1.0 + std::exp(-(w - 580.0) / 25.0)));
+        se.push_back(0.003 + 0.002 * std::cos(w / 40.0));
+    }
+    const TristimulusWeights weights(nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
+    const Lab truth = xyz_to_lab(weights.integrate(r), weights.white());
+    for (const double stated : {0.0, 0.004}) {
+        INFO("stated error " << stated);
+        const auto u = color_uncertainty(weights, r, se, stated);
+        std::mt19937_64 engine(7);
+        std::normal_distribution<double> normal;
+        const int n = 20000;
+        std::vector<double> noisy(r.size());
+        double sl = 0, sa = 0, sb = 0, sl2 = 0, sa2 = 0, sb2 = 0, se2 = 0;
+        for (int k = 0; k < n; ++k) {
+            const double common = stated * normal(engine);
+            for (std::size_t i = 0; i < r.size(); ++i) noisy[i] = r[i] + se[i] * normal(engine) + common;
+            const Lab lab = xyz_to_lab(weights.integrate(noisy), weights.white());
+            sl += lab.L, sa += lab.a, sb += lab.b;
+            sl2 += lab.L * lab.L, sa2 += lab.a * lab.a, sb2 += lab.b * lab.b;
+            const double e = ciede2000(truth, lab);
+            se2 += e * e;
+        }
+        const auto sd = [&](double s, double s2) { return std::sqrt(s2 / n - (s / n) * (s / n)); };
+        CHECK(u.lab.L == Approx(sd(sl, sl2)).epsilon(0.1));
+        CHECK(u.lab.a == Approx(sd(sa, sa2)).epsilon(0.1));
+        CHECK(u.lab.b == Approx(sd(sb, sb2)).epsilon(0.1));
+        CHECK(u.delta_e2000 == Approx(std::sqrt(se2 / n)).epsilon(0.1));
+    }
+    CHECK_THROWS_WITH(color_uncertainty(weights, r, se, -1.0), Catch::Contains("stated error"));
+    CHECK_THROWS_WITH(color_uncertainty(weights, r, std::vector<double>(r.size(), std::nan(""))), Catch::Contains("standard error"));
+}
+
 TEST_CASE("zero standard errors give zero colour uncertainty", "[color_uncertainty]") {
     const std::vector<double> nm{400, 550, 700}, r{0.2, 0.3, 0.5}, se{0, 0, 0};
     const TristimulusWeights weights(nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);

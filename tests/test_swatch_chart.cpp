@@ -52,7 +52,7 @@ TEST_CASE("a perfect white reflector is exactly the illuminant's white", "[swatc
     CHECK(p.xyz.X == Approx(chart.white.X).epsilon(1e-12));
     CHECK(p.xyz.Y == Approx(1.0).epsilon(1e-12));
     CHECK(p.lab.L == Approx(100.0).epsilon(1e-10));
-    CHECK(p.delta_e_uncertainty == 0.0);
+    CHECK(p.uncertainty.delta_e2000 == 0.0);
 }
 
 TEST_CASE("patches meet the colour tolerance and order by pigmentation", "[swatch_chart]") {
@@ -64,7 +64,7 @@ TEST_CASE("patches meet the colour tolerance and order by pigmentation", "[swatc
     CHECK(chart.columns == 3);
     CHECK(chart.rows == 1);
     for (const auto& p : chart.patches) {
-        CHECK(p.delta_e_uncertainty <= 1.0 * 1.15);  // the allocation aims at the tolerance from estimated variances
+        CHECK(p.uncertainty.delta_e2000 <= 1.0 * 1.15);  // the allocation aims at the tolerance from estimated variances
         CHECK(p.converged);
     }
     CHECK(chart.patches[0].lab.L > chart.patches[1].lab.L + 3.0);
@@ -123,6 +123,6 @@ TEST_CASE("a look-up texel has the colour of its material's own spectrum, within
         sd.push_back(w.reflectance.stderr);
     }
     const auto lab = xyz_to_lab(weights.integrate(rd), weights.white());
-    const double combined = std::hypot(texel.delta_e_uncertainty, ciede2000_uncertainty(weights, rd, sd));
+    const double combined = std::hypot(texel.uncertainty.delta_e2000, ciede2000_uncertainty(weights, rd, sd));
     CHECK(ciede2000(texel.lab, lab) < 3.0 * combined);
 }

@@ -125,6 +125,15 @@ struct Provenance {
     std::string version;
 };
 
+// A deterministic solver's statement of its own error on a request: `R`, an absolute error of R taken as common to
+// every wavelength (colour uncertainties propagate it fully correlated), what it means, and, when the solver
+// compared its colour with a reference, that colour difference.
+struct StatedError {
+    double R = 0.0;
+    std::string meaning;
+    std::optional<double> delta_e2000;  // CIEDE2000 (D65, 2 degrees) from the reference named in `meaning`
+};
+
 struct SpectralResult {
     std::string model;
     std::string material;
@@ -137,6 +146,7 @@ struct SpectralResult {
     bool has_uncertainty = true;                // false for deterministic solvers (diffusion): no stderr, no rays
     std::vector<std::string> bands;             // band names (e.g. R, G, B) when rows are bands, not wavelengths
     std::vector<ResultWarning> warnings;        // inputs outside the solver's trusted range
+    std::optional<StatedError> stated_error;    // deterministic solvers (Monte Carlo results carry standard errors)
     Provenance provenance;
 };
 

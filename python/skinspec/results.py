@@ -72,6 +72,10 @@ class Color:
     rgb: dict  # colour space -> RGB array
     illuminant: str
     observer: str
+    # Standard uncertainties (given standard_errors or stated_error; else None), linear propagation.
+    Lab_uncertainty: Optional[np.ndarray] = None
+    delta_e2000_uncertainty: Optional[np.ndarray] = None
+    rgb_uncertainty: Optional[dict] = None
 
     def __repr__(self) -> str:
         return f"<skinspec.Color {_shape(self.XYZ)} under {self.illuminant}, spaces {', '.join(self.rgb)}>"

@@ -331,7 +331,7 @@ void skin_modes(Benchmark& bench) {
                 row.min_relative_diffuse_error = std::min(row.min_relative_diffuse_error, relative);
                 row.max_relative_diffuse_error = std::max(row.max_relative_diffuse_error, relative);
             }
-            if (solver == "adding-doubling") row.uncertainty = std::get<double>(result.settings.at("accuracy"));
+            if (solver == "adding-doubling") row.uncertainty = result.stated_error->R;
             const auto a = lab_of(result, weights), b = lab_of(exact, weights);
             row.delta_e_ab = std::hypot(a.L - b.L, a.a - b.a, a.b - b.b);
             bench.report().skin_modes.push_back(row);
@@ -356,7 +356,7 @@ void skin_modes(Benchmark& bench) {
         fine.switches.quadrature_channels = fine_channels;
         const auto finer = solve_spectrum(ad, material, fine);
         bench.report().walk_agreement.push_back({name, 550.0, photons, walk.wavelengths.front().reflectance, exact.wavelengths.front().reflectance.value,
-                                                 std::get<double>(exact.settings.at("accuracy")), fine_channels,
+                                                 exact.stated_error->R, fine_channels,
                                                  finer.wavelengths.front().reflectance.value, seconds});
     }
 }
@@ -372,7 +372,7 @@ void colour_timings(Benchmark& bench) {
         const double seconds = seconds_since(start);
         bench.check_cancel();
         const auto& patch = chart.patches.front();
-        bench.report().colours.push_back({material, seconds, patch.rays, patch.delta_e_uncertainty, patch.converged});
+        bench.report().colours.push_back({material, seconds, patch.rays, patch.uncertainty.delta_e2000, patch.converged});
     }
 }
 

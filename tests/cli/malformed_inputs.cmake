@@ -15,6 +15,7 @@ skinspec_malformed_input("one point" 2 "1 data point\\(s\\) \\(allowed: at least
 skinspec_malformed_input("empty" 2 "0 data point\\(s\\)" - color empty.csv)
 skinspec_malformed_input("short coverage" 2 "cover 420-650 nm \\(allowed: must span at least 400-700 nm\\)" - color short_coverage.csv)
 skinspec_malformed_input("nan" 2 "nan_value.csv:3: field 'reflectance' = nan is not allowed" - color nan_value.csv)
+skinspec_malformed_input("nan standard error" 2 "nan_stderr.csv:2: field 'R_stderr' = 'nan' is not allowed" - color nan_stderr.csv)
 skinspec_malformed_input("inf" 2 "inf_value.csv:3: field 'reflectance' = inf is not allowed" - color inf_value.csv)
 skinspec_malformed_input("extra field" 2 "extra_field.csv:2: 3 field\\(s\\) \\(allowed: 2" - color extra_field.csv)
 skinspec_malformed_input("bad illuminant" 2 "--illuminant: 'D99' is not a known illuminant \\(allowed: D65, D50, A, E\\)" - color grey18.csv --illuminant D99)

@@ -45,6 +45,27 @@ def test_equals_the_color_command(cli):
     np.testing.assert_allclose(ours.rgb["sRGB"], theirs["srgb"], atol=1e-6)
 
 
+def test_uncertainties_match_the_spread_of_noisy_spectra_and_the_color_command(cli):
+    # Brute force: the standard deviation of Lab and sRGB over many noisy copies of the spectrum (independent
+    # errors plus one common to all wavelengths, as a stated solver error) within 10 % of the linear propagation.
+    nm = np.arange(400, 701, 10)
+    r = 0.1 + 0.3 / (1 + np.exp(-(nm - 580) / 25.0))
+    se = np.full(nm.shape, 0.004)
+    c = skinspec.color(nm, r, standard_errors=se, stated_error=0.003)
+    rng = np.random.default_rng(3)
+    noisy = r + se * rng.standard_normal((6000, nm.size)) + 0.003 * rng.standard_normal((6000, 1))
+    spread = skinspec.color(nm, noisy)
+    np.testing.assert_allclose(c.Lab_uncertainty, spread.Lab.std(axis=0), rtol=0.1)
+    np.testing.assert_allclose(c.rgb_uncertainty["sRGB"], spread.rgb["sRGB"].std(axis=0), rtol=0.1)
+    assert skinspec.color(nm, r).Lab_uncertainty is None
+    # The command reads the same standard errors from a R_stderr column.
+    theirs = cli("color", os.path.join(os.path.dirname(__file__), "..", "inputs", "spectrum_with_stderr.csv"))
+    rows = np.loadtxt(os.path.join(os.path.dirname(__file__), "..", "inputs", "spectrum_with_stderr.csv"), delimiter=",", comments="#", skiprows=2)
+    ours = skinspec.color(rows[:, 0], rows[:, 1], standard_errors=rows[:, 2])
+    np.testing.assert_allclose(ours.Lab_uncertainty, theirs["Lab_uncertainty"], rtol=1e-9)
+    assert ours.delta_e2000_uncertainty == pytest.approx(theirs["delta_e2000_uncertainty"], rel=1e-9)
+
+
 def test_ciede2000_reproduces_sharma_wu_dalal_2005():
     rows = [line.split() for line in open(os.path.join(REFERENCE_DIR, "ciede2000_sharma2005.txt"))
             if line.strip() and not line.startswith("#") and not line.startswith("pair")]

@@ -43,9 +43,10 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
     out.settings = {{"incidence_deg", request.incidence_deg},
                     {"geometry", std::string(to_string(request.geometry))},
                     {"bottom", std::string(to_string(stack.bottom))},
-                    {"quadrature_channels", std::uint64_t{options.channels}},
-                    {"accuracy", accuracy},
-                    {"accuracy_meaning", std::string("twice the largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength")}};
+                    {"quadrature_channels", std::uint64_t{options.channels}}};
+    if (options.accuracy_check) {
+        out.stated_error = StatedError{accuracy, "twice the largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength", {}};
+    }
     return out;
 }
 

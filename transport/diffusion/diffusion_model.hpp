@@ -71,7 +71,8 @@ DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_
 DiffusionMaterial diffusion_material(const HomogeneousMaterial& material, std::size_t band, const DiffusionOptions& options,
                                      double incidence_deg = 0.0);
 
-// The finding as a result warning, `at` the wavelength or band ("400 nm", "band R").
+// The finding as a result warning, `at` the wavelength or band ("400 nm", "band R"); its kind starts with this.
+inline constexpr std::string_view diffusion_warning_prefix = "diffusion: ";
 ResultWarning result_warning(const TrustWarning& warning, const std::string& at);
 
 // Spectra in the shared format (no standard errors: has_uncertainty is false). Quantities R and T only
