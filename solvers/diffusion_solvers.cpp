@@ -34,7 +34,9 @@ std::optional<StatedError> model_error(const LayerStack& stack, const SpectralRe
     std::vector<std::size_t> at;
     for (std::size_t i = 0; i < k; ++i) at.push_back(k == 1 ? 0 : (i * (n - 1) + (k - 1) / 2) / (k - 1));
     const AdOptions options{model_error_channels, false};
-    AdPhaseCache phases;
+    // The expanded phase functions depend on neither mu_a nor mu_s: one cache per thread serves every spectrum and
+    // every member of a sweep (it compares entries by content and holds at most 16).
+    thread_local AdCache phases;
     std::vector<double> difference(n, 0.0);
     double largest = 0.0;
     for (const std::size_t i : at) {

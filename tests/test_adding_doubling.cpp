@@ -152,6 +152,24 @@ TEST_CASE("adding-doubling stress: the measured forward peaks as tabulated phase
     }
 }
 
+TEST_CASE("a cache shared across calls changes no bit (a sweep's unchanged layers are reused)", "[adding_doubling]") {
+    // Two layers; the top one's mu_a varies as a melanin sweep's epidermis would. Through one cache (the bottom layer
+    // doubled once, then reused) and each call with its own, the results are the same bits.
+    AdCache shared;
+    AdOptions o;
+    o.accuracy_check = false;
+    for (const double mu_a : {2.0, 5.0, 2.0, 9.0}) {
+        RteStack s = one_layer(1.4, mu_a, 300.0, 0.8, 0.01);
+        s.layers.push_back({1.4, 1.5, 200.0, 0.2, PhaseFunction::henyey_greenstein(0.85)});
+        const auto reused = solve_adding_doubling(s, {false, 10.0}, o, &shared);
+        const auto fresh = solve_adding_doubling(s, {false, 10.0}, o);
+        CHECK(reused.diffuse_reflectance == fresh.diffuse_reflectance);
+        CHECK(reused.transmittance == fresh.transmittance);
+        CHECK(reused.absorbed_layers == fresh.absorbed_layers);
+    }
+    CHECK(shared.slabs.size() == 4);  // top at three absorptions, bottom once
+}
+
 TEST_CASE("adding-doubling refuses what it cannot solve", "[adding_doubling]") {
     CHECK_THROWS_WITH(solve_adding_doubling(one_layer(1.4, 1.0, 10.0, 0.9, 0.1), {false, 90.0}), "incidence angle 90 deg is outside [0, 90)");
     AdOptions few;

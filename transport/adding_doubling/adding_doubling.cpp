@@ -143,7 +143,7 @@ Element lambertian_reflector(const Channels& c, double n) {
 
 // The layer's scattering in the channels it propagates in: delta-M scaled phase function (its fraction f) and the
 // redistribution matrices, which depend on the phase function, the index and the channels only (not on mu_a, mu_s).
-struct AdPhaseCache::Entry {
+struct AdCache::Entry {
     PhaseFunction phase;
     std::vector<double> table_cosines;  // tabulated phases compare by content (each wavelength has its own table)
     double n = 0.0;
@@ -152,6 +152,14 @@ struct AdPhaseCache::Entry {
     double f = 0.0;
     Vector mu, w, cw;
     Matrix same, opposite;
+};
+
+// A layer's r and t (flux operators on every channel) for its scattering entry (phase, index, channels: held, so
+// compared by identity), optics and the collimated beam's cosine in it.
+struct AdCache::Slab {
+    std::shared_ptr<const Entry> scattering;
+    double mu_a_per_cm = 0.0, mu_s_per_cm = 0.0, thickness_cm = 0.0, beam_cosine = 0.0;
+    Matrix r, t;
 };
 
 namespace {
@@ -164,13 +172,13 @@ std::vector<double> cosines_of(const PhaseFunction& phase) {
     return out;
 }
 
-bool same_scattering(const AdPhaseCache::Entry& e, const PhaseFunction& phase, const std::vector<double>& cosines, double n, const Channels& c) {
+bool same_scattering(const AdCache::Entry& e, const PhaseFunction& phase, const std::vector<double>& cosines, double n, const Channels& c) {
     return e.phase.kind == phase.kind && e.phase.g == phase.g && e.phase.g2 == phase.g2 && e.phase.weight == phase.weight && e.n == n &&
            e.table_cosines == cosines && e.channel_s == c.s;
 }
 
-AdPhaseCache::Entry redistribution(const Channels& c, double n, const PhaseFunction& phase, std::vector<double> cosines) {
-    AdPhaseCache::Entry e{phase, std::move(cosines), n, c.s, {}, 0.0, {}, {}, {}, {}, {}};
+AdCache::Entry redistribution(const Channels& c, double n, const PhaseFunction& phase, std::vector<double> cosines) {
+    AdCache::Entry e{phase, std::move(cosines), n, c.s, {}, 0.0, {}, {}, {}, {}, {}};
     for (std::size_t k = 0; k < c.size(); ++k) {
         if (c.s[k] < n) e.live.push_back(k);
     }
@@ -222,7 +230,7 @@ AdPhaseCache::Entry redistribution(const Channels& c, double n, const PhaseFunct
     return e;
 }
 
-const AdPhaseCache::Entry& cached_redistribution(const Channels& c, double n, const PhaseFunction& phase, AdPhaseCache& cache) {
+const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const Channels& c, double n, const PhaseFunction& phase, AdCache& cache) {
     // Least recently used last out: a spectrum's tabulated phases inside 400-546 nm differ at every wavelength, so an
     // unbounded cache would grow with the wavelength count.
     constexpr std::size_t capacity = 16;
@@ -231,16 +239,16 @@ const AdPhaseCache::Entry& cached_redistribution(const Channels& c, double n, co
     for (auto it = entries.begin(); it != entries.end(); ++it) {
         if (same_scattering(**it, phase, cosines, n, c)) {
             std::rotate(it, it + 1, entries.end());
-            return *entries.back();
+            return entries.back();
         }
     }
     if (entries.size() == capacity) entries.erase(entries.begin());
-    entries.push_back(std::make_shared<const AdPhaseCache::Entry>(redistribution(c, n, phase, std::move(cosines))));
-    return *entries.back();
+    entries.push_back(std::make_shared<const AdCache::Entry>(redistribution(c, n, phase, std::move(cosines))));
+    return entries.back();
 }
 
 // A homogeneous layer: delta-M scaled albedo and depth, diamond thin layer, doubling. Flux channels.
-Element slab(const Channels& c, const RteLayer& layer, const AdPhaseCache::Entry& scattering, double beam_cosine) {
+Element slab(const Channels& c, const RteLayer& layer, const AdCache::Entry& scattering, double beam_cosine) {
     const auto& live = scattering.live;
     const auto m = static_cast<Eigen::Index>(live.size());
     const double mu_t = layer.mu_a_per_cm + layer.mu_s_per_cm;
@@ -296,6 +304,25 @@ Element slab(const Channels& c, const RteLayer& layer, const AdPhaseCache::Entry
     return e;
 }
 
+// slab() through the cache: the same layer under the same scattering entry is doubled once.
+Element cached_slab(const Channels& c, const RteLayer& layer, const std::shared_ptr<const AdCache::Entry>& scattering, double beam_cosine,
+                    AdCache& cache) {
+    constexpr std::size_t capacity = 64;
+    auto& slabs = cache.slabs;
+    for (auto it = slabs.begin(); it != slabs.end(); ++it) {
+        const auto& s = **it;
+        if (s.scattering == scattering && s.mu_a_per_cm == layer.mu_a_per_cm && s.mu_s_per_cm == layer.mu_s_per_cm &&
+            s.thickness_cm == layer.thickness_cm && s.beam_cosine == beam_cosine) {
+            std::rotate(it, it + 1, slabs.end());
+            return Element{Element::Kind::layer, {}, {}, {}, slabs.back()->r, slabs.back()->t};
+        }
+    }
+    auto e = slab(c, layer, *scattering, beam_cosine);
+    if (slabs.size() == capacity) slabs.erase(slabs.begin());
+    slabs.push_back(std::make_shared<const AdCache::Slab>(AdCache::Slab{scattering, layer.mu_a_per_cm, layer.mu_s_per_cm, layer.thickness_cm, beam_cosine, e.r, e.t}));
+    return e;
+}
+
 struct Solution {
     double specular = 0.0, diffuse = 0.0, transmittance = 0.0;
     std::vector<double> absorbed;
@@ -341,7 +368,7 @@ Vector transmit(const Element& e, const Vector& flux) {
     return Vector::Zero(flux.size());
 }
 
-Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere, AdPhaseCache& cache) {
+Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere, AdCache& cache) {
     std::vector<double> indices{stack.above_refractive_index};
     for (const auto& l : stack.layers) indices.push_back(l.refractive_index);
     if (!stack.bottom_reflector) indices.push_back(stack.below_refractive_index);
@@ -363,7 +390,7 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
         // The collimated beam's cosine in this layer (Snell: the same s); 1 for diffuse incidence.
         const double beam = incidence.diffuse || channels.s[channels.incident] >= layer.refractive_index
                                 ? 1.0 : std::max(channels.cosine(channels.incident, layer.refractive_index), 1e-6);
-        elements.push_back(slab(channels, layer, cached_redistribution(channels, layer.refractive_index, layer.phase, cache), beam));
+        elements.push_back(cached_slab(channels, layer, cached_redistribution(channels, layer.refractive_index, layer.phase, cache), beam, cache));
         layer_of.push_back(static_cast<int>(k));
         above = stack.layers[k].refractive_index;
     }
@@ -410,13 +437,13 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
 
 }  // namespace
 
-AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options, AdPhaseCache* cache) {
+AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options, AdCache* cache) {
     validate(stack);
     if (!incidence.diffuse) check_incidence_deg(incidence.angle_deg);
     if (options.channels < 4 || options.channels > 256) {
         throw InputError("adding-doubling channels " + std::to_string(options.channels) + " is outside [4, 256]");
     }
-    AdPhaseCache own;
+    AdCache own;
     auto& phases = cache ? *cache : own;
     const auto full = solve_with(stack, incidence, options.channels, phases);
     AdResult result;

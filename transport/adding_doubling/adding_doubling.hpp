@@ -39,14 +39,19 @@ struct AdResult {
     std::size_t channels = 0;
 };
 
-// The layers' redistribution matrices depend on the phase function, the index and the channels only, not on mu_a or
-// mu_s: a spectrum passes one cache through its wavelengths, so each distinct phase function is expanded once.
-struct AdPhaseCache {
+// Work that repeats across calls. The layers' redistribution matrices depend on the phase function, the index and the
+// channels only, not on mu_a or mu_s: a spectrum passes one cache through its wavelengths, so each distinct phase
+// function is expanded once. A layer's reflection and transmission depend on those and its mu_a, mu_s and thickness:
+// in a sweep the layers a member does not change (the dermis while the melanin varies) are reused, not doubled again.
+// Both are least recently used out, with bounded sizes; entries compare by content, so a cache is never wrong.
+struct AdCache {
     struct Entry;  // adding_doubling.cpp
+    struct Slab;
     std::vector<std::shared_ptr<const Entry>> entries;
+    std::vector<std::shared_ptr<const Slab>> slabs;
 };
 
 // InputError for stacks the solver cannot take (validate(RteStack) plus the incidence).
-AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options = {}, AdPhaseCache* cache = nullptr);
+AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options = {}, AdCache* cache = nullptr);
 
 }  // namespace skinspec

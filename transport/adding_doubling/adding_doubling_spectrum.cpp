@@ -17,7 +17,7 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
     const std::size_t total = request.wavelengths.size();
     auto ad = options;
     out.quantities = Quantities{true, request.quantities.transmittance, request.quantities.absorptance, false};
-    AdPhaseCache phases;
+    AdCache phases;
     for (std::size_t w = 0; w < total; ++w) {
         if (request.cancel && request.cancel->load()) {
             out.partial = true;
