@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "spectral/input_error.hpp"
+
 namespace skinspec::cli {
 namespace {
 
@@ -30,6 +32,13 @@ ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, 
     ColorSummary s{illuminant, observer, xyz, weights.white(), chromaticity(xyz), xyz_to_lab(xyz, weights.white()),
                    cm.from_xyz(xyz, weights.white(), "sRGB"), true, "", cm.from_xyz(xyz, weights.white(), "Linear Rec.709"),
                    cm.from_xyz(xyz, weights.white(), "ACEScg"), {}, {}};
+    // OCIO computes in float32: XYZ beyond ~1e38 (values of 1e100 with --allow-over-one) gives no colour.
+    const auto finite = [](const RGB& v) { return std::all_of(v.begin(), v.end(), [](double c) { return std::isfinite(c); }); };
+    if (!std::isfinite(s.xyz.X) || !std::isfinite(s.xyz.Y) || !std::isfinite(s.xyz.Z) || !finite(s.srgb) || !finite(s.linear_rec709) || !finite(s.acescg) ||
+        !std::isfinite(s.lab.L) || std::abs(s.lab.L) > 1e30) {
+        throw InputError(fmt::format("the colour of XYZ {:.3g} {:.3g} {:.3g} is outside what colour management computes (float32: values up to ~1e30)",
+                                     s.xyz.X, s.xyz.Y, s.xyz.Z));
+    }
     s.srgb_in_gamut = std::all_of(s.srgb.begin(), s.srgb.end(), [](double c) { return c >= 0.0 && c <= 1.0; });
     s.srgb_hex = hex(s.srgb);
     for (const auto& space : extra_spaces) {

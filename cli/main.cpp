@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/bench_command.hpp"
+#include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/process_group.hpp"
 #include "spectral/image_files.hpp"
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_bench_command(app);
     skinspec::cli::add_stress_command(app);
     skinspec::cli::add_export_command(app);
+    skinspec::cli::require_finite_numbers(app);
     // With several processes only rank 0 reports an input error (every rank finds the same one); any error stops them all.
     const bool root = skinspec::cli::is_root_process();
     try {

@@ -86,6 +86,17 @@ RendererMedia renderer_media(const LayerStack& stack, const MediaRequest& reques
             layer.sigma_s_per_mm.push_back(rte.layers[k].mu_s_per_cm / mm_per_cm);
         }
     }
+    // A scene is geometry: the layers' depths (their sum) and coefficients must be finite numbers a renderer reads
+    // (a 1e308 cm epidermis became vertices at -inf).
+    double depth_mm = 0.0;
+    for (const auto& layer : media.layers) {
+        depth_mm += layer.thickness_mm;
+        const auto finite = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
+        if (!std::isfinite(depth_mm) || !finite(layer.sigma_a_per_mm) || !finite(layer.sigma_s_per_mm)) {
+            throw InputError("layer '" + layer.name + "': thickness " + format_number(layer.thickness_mm) + " mm (stack depth " + format_number(depth_mm) +
+                             " mm) or its coefficients are not finite numbers in a scene");
+        }
+    }
     // After the coefficients: rte_stack_from has refused any layer without volumetric scattering (and a phase).
     for (std::size_t k = 0; k < stack.layers.size(); ++k) media.layers[k].phase = phase_of(stack, k, request);
     return media;

@@ -1,6 +1,7 @@
 #include "solvers/spectral_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <unordered_map>
 
@@ -12,6 +13,8 @@
 #include "solvers/result_wire.hpp"
 #include "solvers/volumetric_walk_solver.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+#include "transport/result_quantities.hpp"
 
 namespace skinspec {
 namespace {
@@ -231,6 +234,27 @@ SolverRequest effective_request(const SolverRequest& request) {
     return out;
 }
 
+// Nothing non-finite or unphysical leaves a solver: every requested value finite and within its quantity's range
+// (a Monte Carlo estimate may stray outside by 5 of its standard errors, plus rounding), or the request is refused.
+void check_result_values(const SpectralSolver& solver, const SpectralResult& result, const std::vector<MaterialOverride>& overrides) {
+    const auto quantities = quantities_of(result);
+    for (const auto& w : result.wavelengths) {
+        for (const auto* q : quantities) {
+            for (const auto& e : q->values(w)) {
+                const double slack = 1e-9 + (result.has_uncertainty ? 5.0 * e.stderr : 0.0);
+                if (std::isfinite(e.value) && std::isfinite(e.stderr) && e.stderr >= 0.0 && e.value >= -slack && e.value <= q->upper_bound() + slack) continue;
+                std::string inputs;
+                for (const auto& o : overrides) inputs += (inputs.empty() ? "" : ", ") + o.origin + " " + o.key + "=" + o.value;
+                const std::string at = result.bands.empty() ? format_number(w.wavelength_nm) + " nm" : "a band";
+                throw InputError("solver '" + std::string(solver.name()) + "' computed " + std::string(q->key) + " = " + format_number(e.value) +
+                                 (result.has_uncertainty ? " +- " + format_number(e.stderr) : std::string()) + " at " + at + " for '" + result.material +
+                                 "', outside " + (q->upper_bound() == 1.0 ? "[0, 1]" : "[0, inf)") +
+                                 ": the material is outside what the model can compute" + (inputs.empty() ? std::string() : " (given: " + inputs + ")"));
+            }
+        }
+    }
+}
+
 void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material, std::shared_ptr<const std::string> material_toml,
                        const std::vector<MaterialOverride>& overrides, std::vector<std::pair<std::string, double>> varied) {
     result.provenance.solver = std::string(solver.name());
@@ -246,6 +270,7 @@ void record_provenance(SpectralResult& result, const SpectralSolver& solver, con
 SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
     check_request(solver, material, request);
     auto result = solver.solve(material, effective_request(request));
+    check_result_values(solver, result, request.overrides);
     record_provenance(result, solver, material, std::make_shared<const std::string>(to_toml(material)), request.overrides, {});
     return result;
 }
@@ -310,6 +335,7 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
     for (std::size_t i = 0; i < results.size(); ++i) {
         auto overrides = request.overrides;
         overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());
+        check_result_values(solver, results[i], overrides);
         record_provenance(results[i], solver, members[i].material, members[i].base_toml ? members[i].base_toml : std::make_shared<const std::string>(to_toml(members[i].material)), overrides,
                           members[i].varied);
     }
@@ -318,7 +344,19 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
 
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
     check_request(solver, material, request);
-    return solver.profiles(material, request);
+    auto profiles = solver.profiles(material, request);
+    // Profiles are densities (a transform's ringing may dip below 0): finite is what is required of them.
+    for (const auto& c : profiles.channels) {
+        const auto finite = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
+        const bool ok = finite(c.reflectance_per_mm2) && finite(c.transmittance_per_mm2) && finite(c.reflectance_stderr_per_mm2) &&
+                        finite(c.transmittance_stderr_per_mm2) && std::isfinite(c.total_reflectance) && std::isfinite(c.total_transmittance);
+        if (!ok) {
+            throw InputError("solver '" + std::string(solver.name()) + "' computed a non-finite profile at " + c.label + " for '" + profiles.material +
+                             "': the material or the radii (largest " + format_number(request.radii_mm.empty() ? 0.0 : request.radii_mm.back()) +
+                             " mm) are outside what the model can compute");
+        }
+    }
+    return profiles;
 }
 
 }  // namespace skinspec

@@ -1,5 +1,7 @@
 #include "transport/result_quantities.hpp"
 
+#include <limits>
+
 #include <fmt/format.h>
 
 namespace skinspec {
@@ -29,6 +31,8 @@ std::span<const Estimate> ResultQuantity::values(const WavelengthResult& w) cons
     const auto& many = w.*std::get<std::vector<Estimate> WavelengthResult::*>(member);
     return {many.data(), many.size()};
 }
+
+double ResultQuantity::upper_bound() const { return unit == "1" ? 1.0 : std::numeric_limits<double>::infinity(); }
 
 std::size_t ResultQuantity::count(const SpectralResult& result) const {
     switch (shape) {

@@ -35,6 +35,8 @@ struct ResultQuantity {
     std::string column(const SpectralResult& result, std::size_t i) const;
     // How many estimates a wavelength of `result` holds (1, the layers or the bins).
     std::size_t count(const SpectralResult& result) const;
+    // The physical range's upper end: 1 for a fraction of the incident flux, unbounded per sr (the lower end is 0).
+    double upper_bound() const;
 };
 
 const std::vector<ResultQuantity>& result_quantities();

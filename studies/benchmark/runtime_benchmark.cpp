@@ -16,6 +16,7 @@
 #include "formats/adding_doubling_reference.hpp"
 #include "transport/rte/rte_model.hpp"
 #include "appearance/swatch_chart.hpp"
+#include "spectral/ciede2000.hpp"
 #include "spectral/colorimetry.hpp"
 #include "transport/adding_doubling/adding_doubling.hpp"
 #include "materials/material_file.hpp"
@@ -319,7 +320,7 @@ void skin_modes(Benchmark& bench) {
             if (solver == "adding-doubling") exact = result;
             // The same skin where the solver solves the volumetric or reduced description adding-doubling solves; the
             // BioSpec walk (no extra description needed) solves its own per-crossing one.
-            SkinModeRow row{name, solver, !chosen.capabilities().material_needs.empty(), seconds, 0, 0.0, 0.0, 1e300, -1e300, 0.0};
+            SkinModeRow row{name, solver, !chosen.capabilities().material_needs.empty(), seconds, 0, 0.0, 0.0, 1e300, -1e300, 0.0, 0.0, {}};
             for (std::size_t w = 0; w < grid.size(); ++w) {
                 const auto& x = result.wavelengths[w];
                 const auto& e = exact.wavelengths[w];
@@ -334,6 +335,8 @@ void skin_modes(Benchmark& bench) {
             if (solver == "adding-doubling") row.uncertainty = result.stated_error->R;
             const auto a = lab_of(result, weights), b = lab_of(exact, weights);
             row.delta_e_ab = std::hypot(a.L - b.L, a.a - b.a, a.b - b.b);
+            row.delta_e2000 = ciede2000(b, a);
+            if (result.stated_error) row.stated_delta_e2000 = result.stated_error->delta_e2000;
             bench.report().skin_modes.push_back(row);
         }
     }

@@ -15,6 +15,7 @@
 // the time per colour (one swatch patch at Delta E <= 0.3).
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -81,6 +82,8 @@ struct SkinModeRow {
     double min_relative_diffuse_error = 0.0;  // range of (Rd - Rd_ad) / Rd_ad, Rd = R - R_specular
     double max_relative_diffuse_error = 0.0;
     double delta_e_ab = 0.0;            // CIELAB (D65, CIE 1931 2 deg) against adding-doubling
+    double delta_e2000 = 0.0;           // CIEDE2000, the same colours
+    std::optional<double> stated_delta_e2000;  // the solver's own statement of its colour error (diffusion)
 };
 
 // The volumetric walk against adding-doubling on a preset at one wavelength.

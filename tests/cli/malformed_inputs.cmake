@@ -153,3 +153,14 @@ skinspec_malformed_input("export mitsuba wrong extension" 2 "s6.pbrt: .*allowed:
 skinspec_malformed_input("export mitsuba wavelength outside the data" 2 "900 nm is outside the tabulated domain" "${out}/s7.xml;${out}/s7_spectra" export mitsuba --wavelengths 900 -o ${out}/s7.xml)
 skinspec_malformed_input("export lut sce from multipole" 2 "solver 'multipole' does not measure R in geometry sce" "${out}/lut6.exr" export lut --mode multipole -o ${out}/lut6.exr)
 skinspec_malformed_input("fit preset and material" 2 "give --preset or --material, not both" "${out}/fit_both.csv" fit-spectrum fit_two.csv --preset biospec-lightly --material ../../data/materials/biospec-heavily.toml --output ${out}/fit_both.csv)
+# Reliability (issue 32): a result that is not finite, or outside its physical range, is never written and never
+# exits 0; nan and inf are not numbers any option takes.
+skinspec_malformed_input("melanin that overflows the walk" 2 "solver 'biospec' computed R = -?nan .* at 550 nm for 'biospec-moderately', outside \\[0, 1\\]: the material is outside what the model can compute \\(given: --set epidermis.eumelanin_mg_per_ml=1e40\\)" "${out}/nan.json" spectrum --preset biospec-moderately --set epidermis.eumelanin_mg_per_ml=1e40 --wavelengths 550 --rays 2000 --output ${out}/nan.json)
+skinspec_malformed_input("haemoglobin that overflows the multipole" 2 "solver 'multipole' computed R = -?nan at 550 nm" - spectrum --mode multipole --set papillary_dermis.hemoglobin_g_per_l=1e180 --wavelengths 550)
+skinspec_malformed_input("radii a profile cannot compute" 2 "solver 'multipole' computed a non-finite profile at 450 nm .*largest 1e\\+300 mm" "${out}/huge_radii.csv" profile --radii 0:1e300:1e299 --output ${out}/huge_radii.csv)
+skinspec_malformed_input("a swatch of non-finite patches" 2 "solver 'biospec' computed R = -?nan" "${out}/nan_swatch.png" swatch --set epidermis.eumelanin_mg_per_ml=1e40 -o ${out}/nan_swatch.png)
+skinspec_malformed_input("a colour float32 cannot hold" 2 "the colour of XYZ .* is outside what colour management computes" - color huge_values.csv --allow-over-one)
+skinspec_malformed_input("a scene of infinite depth" 2 "layer 'epidermis': thickness inf mm .* not finite numbers in a scene" "${out}/deep.pbrt" export pbrt --set epidermis.thickness_cm=1e308 -o ${out}/deep.pbrt)
+skinspec_malformed_input("stderr nan" 105 "--stderr: 'nan' is not a finite number" - spectrum --stderr nan)
+skinspec_malformed_input("incidence overflowing to inf" 105 "--incidence: '1e400' is not a finite number" - spectrum --incidence 1e400)
+skinspec_malformed_input("delta-e inf" 105 "--delta-e: 'inf' is not a finite number" - swatch --delta-e inf -o ${out}/inf.png)

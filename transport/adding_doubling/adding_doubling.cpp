@@ -248,12 +248,16 @@ const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const Channel
 }
 
 // A homogeneous layer: delta-M scaled albedo and depth, diamond thin layer, doubling. Flux channels.
-Element slab(const Channels& c, const RteLayer& layer, const AdCache::Entry& scattering, double beam_cosine) {
+// A layer thicker than this many optical depths is solved at this depth: its T (< e^-1e6) is 0 in doubles and its R
+// has converged (the doublings stay ~28; an unbounded depth, e.g. 1e307 cm, never ended).
+constexpr double max_optical_depth = 1e6;
+
+Element slab(const Channels& c, const RteLayer& layer, const AdCache::Entry& scattering, double beam_cosine, const std::atomic<bool>* cancel) {
     const auto& live = scattering.live;
     const auto m = static_cast<Eigen::Index>(live.size());
     const double mu_t = layer.mu_a_per_cm + layer.mu_s_per_cm;
     double albedo = mu_t > 0.0 ? layer.mu_s_per_cm / mu_t : 0.0;
-    double depth = mu_t * layer.thickness_cm;
+    double depth = std::min(mu_t * layer.thickness_cm, max_optical_depth);
     const double f = scattering.f;
     if (f > 0.0) {
         depth *= 1.0 - albedo * f;
@@ -284,6 +288,7 @@ Element slab(const Channels& c, const RteLayer& layer, const AdCache::Entry& sca
     Matrix r = cw.asDiagonal() * (minus - plus) * cw.cwiseInverse().asDiagonal();
     Matrix t = cw.asDiagonal() * (minus + plus - identity) * cw.cwiseInverse().asDiagonal();
     for (int d = 0; d < doublings; ++d) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) break;
         const Eigen::PartialPivLU<Matrix> lu(identity - r * r);
         const Matrix x = lu.solve(t);
         r = r + t * r * x;
@@ -306,7 +311,7 @@ Element slab(const Channels& c, const RteLayer& layer, const AdCache::Entry& sca
 
 // slab() through the cache: the same layer under the same scattering entry is doubled once.
 Element cached_slab(const Channels& c, const RteLayer& layer, const std::shared_ptr<const AdCache::Entry>& scattering, double beam_cosine,
-                    AdCache& cache) {
+                    AdCache& cache, const std::atomic<bool>* cancel) {
     constexpr std::size_t capacity = 64;
     auto& slabs = cache.slabs;
     for (auto it = slabs.begin(); it != slabs.end(); ++it) {
@@ -317,7 +322,8 @@ Element cached_slab(const Channels& c, const RteLayer& layer, const std::shared_
             return Element{Element::Kind::layer, {}, {}, {}, slabs.back()->r, slabs.back()->t};
         }
     }
-    auto e = slab(c, layer, *scattering, beam_cosine);
+    auto e = slab(c, layer, *scattering, beam_cosine, cancel);
+    if (cancel && cancel->load()) return e;  // possibly unfinished: never cached
     if (slabs.size() == capacity) slabs.erase(slabs.begin());
     slabs.push_back(std::make_shared<const AdCache::Slab>(AdCache::Slab{scattering, layer.mu_a_per_cm, layer.mu_s_per_cm, layer.thickness_cm, beam_cosine, e.r, e.t}));
     return e;
@@ -368,7 +374,7 @@ Vector transmit(const Element& e, const Vector& flux) {
     return Vector::Zero(flux.size());
 }
 
-Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere, AdCache& cache) {
+Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::size_t per_hemisphere, AdCache& cache, const std::atomic<bool>* cancel) {
     std::vector<double> indices{stack.above_refractive_index};
     for (const auto& l : stack.layers) indices.push_back(l.refractive_index);
     if (!stack.bottom_reflector) indices.push_back(stack.below_refractive_index);
@@ -390,7 +396,7 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
         // The collimated beam's cosine in this layer (Snell: the same s); 1 for diffuse incidence.
         const double beam = incidence.diffuse || channels.s[channels.incident] >= layer.refractive_index
                                 ? 1.0 : std::max(channels.cosine(channels.incident, layer.refractive_index), 1e-6);
-        elements.push_back(cached_slab(channels, layer, cached_redistribution(channels, layer.refractive_index, layer.phase, cache), beam, cache));
+        elements.push_back(cached_slab(channels, layer, cached_redistribution(channels, layer.refractive_index, layer.phase, cache), beam, cache, cancel));
         layer_of.push_back(static_cast<int>(k));
         above = stack.layers[k].refractive_index;
     }
@@ -408,7 +414,10 @@ Solution solve_with(const RteStack& stack, const AdIncidence& incidence, std::si
     const std::size_t count = elements.size();
     std::vector<Level> levels(count + 1);
     levels[count].reflection = Matrix::Zero(n, n);
-    for (std::size_t e = count; e-- > 0;) levels[e].reflection = reflection_with(elements[e], levels[e + 1].reflection, levels[e].factor);
+    for (std::size_t e = count; e-- > 0;) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+        levels[e].reflection = reflection_with(elements[e], levels[e + 1].reflection, levels[e].factor);
+    }
 
     Solution out;
     const double total_r = (levels[0].reflection * incident).sum();
@@ -445,8 +454,12 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     }
     AdCache own;
     auto& phases = cache ? *cache : own;
-    const auto full = solve_with(stack, incidence, options.channels, phases);
+    const auto full = solve_with(stack, incidence, options.channels, phases, options.cancel);
     AdResult result;
+    if (options.cancel && options.cancel->load()) {
+        result.cancelled = true;
+        return result;
+    }
     result.specular_reflectance = full.specular;
     result.diffuse_reflectance = full.diffuse;
     result.transmittance = full.transmittance;
@@ -455,7 +468,11 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     if (options.accuracy_check) {
         // The quadrature-doubling check: the same stack with twice the channels. With an error ~ 1/N (the measured
         // forward peaks converge that slowly: docs/ADDING_DOUBLING.md), the change is half the error, so twice it.
-        const auto fine = solve_with(stack, incidence, 2 * options.channels, phases);
+        const auto fine = solve_with(stack, incidence, 2 * options.channels, phases, options.cancel);
+        if (options.cancel && options.cancel->load()) {
+            result.cancelled = true;
+            return result;
+        }
         double change = std::max(std::abs(full.diffuse - fine.diffuse), std::abs(full.transmittance - fine.transmittance));
         for (std::size_t k = 0; k < full.absorbed.size(); ++k) change = std::max(change, std::abs(full.absorbed[k] - fine.absorbed[k]));
         result.accuracy = 2.0 * change;

@@ -11,7 +11,9 @@
 // Light is carried as flux per channel (radiance scales with n^2 across an interface, the channel's measure with
 // 1 / n^2). Each layer: delta-M scaling of its phase function (Wiscombe 1977, J. Atmos. Sci. 34:1408), a
 // diamond-difference thin layer (Wiscombe 1976, JQSRT 16:637) of optical depth <= 2^-8 doubled to its
-// thickness; layers and interfaces are added; A per layer from the net fluxes between them.
+// thickness (at most max_optical_depth: beyond it T is 0 in doubles and R has converged); layers and interfaces are
+// added; A per layer from the net fluxes between them.
+#include <atomic>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -28,6 +30,7 @@ struct AdIncidence {
 struct AdOptions {
     std::size_t channels = 24;        // quadrature channels per hemisphere in the densest medium (about)
     bool accuracy_check = true;       // also solve with twice the channels: AdResult::accuracy (8x the work)
+    const std::atomic<bool>* cancel = nullptr;  // checked at every doubling and adding step (256 channels: ~0.1 s apart)
 };
 
 struct AdResult {
@@ -37,6 +40,7 @@ struct AdResult {
     std::vector<double> absorbed_layers;  // per layer (vector solves on the factors the adding keeps: nearly free)
     double accuracy = 0.0;              // twice the largest change of R_d, T or A with twice the channels
     std::size_t channels = 0;
+    bool cancelled = false;             // stopped by AdOptions::cancel: the values are no solution
 };
 
 // Work that repeats across calls. The layers' redistribution matrices depend on the phase function, the index and the

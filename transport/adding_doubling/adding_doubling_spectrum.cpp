@@ -16,6 +16,7 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
     double accuracy = 0.0;
     const std::size_t total = request.wavelengths.size();
     auto ad = options;
+    ad.cancel = request.cancel;
     out.quantities = Quantities{true, request.quantities.transmittance, request.quantities.absorptance, false};
     AdCache phases;
     for (std::size_t w = 0; w < total; ++w) {
@@ -27,6 +28,10 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
         // The quadrature-doubling check at the first, middle and last wavelength (8x the work of one).
         ad.accuracy_check = options.accuracy_check && (w == 0 || w == total / 2 || w + 1 == total);
         const auto r = solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, request.incidence_deg}, ad, &phases);
+        if (r.cancelled) {
+            out.partial = true;
+            break;
+        }
         WavelengthResult row;
         row.wavelength_nm = nm;
         const bool excluded = request.geometry == MeasurementGeometry::sce;
