@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -15,8 +16,10 @@
 #include "transport/adding_doubling/adding_doubling.hpp"
 #include "materials/measured_profile.hpp"
 #include "transport/rte/rte_model.hpp"
+#include "materials/material_fields.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
 
 namespace skinspec {
 
@@ -419,6 +422,51 @@ void layered_stack_cases(Grid& grid) {
     }
 }
 
+// Every number field at its range's ends (an infinite end as 1e300, an open end just inside) and beyond them, in
+// every solver that takes layered materials (issue 32): a value beyond is refused when the material is read; at the
+// ends the result is finite and in [0, 1] or refused (a documented limit), never NaN, never a hang.
+void extreme_field_cases(Grid& grid) {
+    struct Probe {
+        std::string key;
+        FieldRange range;
+    };
+    std::vector<Probe> probes;
+    for (const auto& f : layer_number_fields()) probes.push_back({"epidermis." + std::string(f.key), f.range});
+    for (const auto& f : volumetric_fields()) probes.push_back({"epidermis." + std::string(f.key), f.range});
+    probes.push_back({"reticular_dermis.thickness_cm", layer_number_fields().front().range});
+    for (const auto& f : surface_fields()) probes.push_back({"surface." + std::string(f.key), f.range});
+    for (const auto& f : bottom_fields()) probes.push_back({"bottom." + std::string(f.key), f.range});
+    for (const auto& f : model_fields()) {
+        if (std::holds_alternative<double ModelOptions::*>(f.member)) probes.push_back({"model." + std::string(f.key), f.range});
+    }
+    constexpr double huge = 1e300;
+    for (const auto* solver : solver_registry()) {
+        const auto& caps = solver->capabilities();
+        if (!caps.layered_materials) continue;
+        for (const auto& probe : probes) {
+            const auto& r = probe.range;
+            std::vector<std::pair<double, bool>> values;  // (value, inside the range)
+            values.emplace_back(std::isinf(r.lo) ? -huge : r.lo_open ? std::nextafter(r.lo, huge) : r.lo, true);
+            values.emplace_back(std::isinf(r.hi) ? huge : r.hi_open ? std::nextafter(r.hi, -huge) : r.hi, true);
+            if (std::isfinite(r.lo)) values.emplace_back(r.lo_open ? r.lo : r.lo - std::max(1.0, std::abs(r.lo)), false);
+            if (std::isfinite(r.hi)) values.emplace_back(r.hi_open ? r.hi : r.hi + std::max(1.0, std::abs(r.hi)), false);
+            for (const auto& [value, inside] : values) {
+                grid.run(std::string(solver->name()) + "-fields", fmt::format("{}: {} = {:g}", solver->name(), probe.key, value), [&](Checks& c) {
+                    const auto material = load_material("biospec-moderately", {MaterialOverride(probe.key, format_number(value))});
+                    c.expect(inside, fmt::format("{} = {:g} is outside {} but was accepted", probe.key, value, r.text()));
+                    SolverRequest request;
+                    request.spectral.wavelengths = WavelengthGrid::list({550.0});
+                    request.spectral.quantities.transmittance = caps.quantities.transmittance;
+                    if (caps.uncertainty) request.fixed_rays_per_wavelength = 200;
+                    const auto result = solve_spectrum(*solver, material, request);
+                    c.unit("R", result.wavelengths.front().reflectance.value);
+                    c.unit("T", result.wavelengths.front().transmittance.value);
+                });
+            }
+        }
+    }
+}
+
 }  // namespace
 
 StressReport run_stress_grid(const StressOptions& options) {
@@ -426,6 +474,7 @@ StressReport run_stress_grid(const StressOptions& options) {
     try {
         diffusion_cases(grid);
         layered_stack_cases(grid);
+        extreme_field_cases(grid);
         adding_doubling_cases(grid);
         biospec_cases(grid);
         rte_cases(grid);
