@@ -19,8 +19,12 @@ void require_finite_numbers(CLI::App& app) {
             return whole && !std::isfinite(number) ? "'" + text + "' is not a finite number" : std::string();
         },
         "", "FINITE");
+    // An empty text is no file name, colour space or list ("--output ''" ran and wrote nothing).
+    static const CLI::Validator not_empty([](std::string& text) { return text.empty() ? std::string("an empty value is not allowed") : std::string(); }, "",
+                                          "NONEMPTY");
     for (auto* option : app.get_options()) {
         if (option->get_type_name().starts_with("FLOAT")) option->check(finite);
+        if (option->get_type_name().starts_with("TEXT")) option->check(not_empty);
     }
     for (auto* command : app.get_subcommands({})) require_finite_numbers(*command);
 }

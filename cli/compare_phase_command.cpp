@@ -12,6 +12,7 @@
 #include "cli/material_options.hpp"
 #include "materials/material_file.hpp"
 #include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
@@ -94,6 +95,7 @@ void run_compare_phase(const ComparePhaseOptions& o) {
     if (!o.plot.empty()) {
         if (!o.plot.ends_with(".png") && !o.plot.ends_with(".svg")) throw InputError("--plot " + o.plot + ": extension not supported (allowed: .png, .svg)");
         if (std::filesystem::exists(o.plot) && !o.overwrite) throw InputError(o.plot + ": exists already (use --overwrite to replace it)");
+        OutputClaims::claim(o.plot, o.overwrite);
     }
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);

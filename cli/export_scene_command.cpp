@@ -15,6 +15,7 @@
 #include "formats/pbrt_scene.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/chart_image.hpp"
+#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/named_choice.hpp"
 #include "spectral/text_fields.hpp"
@@ -98,6 +99,7 @@ void run_export_scene(const SceneOptions& o, Renderer renderer) {
         if (std::filesystem::exists(files[i]) && !o.overwrite) {
             throw InputError(files[i].string() + " exists (use --overwrite to replace it)");
         }
+        OutputClaims::claim(files[i], o.overwrite);
     }
     if (renderer == Renderer::pbrt) write_pbrt_scene(media, scene);
     else write_mitsuba_scene(media, scene);

@@ -78,6 +78,7 @@ void write_outputs(const FitOptions& o, const std::vector<std::string>& names, c
     }
     const auto plot = dir / "profile_fit.png";
     if (fs::exists(plot) && !o.overwrite) throw InputError(plot.string() + ": exists already (use --overwrite to replace it)");
+    OutputClaims::claim(plot, o.overwrite);
     write_line_plot(plot, "fit-profile: estimated R'(d) and fitted dipole", "Distance d (mm)", "R (1/mm^2)", curves, {.log_y = true});
     if (geometry) {
         const auto exr = dir / "resynthesised.exr";

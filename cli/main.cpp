@@ -13,6 +13,7 @@
 
 #include "cli/bench_command.hpp"
 #include "cli/common_options.hpp"
+#include "spectral/atomic_file.hpp"
 #include "cli/export_command.hpp"
 #include "cli/process_group.hpp"
 #include "spectral/image_files.hpp"
@@ -92,6 +93,7 @@ int main(int argc, char** argv) {
     skinspec::cli::require_finite_numbers(app);
     // With several processes only rank 0 reports an input error (every rank finds the same one); any error stops them all.
     const bool root = skinspec::cli::is_root_process();
+    const skinspec::OutputClaims outputs;  // the command's output files (spectral/atomic_file.hpp)
     try {
         app.parse(argc, argv);
     } catch (const CLI::ExtrasError& e) {

@@ -1,5 +1,6 @@
 #include "cli/mcml_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -77,6 +78,15 @@ Json run_json(const McmlRun& run, const RteResult& r, double seconds) {
 
 void run_mcml(const McmlOptions& o) {
     auto runs = read_mci(o.file);
+    // An .mci names its outputs; they stay in the output folder (or the current one): an absolute name or one
+    // with '..' would write anywhere (it wrote /etc/passwd.mco and ../../escape.mco).
+    for (const auto& run : runs) {
+        const std::filesystem::path name(run.output_file);
+        const bool climbs = std::any_of(name.begin(), name.end(), [](const std::filesystem::path& part) { return part == ".."; });
+        if (name.is_absolute() || climbs) {
+            throw InputError(o.file + ": output file '" + run.output_file + "' leaves the output folder (allowed: a name, or a path below the folder, without '..')");
+        }
+    }
     if (!o.output_dir.empty()) {
         if (!std::filesystem::is_directory(o.output_dir)) throw InputError("--output-dir " + o.output_dir + ": not a folder");
         for (auto& run : runs) run.output_file = (std::filesystem::path(o.output_dir) / run.output_file).string();
@@ -95,7 +105,9 @@ void run_mcml(const McmlOptions& o) {
         if (std::filesystem::exists(run.output_file) && !o.overwrite) {
             throw InputError(run.output_file + ": exists already (use --overwrite to replace it)");
         }
+        OutputClaims::claim(run.output_file, o.overwrite);  // two runs naming one .mco are refused
     }
+    if (!o.json_output.empty()) OutputClaims::claim(o.json_output, o.overwrite);
     if (!o.json_output.empty() && std::filesystem::exists(o.json_output) && !o.overwrite) {
         throw InputError(o.json_output + ": exists already (use --overwrite to replace it)");
     }

@@ -1,5 +1,6 @@
 #include "materials/parameter_sweep.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "spectral/input_error.hpp"
@@ -25,7 +26,13 @@ SweepAxis ParameterSweep::axis() const { return {field, values()}; }
 
 std::vector<SweepAxis> sweep_axes(const std::vector<ParameterSweep>& sweeps) {
     std::vector<SweepAxis> axes;
-    for (const auto& s : sweeps) axes.push_back(s.axis());
+    for (const auto& s : sweeps) {
+        // A field swept twice would make a grid of which only the diagonal exists (the later value wins).
+        if (std::any_of(axes.begin(), axes.end(), [&](const SweepAxis& a) { return a.field == s.field; })) {
+            throw InputError("--vary " + s.field + " is given twice (sweep a field once)");
+        }
+        axes.push_back(s.axis());
+    }
     return axes;
 }
 

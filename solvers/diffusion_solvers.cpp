@@ -57,11 +57,12 @@ std::optional<StatedError> model_error(const LayerStack& stack, const SpectralRe
         corrected.push_back(std::clamp(r.back() - difference[i], 0.0, 1.0));
     }
     StatedError e{largest,
-                  fmt::format("largest |R - R of adding-doubling| (exact transport of the same skin's volumetric description, {} channels) at {} "
-                              "of the wavelengths; the colour difference with that difference interpolated between them",
-                              model_error_channels, at.size()),
+                  fmt::format("largest |R - R of adding-doubling| (exact transport of the same skin's volumetric description, {} channels) at {} of "
+                              "the {} wavelengths",
+                              model_error_channels, at.size(), n),
                   {}};
     if (has_color_span(nm)) {
+        e.meaning += "; the colour difference with that difference interpolated between them";
         const TristimulusWeights weights(nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
         e.delta_e2000 = ciede2000(xyz_to_lab(weights.integrate(corrected), weights.white()), xyz_to_lab(weights.integrate(r), weights.white()));
     }

@@ -1,17 +1,45 @@
 #pragma once
 // Output files appear complete or not at all: the content goes to a temporary sibling (same folder, same
-// extension so format-by-extension writers still work) that is renamed over the target only when writing
-// succeeded. A failed or interrupted write never leaves a half-written file under the user's name.
+// extension so format-by-extension writers still work) that is published under the target's name only when
+// writing succeeded. A failed or interrupted write never leaves a half-written file under the user's name.
+//
+// Publishing never replaces anything but a regular file (a symbolic link, device, FIFO or folder is refused), and
+// replaces one only when allowed: a command claims its outputs before any work (OutputClaims, check_output_path),
+// with or without --overwrite; an output claimed without it is created exclusively (a hard link, which fails if a
+// file of that name appeared meanwhile: another run, the user), so nothing written during the run is lost. A path
+// claimed twice in one command (-o same.exr --spectra same.exr) is refused.
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <optional>
 #include <string>
 
 namespace skinspec {
 
-// Calls write(temporary); renames it to `file` on success, removes it (and rethrows) on failure.
-void write_atomically(const std::filesystem::path& file, const std::function<void(const std::filesystem::path& temporary)>& write);
+// The outputs of one command, for as long as it lives (cli/main.cpp holds one around the command); without one
+// (the Python module) nothing is claimed and write_text_file's `overwrite` decides.
+class OutputClaims {
+public:
+    OutputClaims();
+    ~OutputClaims();
+    OutputClaims(const OutputClaims&) = delete;
+    OutputClaims& operator=(const OutputClaims&) = delete;
 
-// `text` as `file`, atomically; InputError when it exists and `overwrite` is false, or it cannot be written.
+    // InputError when `file` was claimed already in this command.
+    static void claim(const std::filesystem::path& file, bool overwrite);
+    // Whether the command claimed `file` with overwrite; nullopt when it did not claim it (or there is no command).
+    static std::optional<bool> may_replace(const std::filesystem::path& file);
+
+private:
+    std::map<std::filesystem::path, bool> claimed_;
+};
+
+// Calls write(temporary), then publishes it as `file` (replacing an existing regular file only when claimed with
+// overwrite, or, unclaimed, when `overwrite`); removes the temporary (and rethrows) on failure.
+void write_atomically(const std::filesystem::path& file, const std::function<void(const std::filesystem::path& temporary)>& write,
+                      bool overwrite = true);
+
+// `text` as `file`, atomically; InputError when it exists and may not be replaced, or it cannot be written.
 void write_text_file(const std::filesystem::path& file, const std::string& text, bool overwrite);
 
 }  // namespace skinspec

@@ -112,6 +112,7 @@ void check_output_path(const std::filesystem::path& file, bool overwrite, const 
     if (!std::filesystem::is_directory(folder)) throw InputError(file.string() + ": folder " + folder.string() + " does not exist");
     if (access(folder.c_str(), W_OK) != 0) throw InputError(file.string() + ": folder " + folder.string() + " is not writable");
     if (std::filesystem::exists(file) && !overwrite) throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
+    OutputClaims::claim(file, overwrite);
 }
 
 // Scene-linear output: chromaticities and colour-space name of `space`, the metadata, half or float.

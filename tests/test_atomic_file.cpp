@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -30,5 +31,45 @@ TEST_CASE("a failed write leaves neither the file nor a temporary, a good one re
     std::getline(in, line);
     CHECK(line == "second");
     CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("outputs replace only regular files, and only when claimed with overwrite", "[atomic_file]") {
+    const auto dir = fs::temp_directory_path() / "skinspec_atomic_claims";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const auto target = dir / "target.txt";
+    std::ofstream(target) << "the user's\n";
+    // A symbolic link (or device, FIFO, folder) is never replaced, even with overwrite.
+    fs::create_symlink(target, dir / "link.json");
+    CHECK_THROWS_WITH(write_text_file(dir / "link.json", "{}", true), Catch::Contains("is a symbolic link; only a regular file is replaced"));
+    CHECK(fs::is_symlink(dir / "link.json"));
+    CHECK_THROWS_WITH(write_text_file(dir, "x", true), Catch::Contains("is a folder"));
+    {
+        const OutputClaims command;
+        const auto out = dir / "out.json";
+        OutputClaims::claim(out, false);
+        CHECK_THROWS_WITH(OutputClaims::claim(dir / "." / "out.json", true), Catch::Contains("named as two outputs of one command"));
+        // A file that appears while the command runs (another run, the user) is kept: the output is created exclusively.
+        CHECK_THROWS_WITH(write_atomically(out, [&](const fs::path& temporary) {
+                              std::ofstream(temporary) << "ours";
+                              std::ofstream(out) << "theirs";
+                          }),
+                          Catch::Contains("appeared while this command ran"));
+        std::string kept;
+        std::getline(std::ifstream(out), kept);
+        CHECK(kept == "theirs");
+        // Claimed with overwrite, it is replaced.
+        const auto replaced = dir / "replaced.json";
+        std::ofstream(replaced) << "old";
+        OutputClaims::claim(replaced, true);
+        write_text_file(replaced, "new\n", false);
+        std::string line;
+        std::getline(std::ifstream(replaced), line);
+        CHECK(line == "new");
+    }
+    CHECK(std::none_of(fs::directory_iterator(dir), fs::directory_iterator(), [](const fs::directory_entry& e) {
+        return e.path().filename().string().find(".partial-") != std::string::npos;
+    }));
     fs::remove_all(dir);
 }

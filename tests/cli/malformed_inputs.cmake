@@ -164,3 +164,7 @@ skinspec_malformed_input("a scene of infinite depth" 2 "layer 'epidermis': thick
 skinspec_malformed_input("stderr nan" 105 "--stderr: 'nan' is not a finite number" - spectrum --stderr nan)
 skinspec_malformed_input("incidence overflowing to inf" 105 "--incidence: '1e400' is not a finite number" - spectrum --incidence 1e400)
 skinspec_malformed_input("delta-e inf" 105 "--delta-e: 'inf' is not a finite number" - swatch --delta-e inf -o ${out}/inf.png)
+# Outputs (issue 32 groups 5-6): one file per output, nothing outside the output folder, only regular files replaced.
+skinspec_malformed_input("an output named twice" 2 "same.exr: named as two outputs of one command" "${out}/same.exr" export lut -o ${out}/same.exr --spectra ${out}/same.exr)
+skinspec_malformed_input("an .mci output leaving the folder" 2 "escape.mci: output file '../../escape.mco' leaves the output folder" - mcml escape.mci --photons 100 --output-dir ${out})
+skinspec_malformed_input("the same --vary field twice" 2 "--vary epidermis.melanosome_fraction is given twice" - spectrum --mode dipole --wavelengths 550 --vary epidermis.melanosome_fraction=0.1:0.2:2 --vary epidermis.melanosome_fraction=0.1:0.3:2)
