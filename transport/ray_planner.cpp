@@ -5,6 +5,8 @@
 #include <cmath>
 #include <mutex>
 
+#include <tbb/task_arena.h>
+
 namespace skinspec {
 
 RayPlanner::RayPlanner(const SpectralRequest& request, std::size_t channels, std::vector<std::size_t> target_channels, std::size_t sets)
@@ -18,6 +20,7 @@ RayPlanner::RayPlanner(const SpectralRequest& request, std::size_t channels, std
     const std::uint64_t budget = request.max_rays_per_wavelength;
     state_ = DriverOutcome{std::vector<RayTally>(n, RayTally(channels)), std::vector<bool>(n, false), std::vector<bool>(n, !adaptive_), false};
     next_batch_.assign(n, 0);
+    broken_.assign(n, false);
     // All of the budget without a target, else a first estimate from a few batches.
     planned_.assign(n, adaptive_ ? std::min<std::uint64_t>(budget, std::max<std::uint64_t>(1, request.initial_batches) * rays_per_batch_)
                                  : budget);
@@ -39,19 +42,26 @@ std::vector<BatchTask> RayPlanner::next_round() const {
     return tasks;
 }
 
-void RayPlanner::absorb(const std::vector<BatchTask>& tasks, const RoundOutput& round) {
+void RayPlanner::absorb_part(const std::vector<BatchTask>& part, const RoundOutput& output) {
+    // In task order, so the sums are the same however a round is cut into parts (bit-identical results).
+    for (std::size_t i = 0; i < part.size(); ++i) {
+        const auto w = part[i].wavelength;
+        if (!output.done[i]) broken_[w] = true;
+        if (!broken_[w]) state_.tallies[w].merge(output.tallies[i]);
+    }
+}
+
+void RayPlanner::end_round(const std::vector<BatchTask>& tasks) {
     const std::size_t n = planned_.size();
     const std::uint64_t budget = request_.max_rays_per_wavelength;
     // A wavelength takes part in this round's decision only if all its batches of the round ran.
     std::vector<bool> complete(n, true);
     std::vector<bool> in_round(n, false);
-    for (std::size_t i = 0; i < tasks.size(); ++i) {
-        complete[tasks[i].wavelength] = complete[tasks[i].wavelength] && round.done[i];
-        in_round[tasks[i].wavelength] = true;
+    for (const auto& t : tasks) {
+        complete[t.wavelength] = !broken_[t.wavelength];
+        in_round[t.wavelength] = true;
     }
-    for (std::size_t i = 0; i < tasks.size(); ++i) {
-        if (complete[tasks[i].wavelength]) state_.tallies[tasks[i].wavelength].merge(round.tallies[i]);
-    }
+    broken_.assign(n, false);
     // Targets per set and wavelength: the fixed target, or the colour-driven ones from that set's estimates.
     std::vector<std::vector<double>> targets(sets_, std::vector<double>(n, request_.stderr_target.value_or(0.0)));
     if (request_.stderr_targets && !target_channels_.empty()) {
@@ -125,16 +135,25 @@ DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels, 
         request.on_progress(Progress{rays_done.load(), planner.rays_expected(), planner.wavelengths_finished(), n});
     };
     const auto cancelled = [&] { return request.cancel && request.cancel->load(); };
+    // A round runs in parts of at most this many batches: memory for their tallies stays bounded (a billion photons
+    // in one round allocated 244k grid tallies up front and took 95 s to notice SIGTERM), and a stopped run keeps
+    // the batches it finished.
+    const std::size_t part_size = 64 * static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
     while (true) {
         const auto tasks = planner.next_round();
         if (tasks.empty()) break;
-        const auto round = executor.run(tasks, channels, request.seed, trace, [&](std::uint64_t rays) {
-            rays_done += rays;
-            report();
-        }, request.cancel);
-        planner.absorb(tasks, round);
+        for (std::size_t from = 0; from < tasks.size(); from += part_size) {
+            const std::vector<BatchTask> part(tasks.begin() + static_cast<std::ptrdiff_t>(from),
+                                              tasks.begin() + static_cast<std::ptrdiff_t>(std::min(tasks.size(), from + part_size)));
+            const auto output = executor.run(part, channels, request.seed, trace, [&](std::uint64_t rays) {
+                rays_done += rays;
+                report();
+            }, request.cancel);
+            planner.absorb_part(part, output);
+            if (cancelled()) return planner.outcome(true);
+        }
+        planner.end_round(tasks);
         report();
-        if (cancelled()) return planner.outcome(true);
     }
     return planner.outcome(false);
 }

@@ -26,8 +26,11 @@ public:
 
     // The next round's batches, wavelengths in grid order; empty when every wavelength is finished.
     std::vector<BatchTask> next_round() const;
-    // Takes a round's results: a wavelength whose batches all ran is merged and re-planned.
-    void absorb(const std::vector<BatchTask>& tasks, const RoundOutput& round);
+    // Takes the results of a part of the round (its tasks, in order): each wavelength's batches are merged in batch
+    // order up to the first that did not run (stopped), after which its round is broken.
+    void absorb_part(const std::vector<BatchTask>& part, const RoundOutput& output);
+    // After every part of the round: re-plans each wavelength of `tasks` whose batches all ran.
+    void end_round(const std::vector<BatchTask>& tasks);
     // Rays the whole request is expected to need, from the estimates so far (the budget without a target), and
     // the wavelengths finished: both as of the last round (cheap to ask after every batch).
     std::uint64_t rays_expected() const;
@@ -46,6 +49,7 @@ private:
     std::size_t stride_;
     DriverOutcome state_;
     std::vector<std::uint64_t> next_batch_;
+    std::vector<bool> broken_;             // this round: a batch of the wavelength did not run
     std::vector<std::uint64_t> planned_;   // rays of the next round, per wavelength
     std::vector<std::uint64_t> expected_;  // rays each wavelength is expected to need in all
     std::uint64_t rays_expected_ = 0;
