@@ -107,7 +107,11 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
     const double dr = h / samples_per_pixel_side;
     std::vector<double> radii;
     for (int j = 0; j * dr <= (margin + 2) * h * std::sqrt(2.0); ++j) radii.push_back(j * dr);
-    out.profiles = solve_profiles(solver, material, ProfileRequest{wavelengths, radii, false, switches, std::nullopt, 1});
+    out.profiles = solve_profiles(solver, material, ProfileRequest{wavelengths, radii, false, switches, std::nullopt, 1, cancel});
+    if (out.profiles.partial) {
+        out.partial = true;
+        return out;
+    }
 
     const auto widened = light.rasterize(view, margin);
     const int we = view.width_px + 2 * margin, he = view.height_px + 2 * margin;

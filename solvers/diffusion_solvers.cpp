@@ -105,7 +105,7 @@ public:
         return result;
     }
     SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
-        return diffusion_profiles(material, request.wavelengths, request.radii_mm, diffusion_options(request.switches), request.transmittance);
+        return diffusion_profiles(material, request.wavelengths, request.radii_mm, diffusion_options(request.switches), request.transmittance, request.cancel);
     }
 
 private:

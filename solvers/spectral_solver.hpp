@@ -52,6 +52,7 @@ struct ProfileRequest {
     SolverSwitches switches;
     std::optional<std::uint64_t> rays_per_wavelength;  // Monte Carlo solvers (unset: their default); refused by the others
     std::uint64_t seed = 1;
+    const CancelFlag* cancel = nullptr;  // a stop leaves the channels finished so far (SpectralProfiles::partial)
 };
 
 class SpectralSolver {

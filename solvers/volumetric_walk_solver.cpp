@@ -37,7 +37,7 @@ public:
     SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
         return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance,
                                   RteProfileOptions{request.rays_per_wavelength.value_or(1'000'000), request.seed,
-                                                    request.switches.boundaries.value_or(BoundaryMode::random)});
+                                                    request.switches.boundaries.value_or(BoundaryMode::random), request.cancel});
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const override {
         return replay_groups(materials, max_replay_sets);

@@ -188,6 +188,7 @@ RadialProfile blended(const std::vector<WeightedStack>& stacks, double entry_tra
         out.max_pairs = std::max(out.max_pairs, p.max_pairs);
         out.frequencies = std::max(out.frequencies, p.frequencies);
         out.converged = out.converged && p.converged;
+        out.cancelled = out.cancelled || p.cancelled;
     }
     return out;
 }
@@ -206,12 +207,12 @@ double DiffusionMaterial::total_transmittance() const {
     return entry_transmittance * t;
 }
 
-RadialProfile DiffusionMaterial::reflectance_profile(std::span<const double> radii_mm) const {
-    return blended(stacks, entry_transmittance, radii_mm, [](const LayeredDiffusion& s, std::span<const double> r) { return s.reflectance_profile(r); });
+RadialProfile DiffusionMaterial::reflectance_profile(std::span<const double> radii_mm, const std::atomic<bool>* cancel) const {
+    return blended(stacks, entry_transmittance, radii_mm, [cancel](const LayeredDiffusion& s, std::span<const double> r) { return s.reflectance_profile(r, cancel); });
 }
 
-RadialProfile DiffusionMaterial::transmittance_profile(std::span<const double> radii_mm) const {
-    return blended(stacks, entry_transmittance, radii_mm, [](const LayeredDiffusion& s, std::span<const double> r) { return s.transmittance_profile(r); });
+RadialProfile DiffusionMaterial::transmittance_profile(std::span<const double> radii_mm, const std::atomic<bool>* cancel) const {
+    return blended(stacks, entry_transmittance, radii_mm, [cancel](const LayeredDiffusion& s, std::span<const double> r) { return s.transmittance_profile(r, cancel); });
 }
 
 DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_nm, const DiffusionOptions& options, double incidence_deg) {

@@ -62,8 +62,8 @@ struct DiffusionMaterial {
     double total_reflectance() const { return specular_reflectance + diffuse_reflectance(); }
     double total_transmittance() const;
     // Diffuse profiles per unit incident power (entry transmittance included), per mm^2 at radii in mm.
-    RadialProfile reflectance_profile(std::span<const double> radii_mm) const;
-    RadialProfile transmittance_profile(std::span<const double> radii_mm) const;
+    RadialProfile reflectance_profile(std::span<const double> radii_mm, const std::atomic<bool>* cancel = nullptr) const;
+    RadialProfile transmittance_profile(std::span<const double> radii_mm, const std::atomic<bool>* cancel = nullptr) const;
 };
 
 DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_nm, const DiffusionOptions& options,

@@ -10,7 +10,7 @@
 namespace skinspec {
 
 SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGrid& wavelengths, std::span<const double> radii_mm,
-                                    const DiffusionOptions& options, bool transmittance) {
+                                    const DiffusionOptions& options, bool transmittance, const std::atomic<bool>* cancel) {
     for (std::size_t i = 0; i < radii_mm.size(); ++i) {
         if (!std::isfinite(radii_mm[i]) || radii_mm[i] < 0.0) {
             throw InputError("radius = " + format_number(radii_mm[i]) + " mm is outside [0, inf)");
@@ -22,15 +22,27 @@ SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGr
     out.model = std::string(to_string(options.mode));
     out.radii_mm.assign(radii_mm.begin(), radii_mm.end());
     const auto add = [&](const DiffusionMaterial& m, std::string label, double nm) {
+        if (out.partial || (cancel && cancel->load())) {
+            out.partial = true;
+            return;
+        }
         ChannelProfile c{std::move(label), nm, {}, {}, m.diffuse_reflectance(),
                          m.total_transmittance(), m.specular_reflectance, {}, {}};
-        auto r = m.reflectance_profile(radii_mm);
+        auto r = m.reflectance_profile(radii_mm, cancel);
+        if (r.cancelled) {
+            out.partial = true;
+            return;
+        }
         c.reflectance_per_mm2 = std::move(r.values);
         out.max_pairs = std::max(out.max_pairs, r.max_pairs);
         out.frequencies = std::max(out.frequencies, r.frequencies);
         out.converged = out.converged && r.converged;
         if (transmittance) {
-            auto t = m.transmittance_profile(radii_mm);
+            auto t = m.transmittance_profile(radii_mm, cancel);
+            if (t.cancelled) {
+                out.partial = true;
+                return;
+            }
             c.transmittance_per_mm2 = std::move(t.values);
             out.converged = out.converged && t.converged;
         }
@@ -38,10 +50,13 @@ SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGr
         out.channels.push_back(std::move(c));
     };
     if (const auto* stack = std::get_if<LayerStack>(&material)) {
-        for (const double nm : wavelengths.nm()) add(diffusion_material(*stack, nm, options), fmt::format("{:g} nm", nm), nm);
+        for (const double nm : wavelengths.nm()) {
+            if (out.partial) break;
+            add(diffusion_material(*stack, nm, options), fmt::format("{:g} nm", nm), nm);
+        }
     } else {
         const auto& h = std::get<HomogeneousMaterial>(material);
-        for (std::size_t b = 0; b < h.bands.size(); ++b) add(diffusion_material(h, b, options), h.bands[b], 0.0);
+        for (std::size_t b = 0; b < h.bands.size() && !out.partial; ++b) add(diffusion_material(h, b, options), h.bands[b], 0.0);
     }
     return out;
 }

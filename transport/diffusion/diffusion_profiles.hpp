@@ -33,11 +33,13 @@ struct SpectralProfiles {
     std::size_t max_pairs = 0;    // dipole pairs the multipole sums needed
     std::size_t frequencies = 0;  // samples of the layered inverse transform (0 for one slab)
     bool converged = true;
+    bool partial = false;  // stopped: the channels finished so far
 };
 
 // `wavelengths` is used for layered materials and ignored for homogeneous ones (all their bands).
 // InputError for radii that are negative, non-finite or not increasing.
+// `cancel`: checked between channels and within a transform; a stop leaves the channels finished so far, partial.
 SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGrid& wavelengths, std::span<const double> radii_mm,
-                                    const DiffusionOptions& options, bool transmittance);
+                                    const DiffusionOptions& options, bool transmittance, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace skinspec

@@ -51,23 +51,25 @@ StackResponse LayeredDiffusion::response(double k) const {
     return stack;
 }
 
-RadialProfile LayeredDiffusion::reflectance_profile(std::span<const double> radii) const {
+RadialProfile LayeredDiffusion::reflectance_profile(std::span<const double> radii, const std::atomic<bool>* cancel) const {
     auto out = slabs_[0].reflectance_profile(radii);
     if (slabs_.size() == 1 && bottom_ == DiffusionBottom::open) return out;
-    const auto rest = inverse_transform(radii, false);
+    const auto rest = inverse_transform(radii, false, cancel);
+    out.cancelled = rest.cancelled;
     for (std::size_t i = 0; i < radii.size(); ++i) out.values[i] += rest.values[i];
     out.frequencies = rest.frequencies;
     out.converged = out.converged && rest.converged;
     return out;
 }
 
-RadialProfile LayeredDiffusion::transmittance_profile(std::span<const double> radii) const {
+RadialProfile LayeredDiffusion::transmittance_profile(std::span<const double> radii, const std::atomic<bool>* cancel) const {
     if (bottom_ == DiffusionBottom::reflector) return {std::vector<double>(radii.size(), 0.0), 0, 0, true};
     if (slabs_.size() == 1) return slabs_[0].transmittance_profile(radii);
-    return inverse_transform(radii, true);
+    return inverse_transform(radii, true, cancel);
 }
 
-RadialProfile LayeredDiffusion::inverse_transform(std::span<const double> radii, bool transmit) const {
+RadialProfile LayeredDiffusion::inverse_transform(std::span<const double> radii, bool transmit, const std::atomic<bool>* cancel) const {
+    const auto stopped = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
     // f(r) = (1 / 2 pi) int_0^inf F(k) J0(k r) k dk, F = T(k), or R(k) minus the top slab's own R_1(k).
     const auto integrand = [&](double k) {
         const auto s = response(k);
@@ -89,6 +91,7 @@ RadialProfile LayeredDiffusion::inverse_transform(std::span<const double> radii,
     double peak = 0.0;
     bool converged = false;
     for (std::size_t j = 1; j <= max_frequencies && !converged; ++j) {
+        if (j % 1024 == 0 && stopped()) return {std::vector<double>(radii.size(), 0.0), 0, 0, false, true};
         const double k = j * dk;
         const double w = integrand(k) * k * dk / (2.0 * std::numbers::pi);
         weights.push_back(w);
@@ -102,6 +105,7 @@ RadialProfile LayeredDiffusion::inverse_transform(std::span<const double> radii,
     const double f2 = (integrand(dk) - f0) / (dk * dk);
     RadialProfile out{std::vector<double>(radii.size(), 0.0), 0, weights.size(), converged};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, radii.size(), 16), [&](const tbb::blocked_range<std::size_t>& range) {
+        if (stopped()) return;
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const double r = radii[i];
             double sum = 0.0;
@@ -110,6 +114,7 @@ RadialProfile LayeredDiffusion::inverse_transform(std::span<const double> radii,
             out.values[i] = sum + end_correction / (2.0 * std::numbers::pi);
         }
     });
+    out.cancelled = stopped();
     return out;
 }
 

@@ -8,6 +8,7 @@
 // The transforms of every multipole are exact (layers/diffusion/point_source.hpp), so totals (k = 0) are
 // exact sums; profiles are transformed back numerically (a Hankel transform with glibc's j0), after removing
 // the top slab's own reflectance, which is known in closed form in real space.
+#include <atomic>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -42,13 +43,14 @@ public:
     // Real-space profiles at the given radii. The inverse transform samples k uniformly with a step that
     // resolves max(radii) and up to where the integrand has decayed by 1e-10; `converged` is false when that
     // needed more than max_frequencies samples.
-    RadialProfile reflectance_profile(std::span<const double> radii) const;
-    RadialProfile transmittance_profile(std::span<const double> radii) const;
+    // `cancel`: checked every 16 radii and 1024 frequencies of the transform (RadialProfile::cancelled).
+    RadialProfile reflectance_profile(std::span<const double> radii, const std::atomic<bool>* cancel = nullptr) const;
+    RadialProfile transmittance_profile(std::span<const double> radii, const std::atomic<bool>* cancel = nullptr) const;
 
     static constexpr std::size_t max_frequencies = 200'000;
 
 private:
-    RadialProfile inverse_transform(std::span<const double> radii, bool transmit) const;
+    RadialProfile inverse_transform(std::span<const double> radii, bool transmit, const std::atomic<bool>* cancel) const;
 
     std::vector<Multipole> slabs_;
     std::vector<Multipole> flipped_;

@@ -30,6 +30,7 @@ struct RadialProfile {
     std::size_t max_pairs = 0;
     std::size_t frequencies = 0;  // samples of the inverse transform (layered profiles only)
     bool converged = true;        // false when some radius hit max_pairs (or the transform its sample cap)
+    bool cancelled = false;       // stopped by a stop request: the values are no profile
 };
 
 class Multipole {

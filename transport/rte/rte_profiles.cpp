@@ -54,7 +54,12 @@ SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGri
         request.boundaries = options.boundaries;
         // 2n half-step rings: the last one also collects everything beyond (as MCML's last bin) and is not used.
         request.grid = RteGrid{0.01, 0.05 * step_mm, 0, static_cast<int>(2 * n), 0};
+        request.cancel = options.cancel;
         const auto result = solve_rte(request);
+        if (result.partial) {
+            out.partial = true;
+            break;
+        }
         ChannelProfile c;
         c.label = fmt::format("{:g} nm", nm);
         c.wavelength_nm = nm;

@@ -17,6 +17,7 @@ struct RteProfileOptions {
     std::uint64_t photons_per_wavelength = 1'000'000;
     std::uint64_t seed = 1;
     BoundaryMode boundaries = BoundaryMode::random;
+    const CancelFlag* cancel = nullptr;  // a stop leaves the wavelengths finished so far (SpectralProfiles::partial)
 };
 
 // InputError for radii that do not start at 0 with equal steps (what rings can give), fewer than two radii, or a
