@@ -285,14 +285,18 @@ void run_bench(const BenchCommandOptions& o) {
     const auto report = run_benchmark(options);
     if (o.json) std::cout << to_json(report, o).dump(2) << '\n';
     else print_report(report, o);
-    if (report.points.empty()) return;
-    if (!o.output.empty()) {
+    if (!report.points.empty() && !o.output.empty()) {
         write_text_file(o.output, o.output.ends_with(".json") ? to_json(report, o).dump(2) + "\n" : to_csv(report), o.overwrite);
         std::cerr << "wrote " << o.output << '\n';
     }
-    if (!o.plot.empty()) {
+    if (!report.points.empty() && !o.plot.empty()) {
         write_plot(o.plot, report);
         std::cerr << "wrote " << o.plot << '\n';
+    }
+    // Stopped like every other command: 128 + the signal, after writing what finished (marked partial).
+    if (InterruptGuard::interrupted()) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": the figures that finished were reported, marked partial\n";
+        std::exit(InterruptGuard::exit_code());
     }
 }
 

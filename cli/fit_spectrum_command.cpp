@@ -131,8 +131,10 @@ double median(std::vector<double> v) {
     return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
-std::string csv_of(const std::vector<SpectrumFit>& fits, const std::string& provenance) {
+std::string csv_of(const std::vector<SpectrumFit>& fits, const std::string& provenance, bool partial) {
     std::string out = fmt::format("# skinspec {} fit-spectrum (docs/SPECTRUM_FIT.md)\n# {}\n", version, provenance);
+    if (partial) out += "# partial: true (stopped; the fits below finished, the others were not written)\n";
+    if (fits.empty()) return out;
     out += "name";
     const auto& first = fits.front();
     for (const auto& k : first.parameter_keys) out += "," + k + "," + k + "_stderr";
@@ -157,6 +159,7 @@ std::string csv_of(const std::vector<SpectrumFit>& fits, const std::string& prov
 }
 
 std::string table_of(const std::vector<SpectrumFit>& fits) {
+    if (fits.empty()) return "no spectrum was fitted\n";
     const auto& keys = fits.front().parameter_keys;
     std::size_t width = 24;
     for (const auto& k : keys) width = std::max(width, k.size());
@@ -270,7 +273,8 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     std::vector<double> rms;
     for (const auto& f : fits) rms.push_back(f.rms);
     const auto bands = residual_bands(fits);
-    if (!fits.empty()) {
+    // Written when anything was fitted, and when stopped (then marked partial, even with no fit finished).
+    if (!fits.empty() || InterruptGuard::interrupted()) {
         // One document for standard output (--json) and for --output F.json.
         const auto document = [&] {
             Json fit_list = Json::array(), band_list = Json::array(), overrides_json = Json::array();
@@ -287,8 +291,8 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
                         {"rays_per_wavelength", o.rays},
                         {"seed", o.seed},
                         {"partial", fits.size() < chosen.size()},
-                        {"median_rms", median(rms)},
-                        {"worst_rms", *std::max_element(rms.begin(), rms.end())},
+                        {"median_rms", rms.empty() ? Json(nullptr) : Json(median(rms))},
+                        {"worst_rms", rms.empty() ? Json(nullptr) : Json(*std::max_element(rms.begin(), rms.end()))},
                         {"mean_residual_by_band", band_list},
                         {"seconds", seconds},
                         {"fits", fit_list}};
@@ -296,9 +300,11 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
         const bool json_file = o.output.ends_with(".json");
         const Json doc = o.json || json_file ? document() : Json{};
         std::cout << (o.json ? doc.dump(2) + "\n" : table_of(fits));
-        if (!o.output.empty()) write_text_file(o.output, json_file ? doc.dump(2) + "\n" : csv_of(fits, provenance), true);
+        if (!o.output.empty()) write_text_file(o.output, json_file ? doc.dump(2) + "\n" : csv_of(fits, provenance, fits.size() < chosen.size()), true);
         if (!o.output.empty()) std::cerr << "wrote " << o.output << '\n';
-        if (!o.plot.empty()) write_fit_plot(o.plot, fits);
+        if (!o.plot.empty() && !fits.empty()) write_fit_plot(o.plot, fits);
+    }
+    if (!fits.empty()) {
         std::string band_text;
         for (const auto& b : bands) band_text += fmt::format("{}{} {:+.4f}", band_text.empty() ? "" : ", ", b.name, b.mean_residual);
         std::cerr << fmt::format("{} spectra fitted in {:.2f} s (paths: {} rays in {:.2f} s; {:.2f} s per spectrum): median RMS {:.4f}, worst {:.4f}\n",

@@ -1,6 +1,7 @@
 #include "inverse/spectrum_fit/spectrum_fit.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -249,7 +250,13 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
 
     // Scan: quasi-random points over the unit box, then local searches from the best distinct ones.
     std::vector<std::pair<double, std::vector<double>>> scanned;
+    const auto stop_requested = [&] { return settings_.cancel && settings_.cancel->load(); };
+    bool stopped = false;
     for (std::size_t j = 0; j < settings_.scan_points; ++j) {
+        if (j > 0 && stop_requested()) {
+            stopped = true;
+            break;
+        }
         std::vector<double> x(p);
         for (std::size_t i = 0; i < p; ++i) x[i] = j == 0 ? 0.5 : radical_inverse(j, primes[i % std::size(primes)]);
         scanned.emplace_back(objective(x), std::move(x));
@@ -258,8 +265,12 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
     std::vector<double> best_x = scanned.front().second;
     double best = scanned.front().first;
     const std::size_t starts = std::min(settings_.starts, scanned.size());
-    for (std::size_t s = 0; s < starts; ++s) {
-        if (settings_.cancel && settings_.cancel->load()) break;
+    // A local search checks the stop request at every evaluation (NLopt's forced stop).
+    struct Search {
+        const decltype(objective_with_gradient)& objective;
+        const std::function<bool()> stop_requested;
+    } search{objective_with_gradient, stop_requested};
+    for (std::size_t s = 0; s < starts && !stopped; ++s) {
         // Bounded quasi-Newton on the analytic gradient of the replayed model (smooth: common random numbers).
         nlopt::opt opt(nlopt::LD_LBFGS, static_cast<unsigned>(p));
         opt.set_lower_bounds(std::vector<double>(p, 0.0));
@@ -269,14 +280,18 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
         opt.set_maxeval(300);
         opt.set_min_objective(
             [](const std::vector<double>& x, std::vector<double>& grad, void* data) {
-                auto& f = *static_cast<decltype(objective_with_gradient)*>(data);
-                return f(x, grad.empty() ? nullptr : &grad);
+                const auto& search = *static_cast<const Search*>(data);
+                if (search.stop_requested()) throw nlopt::forced_stop();
+                return search.objective(x, grad.empty() ? nullptr : &grad);
             },
-            const_cast<void*>(static_cast<const void*>(&objective_with_gradient)));
+            const_cast<void*>(static_cast<const void*>(&search)));
         auto x = scanned[s].second;
         double value = scanned[s].first;
         try {
             opt.optimize(x, value);
+        } catch (const nlopt::forced_stop&) {
+            stopped = true;
+            break;
         } catch (const nlopt::roundoff_limited&) {
             value = objective(x);
         } catch (const std::runtime_error&) {  // NLopt's generic failure: keep the scan point
@@ -343,6 +358,7 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
     fit.delta_e2000 = ciede2000(fit.measured_lab, fit.fitted_lab);
     fit.evaluations = evaluations;
     fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fit.complete = !stopped;
     return fit;
 }
 
@@ -354,7 +370,9 @@ std::vector<std::optional<SpectrumFit>> SpectrumFitter::fit_all(const std::vecto
     std::mutex progress_lock;
     tbb::parallel_for(std::size_t{0}, measured.size(), [&](std::size_t i) {
         if (settings_.cancel && settings_.cancel->load()) return;
-        slots[i] = fit(names[i], measured[i]);
+        auto one = fit(names[i], measured[i]);
+        if (!one.complete) return;  // cut short by a stop: not a fit, never written as one
+        slots[i] = std::move(one);
         const std::lock_guard lock(progress_lock);
         if (on_fitted) on_fitted(++done, measured.size());
     });

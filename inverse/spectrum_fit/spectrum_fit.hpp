@@ -70,6 +70,7 @@ struct SpectrumFit {
     double delta_e2000 = 0.0;
     std::size_t evaluations = 0;
     double seconds = 0.0;
+    bool complete = true;  // false when a stop request cut its local searches short (fit_all leaves it out)
 };
 
 // Mean residual (fitted - measured) of many fits in the bands that show the model's systematic errors.

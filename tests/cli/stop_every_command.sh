@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Every long-running command ends within 1 s of SIGINT, SIGTERM or SIGHUP with exit 128 + the signal, and keeps what
+# finished in a valid output marked partial (issue 32). The signals rotate over the commands so that each command
+# and each signal is exercised without tripling the run time.
+set -u
+program="$(realpath "$1")"
+inputs="$(realpath "$2")"
+work="$(mktemp -d)"
+cd "$work" || exit 1
+sed 's|existing_output.csv|stopped.mco|' "$inputs/overwrite_check.mci" > long.mci
+failures=0
+# NAME | SIGNAL | OUTPUT (- for none) | WHAT MARKS IT PARTIAL (grep pattern, - for nothing to check) | ARGS...
+run() {
+    local name="$1" signal="$2" output="$3" mark="$4"
+    shift 4
+    "$program" "$@" > stdout.txt 2> stderr.txt &
+    local pid=$!
+    sleep 2
+    local t0
+    t0=$(date +%s%N)
+    kill "-$signal" "$pid"
+    wait "$pid"
+    local rc=$? t1
+    t1=$(date +%s%N)
+    local ms=$(( (t1 - t0) / 1000000 )) expected
+    expected=$(( 128 + $(kill -l "$signal") ))
+    local problem=""
+    [ "$rc" -eq "$expected" ] || problem="exit $rc, expected $expected"
+    [ "$ms" -le 1000 ] || problem="$problem; ended $ms ms after SIG$signal"
+    if [ "$output" != "-" ]; then
+        if [ ! -s "$output" ]; then
+            problem="$problem; no output $output"
+        elif [ "$mark" != "-" ] && ! grep -aq "$mark" "$output"; then
+            problem="$problem; $output not marked partial ('$mark')"
+        fi
+    fi
+    if [ -n "$problem" ]; then
+        echo "FAIL $name: $problem"; tail -3 stderr.txt
+        failures=$((failures + 1))
+    else
+        echo "ok   $name: SIG$signal, exit $rc after $ms ms"
+    fi
+}
+run "spectrum" INT spectrum.json '"partial": true' spectrum --preset biospec-lightly --wavelengths 400:700:1 --stderr 0.0002 --output spectrum.json
+run "swatch" TERM swatch.png - swatch --delta-e 0.05 -o swatch.png
+run "swatch --lit" HUP - - swatch --lit spot --pixels 2048 --wavelengths 400:700:2 -o lit.png
+run "export lut" INT lut.exr - export lut --delta-e 0.05 -o lut.exr
+run "fit-spectrum" TERM fit.json '"partial": true' fit-spectrum "$inputs/fit_two.csv" --rays 400000 --output fit.json
+run "mcml" HUP stopped.mco 'INTERRUPTED' mcml long.mci --photons 1000000000
+run "bench" INT bench.json '"partial": true' bench --quick --output bench.json
+run "adding-doubling 256 channels" TERM ad.json '"partial": true' spectrum --mode adding-doubling --channels 256 --wavelengths 500:560:10 --output ad.json
+rm -rf "$work"
+[ "$failures" -eq 0 ]
