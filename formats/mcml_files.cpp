@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
@@ -15,8 +16,7 @@ namespace {
 class MciLines {
 public:
     explicit MciLines(const std::filesystem::path& file) : name_(file.string()) {
-        std::ifstream in(file);
-        if (!in) throw InputError(name_ + ": cannot open the .mci file");
+        auto in = open_input_file(file, ".mci file");
         std::string line;
         std::size_t number = 0;
         while (std::getline(in, line)) {

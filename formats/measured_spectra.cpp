@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
@@ -11,8 +12,7 @@ namespace skinspec {
 MeasuredSpectra read_measured_spectra(const std::filesystem::path& path) {
     MeasuredSpectra out;
     out.file = path.string();
-    std::ifstream in(path);
-    if (!std::filesystem::is_regular_file(path) || !in) throw InputError(out.file + ": measured spectra file not found");
+    auto in = open_input_file(path, "measured spectra file");
     std::string line;
     std::size_t number = 0;
     bool header = false;

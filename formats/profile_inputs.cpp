@@ -10,6 +10,7 @@
 
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
@@ -17,8 +18,7 @@ namespace {
 
 // CSV lines without '#' comments or blanks, split; the first line is the header.
 std::vector<std::vector<std::string>> read_csv(const std::string& file) {
-    std::ifstream in(file);
-    if (!std::filesystem::is_regular_file(file) || !in) throw InputError(file + ": cannot open the CSV file");
+    auto in = open_input_file(file, "CSV file");
     std::vector<std::vector<std::string>> rows;
     std::string line;
     while (std::getline(in, line)) {

@@ -8,16 +8,14 @@
 #include <vector>
 
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
 
 SpectrumFile read_spectrum_file(const std::filesystem::path& file, const SpectrumFileRules& rules) {
     const std::string name = file.string();
-    if (!std::filesystem::exists(file)) throw InputError(name + ": file not found");
-    if (std::filesystem::is_directory(file)) throw InputError(name + ": is a folder, not a spectrum file");
-    std::ifstream in(file);
-    if (!in) throw InputError(name + ": cannot be opened for reading");
+    auto in = open_input_file(file, "spectrum file");
 
     const std::string value_range = rules.allow_over_one ? "[0, inf)" : "[0, 1] (use --allow-over-one for values above 1)";
     std::vector<std::string> header;

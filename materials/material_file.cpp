@@ -15,6 +15,7 @@
 #include "spectral/data_paths.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
@@ -447,8 +448,7 @@ MaterialOverride parse_override(std::string_view text) {
 
 Material read_material(const std::filesystem::path& file, const std::vector<MaterialOverride>& overrides) {
     const std::string name = file.string();
-    if (!std::filesystem::is_regular_file(file)) throw InputError(name + ": material file not found");
-    std::ifstream in(file, std::ios::binary);
+    auto in = open_input_file(file, "material file");
     std::ostringstream text;
     text << in.rdbuf();
     if (!in && !in.eof()) throw InputError(name + ": cannot read the material file");

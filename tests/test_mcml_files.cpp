@@ -51,7 +51,7 @@ TEST_CASE("malformed .mci files name file, line, field and range", "[mcml_files]
     CHECK_THROWS_WITH(read_mci(bad("photons.mci", "1000\n", "1e3.5\n")), Catch::Contains("No. of photons"));
     CHECK_THROWS_WITH(read_mci(bad("fmt.mci", "out.mco A", "out.mco C")), Catch::Contains("field 'format' = C is not allowed"));
     CHECK_THROWS_WITH(read_mci(write_temp("early.mci", good.substr(0, good.size() - 4))), Catch::Contains("ends early"));
-    CHECK_THROWS_WITH(read_mci("/nonexistent.mci"), Catch::Contains("cannot open"));
+    CHECK_THROWS_WITH(read_mci("/nonexistent.mci"), Catch::Contains(".mci file not found"));
 }
 
 TEST_CASE(".mco text has MCML's sections in MCML's order", "[mcml_files]") {

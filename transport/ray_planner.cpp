@@ -33,7 +33,10 @@ std::vector<BatchTask> RayPlanner::next_round() const {
     for (std::size_t w = 0; w < planned_.size(); ++w) {
         if (state_.finished[w]) continue;
         std::uint64_t remaining = planned_[w];
-        for (std::uint64_t b = 0; b < batches_for(planned_[w]); ++b) {
+        // A fixed budget runs in rounds of at most max_round_batches (--rays 2^50 asked for 2.7e11 tasks at once:
+        // std::bad_alloc); an adaptive round is bounded by its plan (at most 8x the rays so far).
+        const std::uint64_t batches = adaptive_ ? batches_for(planned_[w]) : std::min(batches_for(planned_[w]), max_round_batches);
+        for (std::uint64_t b = 0; b < batches; ++b) {
             const std::uint64_t rays = std::min(rays_per_batch_, remaining);
             tasks.push_back({w, request_.wavelengths[w], next_batch_[w] + b, rays});
             remaining -= rays;
@@ -75,11 +78,17 @@ void RayPlanner::end_round(const std::vector<BatchTask>& tasks) {
             targets[s] = request_.stderr_targets(estimates, rays);
         }
     }
+    std::vector<std::uint64_t> ran(n, 0);
+    for (const auto& t : tasks) ++ran[t.wavelength];
     for (std::size_t w = 0; w < n; ++w) {
         if (state_.finished[w] || !complete[w] || !in_round[w]) continue;
-        next_batch_[w] += batches_for(planned_[w]);
+        next_batch_[w] += ran[w];
         const auto& tally = state_.tallies[w];
         const std::uint64_t used = tally.rays();
+        if (!adaptive_ && used < budget) {  // the rest of a fixed budget in the next round
+            planned_[w] = budget - used;
+            continue;
+        }
         bool met = true;
         double worst_ratio = 0.0;
         if (adaptive_) {

@@ -39,6 +39,7 @@ public:
 
 private:
     std::uint64_t batches_for(std::uint64_t rays) const { return (rays + rays_per_batch_ - 1) / rays_per_batch_; }
+    static constexpr std::uint64_t max_round_batches = std::uint64_t{1} << 16;
     void update_totals();
 
     const SpectralRequest& request_;

@@ -5,7 +5,7 @@
 # and leave the user's existing files (inputs/existing_output.*) byte for byte unchanged.
 set(out "${CMAKE_CURRENT_BINARY_DIR}/malformed")
 file(MAKE_DIRECTORY "${out}")
-skinspec_malformed_input("missing file" 2 "no_such_file.csv: file not found" - color no_such_file.csv)
+skinspec_malformed_input("missing file" 2 "no_such_file.csv: spectrum file not found" - color no_such_file.csv)
 skinspec_malformed_input("folder" 2 "is a folder" - color .)
 skinspec_malformed_input("non-numeric" 2 "non_numeric.csv:3: field 'reflectance' = 'abc' is not a number" - color non_numeric.csv)
 skinspec_malformed_input("not increasing" 2 "not_increasing.csv:4: field 'wavelength_nm' = 550 does not follow 600 nm" - color not_increasing.csv)
@@ -45,7 +45,7 @@ skinspec_malformed_input("spectrum plot bad extension" 2 "x.pdf: extension .\\.p
 skinspec_malformed_input("compare-phase bad source" 2 "--hg-source '1.5' is not allowed" - compare-phase --hg-source 1.5)
 skinspec_malformed_input("phase-study output dir is a file" 2 "exists and is not a folder" - phase-study --output-dir grey18.csv)
 skinspec_malformed_input("mcml refuses overwrite" 2 "existing_output.csv: exists already \\(use --overwrite" - mcml overwrite_check.mci --photons 100)
-skinspec_malformed_input("mcml bad file" 2 "cannot open the .mci file" - mcml no_such.mci)
+skinspec_malformed_input("mcml bad file" 2 "no_such.mci: .mci file not found" - mcml no_such.mci)
 skinspec_malformed_input("spectrum rte needs volumetric" 2 "has no volumetric scattering" - spectrum --mode rte --material white_reflector.toml --wavelengths 550 --rays 100)
 skinspec_malformed_input("spectrum diffusion no A" 2 "solver .multipole. does not compute A \\(it computes R, T; A is computed by: biospec, rte, adding-doubling\\)" - spectrum --mode multipole --quantities R,A)
 skinspec_malformed_input("spectrum bands and wavelengths" 2 "run them separately" - spectrum --mode dipole --preset biospec-lightly --preset jensen2001-skin1)
@@ -79,7 +79,7 @@ skinspec_malformed_input("profile zero radius step" 2 "--radii: STEP = 0 mm is o
 skinspec_malformed_input("profile roughness out of range" 2 "--roughness = 3 is outside \\(0, 2\\]" "${out}/profile_rough.csv" profile --roughness 3 --output ${out}/profile_rough.csv)
 skinspec_malformed_input("spectrum channels out of range" 2 "--channels = 300 is outside \\[4, 256\\]" - spectrum --mode adding-doubling --channels 300)
 skinspec_malformed_input("spectrum channels not whole" 2 "--channels = 8.5 is not a whole number in \\[4, 256\\]" - spectrum --mode adding-doubling --channels 8.5)
-skinspec_malformed_input("fit-profile missing profile file" 2 "no_such.csv: cannot open the CSV file" "${out}/fit_missing" fit-profile --profile no_such.csv --output-dir ${out}/fit_missing)
+skinspec_malformed_input("fit-profile missing profile file" 2 "no_such.csv: CSV file not found" "${out}/fit_missing" fit-profile --profile no_such.csv --output-dir ${out}/fit_missing)
 skinspec_malformed_input("fit-profile patches too far apart" 2 "n = 1e\\+81 distance bins for m = 2 usable patches \\(n > m" "${out}/fit_far" fit-profile --patches far_patches.csv --output-dir ${out}/fit_far)
 skinspec_malformed_input("fit-profile bad profile column" 2 "no column 'R_nope'" "${out}/fit_column" fit-profile --profile dipole_profile.csv --column R_nope --output-dir ${out}/fit_column)
 skinspec_malformed_input("fit-profile tiny grid step" 2 "grid 0:3:1e-300 has more than 1,000,000 values" "${out}/fit_grid" fit-profile --profile dipole_profile.csv --grid-scattering 0:3:1e-300 --output-dir ${out}/fit_grid)
@@ -168,3 +168,6 @@ skinspec_malformed_input("delta-e inf" 105 "--delta-e: 'inf' is not a finite num
 skinspec_malformed_input("an output named twice" 2 "same.exr: named as two outputs of one command" "${out}/same.exr" export lut -o ${out}/same.exr --spectra ${out}/same.exr)
 skinspec_malformed_input("an .mci output leaving the folder" 2 "escape.mci: output file '../../escape.mco' leaves the output folder" - mcml escape.mci --photons 100 --output-dir ${out})
 skinspec_malformed_input("the same --vary field twice" 2 "--vary epidermis.melanosome_fraction is given twice" - spectrum --mode dipole --wavelengths 550 --vary epidermis.melanosome_fraction=0.1:0.2:2 --vary epidermis.melanosome_fraction=0.1:0.3:2)
+# Inputs (issue 32 groups 10, 12): a device, FIFO or folder is named as such, never read without bound.
+skinspec_malformed_input("a device as a spectrum" 2 "/dev/zero: is a character device, not a spectrum file" - color /dev/zero)
+skinspec_malformed_input("a folder as a material" 2 "malformed: is a folder, not a material file" - spectrum --material ${out})

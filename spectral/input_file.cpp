@@ -1,0 +1,40 @@
+#include "spectral/input_file.hpp"
+
+#include <string>
+#include <system_error>
+
+#include "spectral/input_error.hpp"
+
+namespace skinspec {
+namespace {
+
+std::string kind_of(std::filesystem::file_type type) {
+    switch (type) {
+        case std::filesystem::file_type::directory: return "a folder";
+        case std::filesystem::file_type::character: return "a character device";
+        case std::filesystem::file_type::block: return "a block device";
+        case std::filesystem::file_type::fifo: return "a FIFO";
+        case std::filesystem::file_type::socket: return "a socket";
+        default: return "not a regular file";
+    }
+}
+
+}  // namespace
+
+std::ifstream open_input_file(const std::filesystem::path& file, std::string_view what, std::uintmax_t max_bytes) {
+    const std::string name = file.string();
+    std::error_code error;
+    const auto status = std::filesystem::status(file, error);
+    if (!std::filesystem::exists(status)) throw InputError(name + ": " + std::string(what) + " not found");
+    if (!std::filesystem::is_regular_file(status)) throw InputError(name + ": is " + kind_of(status.type()) + ", not a " + std::string(what));
+    const auto bytes = std::filesystem::file_size(file, error);
+    if (!error && bytes > max_bytes) {
+        throw InputError(name + ": is " + std::to_string(bytes) + " bytes, more than a " + std::string(what) + " may be (allowed: at most " +
+                         std::to_string(max_bytes >> 20) + " MiB)");
+    }
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot open the " + std::string(what) + " for reading");
+    return in;
+}
+
+}  // namespace skinspec

@@ -1,0 +1,17 @@
+#pragma once
+// A user's input file opened for reading, with the checks every reader needs first: it exists, it is a regular file
+// (a folder, device or FIFO said "not found", and `color /dev/zero` grew without bound), and it is not larger than a
+// bound (inputs are read whole or line by line: the bound keeps memory finite).
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+
+namespace skinspec {
+
+inline constexpr std::uintmax_t max_input_file_bytes = std::uintmax_t{256} << 20;
+
+// InputError "FILE: WHAT not found" / "is a FIFO, not a WHAT" / "is N bytes, more than ... (allowed at most 256 MiB)".
+std::ifstream open_input_file(const std::filesystem::path& file, std::string_view what, std::uintmax_t max_bytes = max_input_file_bytes);
+
+}  // namespace skinspec
