@@ -9,7 +9,7 @@ CLI::Option* add_seed_option(CLI::App& command, std::uint64_t& seed, const std::
     return command.add_option("--seed", seed, help)->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
 }
 
-void require_finite_numbers(CLI::App& app) {
+void check_option_values(CLI::App& app) {
     static const CLI::Validator finite(
         [](std::string& text) {
             // As CLI11 reads it: strtod takes nan, inf and overflows (1e400) to inf.
@@ -22,11 +22,28 @@ void require_finite_numbers(CLI::App& app) {
     // An empty text is no file name, colour space or list ("--output ''" ran and wrote nothing).
     static const CLI::Validator not_empty([](std::string& text) { return text.empty() ? std::string("an empty value is not allowed") : std::string(); }, "",
                                           "NONEMPTY");
+    static const CLI::Validator whole(
+        [](std::string& text) {
+            char* end = nullptr;
+            const double number = std::strtod(text.c_str(), &end);
+            const bool written_as_real = end != text.c_str() && *end == '\0' && text.find_first_of(".eE") != std::string::npos;
+            if (written_as_real && std::isfinite(number) && number == std::trunc(number) && std::abs(number) < 9.2e18) {
+                text = std::to_string(static_cast<long long>(number));  // 1e3 -> 1000, as CLI11 reads whole numbers
+            }
+            return std::string();
+        },
+        "", "WHOLE");
+    static const CLI::Validator unsigned_count(
+        [](std::string& text) { return text.starts_with("-") ? "'" + text + "' is negative (a count or size, >= 0)" : std::string(); }, "",
+        "UNSIGNED");
     for (auto* option : app.get_options()) {
-        if (option->get_type_name().starts_with("FLOAT")) option->check(finite);
-        if (option->get_type_name().starts_with("TEXT")) option->check(not_empty);
+        const auto type = option->get_type_name();
+        if (type.starts_with("FLOAT")) option->check(finite);
+        if (type.starts_with("TEXT")) option->check(not_empty);
+        if (type.starts_with("INT") || type.starts_with("UINT")) option->transform(whole);
+        if (type.starts_with("UINT")) option->check(unsigned_count);
     }
-    for (auto* command : app.get_subcommands({})) require_finite_numbers(*command);
+    for (auto* command : app.get_subcommands({})) check_option_values(*command);
 }
 
 CLI::Option* add_overwrite_flag(CLI::App& command, bool& overwrite, const std::string& help) {

@@ -10,9 +10,10 @@ namespace skinspec::cli {
 
 CLI::Option* add_seed_option(CLI::App& command, std::uint64_t& seed, const std::string& help = "Random seed");
 CLI::Option* add_overwrite_flag(CLI::App& command, bool& overwrite, const std::string& help = "Replace existing output files");
-// Every number option of `app` and its subcommands (CLI11 type FLOAT) refuses nan and inf, which CLI11's own range
-// checks let through ("--stderr nan" was accepted), and every text option an empty value: one check for every
-// command, present and future.
-void require_finite_numbers(CLI::App& app);
+// Checks added to every option of `app` and its subcommands by type, one place for every command present and future:
+// a number (FLOAT) refuses nan and inf, which CLI11's own range checks let through ("--stderr nan" was accepted); a
+// whole number (INT, UINT) takes "1e3" when it is whole, and an unsigned one refuses a minus sign ("--gaussians -1"
+// became 18446744073709551615); a text (TEXT) refuses an empty value.
+void check_option_values(CLI::App& app);
 
 }  // namespace skinspec::cli

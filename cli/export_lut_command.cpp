@@ -150,10 +150,7 @@ void run_export_lut(const LutOptions& o) {
     const ChartLayout texture{u.steps, v.steps, 1, 0};
     check_chart_size(texture);
     const ChartLayout preview{u.steps, v.steps, std::max(8, static_cast<int>(512 / std::max(u.steps, v.steps))), 0};
-    const auto displays = cm.displays();
-    if (std::find(displays.begin(), displays.end(), o.display) == displays.end()) {
-        throw InputError("--display: '" + o.display + "' is not a display of the config");
-    }
+    cm.check_display_view(o.display, o.view);
     check_output_path(o.output, o.overwrite, {".exr"});
     if (!o.spectra.empty()) check_output_path(o.spectra, o.overwrite, {".exr", ".csv"});
     if (!o.preview.empty()) {

@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_bench_command(app);
     skinspec::cli::add_stress_command(app);
     skinspec::cli::add_export_command(app);
-    skinspec::cli::require_finite_numbers(app);
+    skinspec::cli::check_option_values(app);
     // With several processes only rank 0 reports an input error (every rank finds the same one); any error stops them all.
     const bool root = skinspec::cli::is_root_process();
     const skinspec::OutputClaims outputs;  // the command's output files (spectral/atomic_file.hpp)

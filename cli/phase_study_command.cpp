@@ -153,6 +153,12 @@ void run_phase_study_command(const PhaseStudyOptions& o) {
     if (!o.output_dir.empty() && std::filesystem::exists(o.output_dir) && !std::filesystem::is_directory(o.output_dir)) {
         throw InputError("--output-dir " + o.output_dir + ": exists and is not a folder");
     }
+    // Made before the study, so that a folder that cannot be made fails at once (/proc/nope failed after the study).
+    if (!o.output_dir.empty()) {
+        std::error_code error;
+        std::filesystem::create_directories(o.output_dir, error);
+        if (error) throw InputError("--output-dir " + o.output_dir + ": cannot be made (" + error.message() + ")");
+    }
     PhaseStudySettings settings;
     settings.seed = o.seed;
     const auto study = run_phase_study(settings);

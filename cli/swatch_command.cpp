@@ -88,6 +88,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     const auto& cm = ColorManagement::builtin();
     const std::string space = cm.canonical_space(o.space, "--space");
     space_chromaticities(space);
+    cm.check_display_view(o.display, o.view);
     for (const auto& out : o.outputs) check_output_path(out, o.overwrite, {".exr", ".png", ".tif", ".tiff"});
 
     const auto material = load_material(name, parsed_overrides(o.overrides));
@@ -188,10 +189,7 @@ void run_swatch(const SwatchOptions& o) {
     const auto& cm = ColorManagement::builtin();
     const std::string space = cm.canonical_space(o.space, "--space");
     space_chromaticities(space);
-    const auto displays = cm.displays();
-    if (std::find(displays.begin(), displays.end(), o.display) == displays.end()) {
-        throw InputError("--display: '" + o.display + "' is not a display of the config");
-    }
+    cm.check_display_view(o.display, o.view);
     for (const auto& out : o.outputs) check_output_path(out, o.overwrite, {".exr", ".png", ".tif", ".tiff"});
 
     std::optional<tbb::global_control> threads;

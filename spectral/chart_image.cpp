@@ -109,6 +109,7 @@ void check_output_path(const std::filesystem::path& file, bool overwrite, const 
         throw InputError(file.string() + ": extension '" + ext + "' is not supported (allowed: " + allowed + ")");
     }
     const auto folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+    if (std::filesystem::exists(folder) && !std::filesystem::is_directory(folder)) throw InputError(file.string() + ": " + folder.string() + " is not a folder");
     if (!std::filesystem::is_directory(folder)) throw InputError(file.string() + ": folder " + folder.string() + " does not exist");
     if (access(folder.c_str(), W_OK) != 0) throw InputError(file.string() + ": folder " + folder.string() + " is not writable");
     if (std::filesystem::exists(file) && !overwrite) throw InputError(file.string() + ": exists already (use --overwrite to replace it)");

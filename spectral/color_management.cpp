@@ -1,5 +1,7 @@
 #include "spectral/color_management.hpp"
 
+#include <algorithm>
+
 #include <OpenColorIO/OpenColorIO.h>
 
 #include "spectral/chromatic_adaptation.hpp"
@@ -69,6 +71,22 @@ std::vector<std::string> ColorManagement::views(std::string_view display) const 
     std::vector<std::string> names;
     for (int i = 0; i < impl_->config->getNumViews(d.c_str()); ++i) names.emplace_back(impl_->config->getView(d.c_str(), i));
     return names;
+}
+
+void ColorManagement::check_display_view(std::string_view display, std::string_view view) const {
+    const auto join = [](const std::vector<std::string>& names) {
+        std::string out;
+        for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+        return out;
+    };
+    const auto all = displays();
+    if (std::find(all.begin(), all.end(), display) == all.end()) {
+        throw InputError("--display: '" + std::string(display) + "' is not a display of the config (allowed: " + join(all) + ")");
+    }
+    const auto own = views(display);
+    if (std::find(own.begin(), own.end(), view) == own.end()) {
+        throw InputError("--view: '" + std::string(view) + "' is not a view of display '" + std::string(display) + "' (allowed: " + join(own) + ")");
+    }
 }
 
 std::string ColorManagement::canonical_space(std::string_view name, std::string_view what) const {

@@ -37,6 +37,9 @@ public:
     std::vector<std::string> color_spaces() const;
     std::vector<std::string> displays() const;
     std::vector<std::string> views(std::string_view display) const;
+    // InputError naming --display or --view, the value and the allowed names, unless `display` is a display of the
+    // config and `view` one of its views (OCIO's own message for a bad view was "Display color space name is unspecified").
+    void check_display_view(std::string_view display, std::string_view view) const;
     // The config's own spelling of a colour space name given case-insensitively; InputError listing the
     // available spaces when unknown. `what` names the option in the message.
     std::string canonical_space(std::string_view name, std::string_view what) const;

@@ -118,6 +118,9 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
         }
         weights_.push_back(w);
     }
+    if (std::none_of(weights_.begin(), weights_.end(), [](double w) { return w > 0.0; })) {
+        throw InputError("--weight: every measured wavelength of the window has weight 0; nothing is left to fit");
+    }
     if (used_.size() < 5) {
         const bool windowed = settings.window_from_nm > 0.0 || std::isfinite(settings.window_to_nm);
         throw InputError(std::to_string(used_.size()) + " measured wavelengths to fit" +

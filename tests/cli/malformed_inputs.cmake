@@ -171,3 +171,9 @@ skinspec_malformed_input("the same --vary field twice" 2 "--vary epidermis.melan
 # Inputs (issue 32 groups 10, 12): a device, FIFO or folder is named as such, never read without bound.
 skinspec_malformed_input("a device as a spectrum" 2 "/dev/zero: is a character device, not a spectrum file" - color /dev/zero)
 skinspec_malformed_input("a folder as a material" 2 "malformed: is a folder, not a material file" - spectrum --material ${out})
+# Messages (issue 32 group 12): each names the real problem.
+skinspec_malformed_input("a negative count" 105 "--gaussians: '-1' is negative" - export profile --gaussians -1 -o ${out}/neg.json)
+skinspec_malformed_input("a file as a folder" 2 "/dev/full/o.json: /dev/full is not a folder" - spectrum --output /dev/full/o.json)
+skinspec_malformed_input("an unknown view" 2 "--view: 'Bogus' is not a view of display 'sRGB' \\(allowed: Standard, Raw\\)" "${out}/view.png" swatch --view Bogus -o ${out}/view.png)
+skinspec_malformed_input("every weight zero" 2 "--weight: every measured wavelength of the window has weight 0" - fit-spectrum fit_two.csv --weight 400:700=0)
+skinspec_malformed_input("an output folder that cannot be made" 2 "--output-dir /proc/nope: cannot be made" - phase-study --output-dir /proc/nope)
