@@ -10,6 +10,7 @@
 #include "spectral/data_paths.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/memory_budget.hpp"
 
 namespace skinspec {
 namespace {
@@ -99,6 +100,10 @@ void check_chart_size(const ChartLayout& layout) {
                                      "(use a smaller --patch-size or fewer steps)", layout.columns, layout.rows, layout.patch_px, pixels,
                                      max_chart_pixels));
     }
+    // ~57 bytes per pixel measured (working float RGB, the encoded copy, labels; 60 x 60 patches at 32 px: +212 MB).
+    constexpr double bytes_per_pixel = 64.0;
+    check_memory(pixels * bytes_per_pixel, fmt::format("a chart of {} x {} patches at {} px", layout.columns, layout.rows, layout.patch_px),
+                 "use a smaller --patch-size or fewer steps");
 }
 
 void check_output_path(const std::filesystem::path& file, bool overwrite, const std::vector<std::string>& extensions) {
