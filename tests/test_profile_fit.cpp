@@ -5,6 +5,7 @@
 
 #include "transport/diffusion/dipole.hpp"
 #include "inverse/profile_fit/dipole_fit.hpp"
+#include "inverse/profile_fit/profile_fit.hpp"
 #include "inverse/profile_fit/profile_solve.hpp"
 #include "inverse/profile_fit/profile_system.hpp"
 #include "inverse/profile_fit/synthetic_scene.hpp"
@@ -113,4 +114,12 @@ TEST_CASE("bad fit inputs give clear errors", "[profile-fit]") {
     const std::vector<SurfacePatch> far{{{0.0, 0.0, 0.0}, 1.0, 1.0, true}, {{1e80, 0.0, 0.0}, 1.0, 1.0, true}};
     CHECK_THROWS_WITH(patch_system(far, 0.1), Catch::Contains("distance bins for m = 2 usable patches (n > m"));
     CHECK_THROWS_WITH(solve_profile(planar_system(scene, 0.1), {-1.0, false}), Catch::Contains("lambda = -1 is outside [0, inf)"));
+    // No light out (an all-zero exitance image) was "fitted"; now refused, as no light in.
+    bad = scene;
+    bad.observed.assign(bad.observed.size(), 0.0);
+    CHECK_THROWS_WITH(fit_planar(bad, {}), Catch::Contains("the observed exitance is zero everywhere it is used: there is no light to fit"));
+    bad = scene;
+    bad.incident.assign(bad.incident.size(), 0.0);
+    CHECK_THROWS_WITH(fit_planar(bad, {}), Catch::Contains("the irradiance is zero everywhere"));
+    CHECK_THROWS_WITH(fit_radial({0.0, 0.5, 1.0}, {0.0, 0.0, 0.0}, {}), Catch::Contains("the radial profile is zero everywhere"));
 }

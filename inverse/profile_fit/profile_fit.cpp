@@ -26,9 +26,19 @@ std::function<double(double)> fitted(const ProfileFitReport& report, double eta)
     return [dipole](double d) { return dipole.radial_reflectance(d); };
 }
 
+// A fit needs light in and light out: all-zero inputs gave a "fitted" profile of nothing.
+void require_light(const std::vector<double>& values, const std::vector<char>& used, const char* what) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if ((used.empty() || used[i]) && values[i] > 0.0) return;
+    }
+    throw InputError(std::string("the ") + what + " is zero everywhere it is used: there is no light to fit");
+}
+
 }  // namespace
 
 ProfileFitReport fit_planar(const PlanarScene& scene, const ProfileFitOptions& options) {
+    require_light(scene.incident, {}, "irradiance");
+    require_light(scene.observed, scene.valid, "observed exitance");
     ProfileFitReport report;
     report.estimate = solve_profile(planar_system(scene, options.step_mm), options.solve);
     fit_estimate(report, options);
@@ -38,6 +48,15 @@ ProfileFitReport fit_planar(const PlanarScene& scene, const ProfileFitOptions& o
 }
 
 ProfileFitReport fit_patches(const std::vector<SurfacePatch>& patches, const ProfileFitOptions& options) {
+    std::vector<double> incident, observed_light;
+    std::vector<char> visible;
+    for (const auto& p : patches) {
+        incident.push_back(p.incident);
+        observed_light.push_back(p.observed);
+        visible.push_back(p.visible ? 1 : 0);
+    }
+    require_light(incident, {}, "incident light of the patches");
+    require_light(observed_light, visible, "observed light of the patches");
     ProfileFitReport report;
     report.estimate = solve_profile(patch_system(patches, options.step_mm), options.solve);
     fit_estimate(report, options);
@@ -54,6 +73,7 @@ ProfileFitReport fit_patches(const std::vector<SurfacePatch>& patches, const Pro
 
 ProfileFitReport fit_radial(const std::vector<double>& radii_mm, const std::vector<double>& profile, const ProfileFitOptions& options) {
     if (radii_mm.size() != profile.size() || radii_mm.empty()) throw InputError("radial profile: no samples, or radii and values differ in number");
+    require_light(profile, {}, "radial profile");
     for (std::size_t i = 0; i < radii_mm.size(); ++i) {
         if (!std::isfinite(radii_mm[i]) || radii_mm[i] < 0.0) throw InputError("radial profile: r = " + format_number(radii_mm[i]) + " mm is outside [0, inf)");
         if (i > 0 && radii_mm[i] <= radii_mm[i - 1]) throw InputError("radial profile: radii must increase (" + format_number(radii_mm[i]) + " mm after " + format_number(radii_mm[i - 1]) + " mm)");
