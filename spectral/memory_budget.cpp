@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <string>
@@ -14,14 +15,16 @@
 namespace skinspec {
 namespace {
 
-// A "Key: N kB" line of a /proc file, in bytes; +inf when absent.
+// A "Key:   N kB" line of a /proc file, in bytes; +inf when absent.
 double proc_kb(const char* file, std::string_view key) {
     std::ifstream in(file);
-    std::string name;
-    double kb = 0.0;
-    std::string unit;
-    while (in >> name >> kb >> unit) {
-        if (name == std::string(key) + ":") return kb * 1024.0;
+    const std::string prefix = std::string(key) + ":";
+    std::string line;
+    while (std::getline(in, line)) {
+        if (!line.starts_with(prefix)) continue;
+        char* end = nullptr;
+        const double kb = std::strtod(line.c_str() + prefix.size(), &end);
+        return end == line.c_str() + prefix.size() ? std::numeric_limits<double>::infinity() : kb * 1024.0;
     }
     return std::numeric_limits<double>::infinity();
 }
