@@ -450,7 +450,9 @@ void extreme_field_cases(Grid& grid) {
             values.emplace_back(std::isinf(r.hi) ? huge : r.hi_open ? std::nextafter(r.hi, -huge) : r.hi, true);
             if (std::isfinite(r.lo)) values.emplace_back(r.lo_open ? r.lo : r.lo - std::max(1.0, std::abs(r.lo)), false);
             if (std::isfinite(r.hi)) values.emplace_back(r.hi_open ? r.hi : r.hi + std::max(1.0, std::abs(r.hi)), false);
-            for (const auto& [value, inside] : values) {
+            for (const auto& probe_value : values) {
+                const double value = probe_value.first;  // not a structured binding: clang 14 cannot capture one
+                const bool inside = probe_value.second;
                 grid.run(std::string(solver->name()) + "-fields", fmt::format("{}: {} = {:g}", solver->name(), probe.key, value), [&](Checks& c) {
                     const auto material = load_material("biospec-moderately", {MaterialOverride(probe.key, format_number(value))});
                     c.expect(inside, fmt::format("{} = {:g} is outside {} but was accepted", probe.key, value, r.text()));
