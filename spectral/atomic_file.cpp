@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 
 namespace skinspec {
 namespace {
@@ -22,24 +23,12 @@ std::filesystem::path identity(const std::filesystem::path& file) {
     return std::filesystem::weakly_canonical(std::filesystem::absolute(file), ignored);
 }
 
-std::string kind_of(std::filesystem::file_type type) {
-    switch (type) {
-        case std::filesystem::file_type::symlink: return "a symbolic link";
-        case std::filesystem::file_type::directory: return "a folder";
-        case std::filesystem::file_type::character: return "a character device";
-        case std::filesystem::file_type::block: return "a block device";
-        case std::filesystem::file_type::fifo: return "a FIFO";
-        case std::filesystem::file_type::socket: return "a socket";
-        default: return "not a regular file";
-    }
-}
-
 // The temporary under the target's name: replacing a regular file, or created exclusively.
 void publish(const std::filesystem::path& temporary, const std::filesystem::path& file, bool replace) {
     std::error_code error;
     const auto status = std::filesystem::symlink_status(file, error);
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-        throw InputError(file.string() + ": is " + kind_of(status.type()) + "; only a regular file is replaced by an output");
+        throw InputError(file.string() + ": is " + file_kind(status.type()) + "; only a regular file is replaced by an output");
     }
     if (replace) {
         std::filesystem::rename(temporary, file, error);

@@ -6,10 +6,10 @@
 #include "spectral/input_error.hpp"
 
 namespace skinspec {
-namespace {
 
-std::string kind_of(std::filesystem::file_type type) {
+std::string file_kind(std::filesystem::file_type type) {
     switch (type) {
+        case std::filesystem::file_type::symlink: return "a symbolic link";
         case std::filesystem::file_type::directory: return "a folder";
         case std::filesystem::file_type::character: return "a character device";
         case std::filesystem::file_type::block: return "a block device";
@@ -19,14 +19,12 @@ std::string kind_of(std::filesystem::file_type type) {
     }
 }
 
-}  // namespace
-
 std::ifstream open_input_file(const std::filesystem::path& file, std::string_view what, std::uintmax_t max_bytes) {
     const std::string name = file.string();
     std::error_code error;
     const auto status = std::filesystem::status(file, error);
     if (!std::filesystem::exists(status)) throw InputError(name + ": " + std::string(what) + " not found");
-    if (!std::filesystem::is_regular_file(status)) throw InputError(name + ": is " + kind_of(status.type()) + ", not a " + std::string(what));
+    if (!std::filesystem::is_regular_file(status)) throw InputError(name + ": is " + file_kind(status.type()) + ", not a " + std::string(what));
     const auto bytes = std::filesystem::file_size(file, error);
     if (!error && bytes > max_bytes) {
         throw InputError(name + ": is " + std::to_string(bytes) + " bytes, more than a " + std::string(what) + " may be (allowed: at most " +

@@ -5,9 +5,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <string_view>
 
 namespace skinspec {
+
+// "a folder", "a FIFO", "a symbolic link", ...: what a path that is not a regular file is, for messages (inputs and outputs).
+std::string file_kind(std::filesystem::file_type type);
 
 inline constexpr std::uintmax_t max_input_file_bytes = std::uintmax_t{256} << 20;
 
