@@ -112,7 +112,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
             for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
             auto overrides = sweep_overrides(axes, parameters[i]);
             auto material = with_overrides(base_material, overrides);
-            members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml});
+            members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml, {}});
         }
         auto results = solve_sweep(solver, members, base);
         if (share) {

@@ -160,6 +160,7 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
     // A sweep's members share their settings and base material: each is written once, each member's overrides
     // on its own provenance line.
     const SpectralResult* previous = nullptr;
+    const std::string* previous_meaning = nullptr;  // a stated error's meaning is written when it changes
     std::vector<std::pair<std::string, const std::string*>> written_materials;  // (name, material TOML) already written
     for (const auto& s : spectra) {
         const auto& r = s.result;
@@ -175,8 +176,10 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
         for (const auto& [key, value] : p.overrides) overrides += " " + key + "=" + value;
         std::string stated;
         if (const auto& e = s.result.stated_error) {
+            const bool repeated = previous_meaning && *previous_meaning == e->meaning;
             stated = fmt::format(", stated error of R {:.6g}{} ({})", e->R, e->delta_e2000 ? fmt::format(", CIEDE2000 {:.4g}", *e->delta_e2000) : std::string(),
-                                 e->meaning);
+                                 repeated ? std::string("as above") : e->meaning);
+            previous_meaning = &e->meaning;
         }
         out += fmt::format("# provenance {}: solver {}, skinspec {}, overrides{}{}\n", s.result.material, p.solver, p.version,
                            overrides.empty() ? std::string(" none") : overrides, stated);

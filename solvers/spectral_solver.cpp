@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <optional>
 #include <unordered_map>
+
+#include <tbb/parallel_for.h>
 
 #include "materials/path_key.hpp"
 #include "skinspec/version.hpp"
@@ -95,14 +98,32 @@ void check_switches(const SpectralSolver& solver, const SolverSwitches& switches
 }  // namespace
 
 std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const {
-    std::vector<SpectralResult> results;
-    for (const auto* m : materials) {
-        if (request.spectral.cancel && request.spectral.cancel->load()) break;
-        results.push_back(solve(*m, request));
-        if (results.back().partial) break;
-    }
+    if (materials.size() == 1) return {solve(*materials.front(), request)};
+    // The materials in parallel (each result depends on its material alone, so on no thread count); progress counts
+    // the members finished, reported one at a time.
+    std::vector<std::optional<SpectralResult>> by_index(materials.size());
+    auto member = request;
+    member.spectral.on_progress = nullptr;
+    std::mutex progress;
+    std::size_t done = 0;
+    const std::size_t wavelengths = request.spectral.wavelengths.size();
+    tbb::parallel_for(std::size_t{0}, materials.size(), [&](std::size_t i) {
+        if (request.spectral.cancel && request.spectral.cancel->load()) return;
+        by_index[i] = solve(*materials[i], member);
+        if (by_index[i]->partial || !request.spectral.on_progress) return;
+        const std::lock_guard lock(progress);
+        ++done;
+        request.spectral.on_progress(Progress{0, 0, done * wavelengths, materials.size() * wavelengths});
+    });
+    // Up to the first member not solved, the first partial one included.
+    auto results = solved_prefix(by_index);
+    const auto partial = std::find_if(results.begin(), results.end(), [](const SpectralResult& r) { return r.partial; });
+    if (partial != results.end()) results.erase(partial + 1, results.end());
     return results;
 }
+
+void SpectralSolver::state_errors(const std::vector<const Material*>&, const std::vector<std::vector<std::size_t>>&, const SolverRequest&,
+                                  std::vector<SpectralResult>&) const {}
 
 std::vector<std::vector<std::size_t>> SpectralSolver::solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const {
     std::vector<std::vector<std::size_t>> groups;
@@ -269,8 +290,11 @@ void record_provenance(SpectralResult& result, const SpectralSolver& solver, con
 
 SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
     check_request(solver, material, request);
-    auto result = solver.solve(material, effective_request(request));
-    check_result_values(solver, result, request.overrides);
+    const auto effective = effective_request(request);
+    std::vector<SpectralResult> one{solver.solve(material, effective)};
+    check_result_values(solver, one.front(), request.overrides);
+    solver.state_errors({&material}, {{}}, effective, one);
+    auto result = std::move(one.front());
     record_provenance(result, solver, material, std::make_shared<const std::string>(to_toml(material)), request.overrides, {});
     return result;
 }
@@ -284,6 +308,7 @@ std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const Solve
     }
     const auto base_toml = std::make_shared<const std::string>(to_toml(cut));
     std::vector<SweepMember> members;
+    std::vector<std::size_t> position(axes.size(), 0);
     for (const auto& values : sweep_grid(axes)) {
         auto overrides = sweep_overrides(axes, values);
         auto material = with_overrides(cut, overrides);
@@ -291,7 +316,9 @@ std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const Solve
         check_overrides(solver, overrides);
         std::vector<std::pair<std::string, double>> varied;
         for (std::size_t a = 0; a < axes.size(); ++a) varied.emplace_back(axes[a].field, values[a]);
-        members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml});
+        members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml, position});
+        // The next combination's indices: the first axis fastest (sweep_grid's order).
+        for (std::size_t a = 0; a < axes.size() && ++position[a] == axes[a].values.size(); ++a) position[a] = 0;
     }
     return members;
 }
@@ -331,11 +358,21 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
         check_request(solver, m.material, request);
         materials.push_back(&m.material);
     }
-    auto results = share ? solve_shared(solver, materials, effective_request(request), *share) : solver.solve_many(materials, effective_request(request));
+    const auto effective = effective_request(request);
+    auto results = share ? solve_shared(solver, materials, effective, *share) : solver.solve_many(materials, effective);
+    std::vector<std::vector<MaterialOverride>> overrides_of;
     for (std::size_t i = 0; i < results.size(); ++i) {
-        auto overrides = request.overrides;
+        auto& overrides = overrides_of.emplace_back(request.overrides);
         overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());
         check_result_values(solver, results[i], overrides);
+    }
+    if (!results.empty()) {
+        std::vector<std::vector<std::size_t>> positions;
+        for (const auto& m : members) positions.push_back(m.position);
+        solver.state_errors(materials, positions, effective, results);
+    }
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const auto& overrides = overrides_of[i];
         record_provenance(results[i], solver, members[i].material, members[i].base_toml ? members[i].base_toml : std::make_shared<const std::string>(to_toml(members[i].material)), overrides,
                           members[i].varied);
     }

@@ -73,6 +73,12 @@ public:
     // each material alone. What a sweep may share among processes (solve_sweep with a WorkShare).
     virtual std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const;
     virtual SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const;
+    // For solvers that state their error by comparison with a reference (SpectralResult::stated_error), called on
+    // the finished results (possibly fewer than the materials: a stop) of solve_spectrum and solve_sweep, so that a
+    // sweep can measure its error at some members and interpolate between them. `positions`: per material, its
+    // index on each sweep axis (SweepMember::position; empty: unrelated materials, each measured). Default: nothing.
+    virtual void state_errors(const std::vector<const Material*>& materials, const std::vector<std::vector<std::size_t>>& positions,
+                              const SolverRequest& request, std::vector<SpectralResult>& results) const;
 };
 
 // For solve_groups implementations that replay absorption: the layered materials that trace alike (equal path
@@ -108,6 +114,7 @@ struct SweepMember {
     std::vector<MaterialOverride> overrides;
     std::vector<std::pair<std::string, double>> varied;
     std::shared_ptr<const std::string> base_toml;  // unset: the member's own material is recorded
+    std::vector<std::size_t> position;  // its index on each axis of the sweep (empty: not on a lattice)
 };
 // The members of a sweep over `axes`, one per combination of their values (sweep_grid order; no axis: one
 // member): `base` cut to the sub-stack of `layers` when given, then each combination's overrides set on it in

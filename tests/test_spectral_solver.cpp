@@ -157,6 +157,8 @@ TEST_CASE("sweep members: every combination, the first axis fastest, each checke
     REQUIRE(members.size() == 6);
     CHECK(members[1].varied == std::vector<std::pair<std::string, double>>{{"epidermis.melanosome_fraction", 0.02}, {"dermis.blood_fraction", 0.002}});
     CHECK(members[3].varied.back().second == 0.01);
+    CHECK(members[1].position == std::vector<std::size_t>{1, 0});
+    CHECK(members[5].position == std::vector<std::size_t>{2, 1});
     CHECK(std::get<double>(material_field(members[5].material, "epidermis.melanosome_fraction")) == 0.04);
     CHECK(members[5].overrides.front().value == "0.04");
     // One base text for the whole sweep; each result records it with its member's overrides.
