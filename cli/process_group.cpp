@@ -1,11 +1,15 @@
 #include "cli/process_group.hpp"
 
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <limits>
 #include <memory>
+#include <thread>
 
+#include "cli/progress.hpp"
 #include "spectral/input_error.hpp"
 
 #ifdef SKINSPEC_MPI
@@ -94,17 +98,82 @@ std::unique_ptr<MpiWorkShare>& mpi_share() {
     return share;
 }
 
+// Passes a stop on to the whole job: a signal to any one process (a scheduler's SIGTERM to one rank, Ctrl-C
+// forwarded to some) stops every other within ~50 ms, so each keeps what it finished, rank 0 gathers and writes it
+// marked partial, and every process exits 128 + that signal. On its own communicator (the gathers are unaffected),
+// from a thread of its own, which polls: the computation's threads never call MPI.
+class StopRelay {
+public:
+    StopRelay() {
+        check_mpi(MPI_Comm_dup(MPI_COMM_WORLD, &comm_), "MPI_Comm_dup");
+        MPI_Comm_rank(comm_, &rank_);
+        MPI_Comm_size(comm_, &size_);
+        thread_ = std::thread([this] { run(); });
+    }
+    ~StopRelay() {
+        done_.store(true);
+        thread_.join();
+        MPI_Comm_free(&comm_);
+    }
+
+private:
+    static constexpr int tag = 1;
+    void run() {
+        bool passed_on = false;
+        for (;;) {
+            const bool last = done_.load();
+            if (!passed_on && InterruptGuard::own_signal() != 0) {
+                passed_on = true;
+                int signal = InterruptGuard::own_signal();
+                for (int r = 0; r < size_; ++r) {
+                    if (r != rank_) MPI_Send(&signal, 1, MPI_INT, r, tag, comm_);
+                }
+            }
+            int arrived = 0;
+            MPI_Status status;
+            while (MPI_Iprobe(MPI_ANY_SOURCE, tag, comm_, &arrived, &status) == MPI_SUCCESS && arrived) {
+                int signal = 0;
+                MPI_Recv(&signal, 1, MPI_INT, status.MPI_SOURCE, tag, comm_, MPI_STATUS_IGNORE);
+                if (InterruptGuard::own_signal() == 0) InterruptGuard::stop_by_peer(signal, static_cast<std::size_t>(status.MPI_SOURCE));
+                passed_on = true;  // the sender told every process
+            }
+            if (last) return;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+    }
+    MPI_Comm comm_ = MPI_COMM_NULL;
+    int rank_ = 0, size_ = 1;
+    std::atomic<bool> done_{false};
+    std::thread thread_;
+};
+
+std::unique_ptr<StopRelay>& stop_relay() {
+    static std::unique_ptr<StopRelay> relay;
+    return relay;
+}
+
 }  // namespace
 
 void join_process_group(int& argc, char**& argv) {
     if (!launched_by_mpi()) return;
-    // Only the main thread calls MPI (the gathers); TBB's workers never do.
+    // The main thread calls MPI for the gathers, the stop relay's thread for stops; TBB's workers never do.
     int provided = 0;
-    check_mpi(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+    check_mpi(MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided), "MPI_Init_thread");
+    if (provided < MPI_THREAD_MULTIPLE) throw std::runtime_error("MPI: the library does not support threads (MPI_THREAD_MULTIPLE), which passing a stop on needs");
     auto share = std::make_unique<MpiWorkShare>();
-    if (share->size() > 1) mpi_share() = std::move(share);
-    // Registered after the share's holder exists, so it runs before the holder is destroyed.
-    std::atexit([] { MPI_Finalize(); });
+    if (share->size() > 1) {
+        mpi_share() = std::move(share);
+        InterruptGuard::install_for_process();
+        stop_relay() = std::make_unique<StopRelay>();
+    }
+    // Registered after the holders exist, so it runs before they are destroyed. Every process waits for the others
+    // (rank 0 writes before it exits): mpirun ends the job when one process exits non-zero, as a stopped one does,
+    // and would otherwise signal rank 0 while it writes. Then the relay stops, then MPI.
+    std::atexit([] {
+        if (mpi_share()) MPI_Barrier(MPI_COMM_WORLD);
+        stop_relay().reset();
+        MPI_Finalize();
+    });
 }
 
 int error_exit(int code) {

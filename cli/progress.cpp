@@ -1,5 +1,6 @@
 #include "cli/progress.hpp"
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <unistd.h>
@@ -10,12 +11,27 @@ namespace skinspec::cli {
 namespace {
 
 CancelFlag cancel_requested{false};
-volatile std::sig_atomic_t received_signal = 0;
+std::atomic<int> received_signal{0};  // lock-free: safe in a handler
+static_assert(std::atomic<int>::is_always_lock_free);
+// A stop passed on from another process of the job (cli/process_group.cpp): its signal and rank.
+std::atomic<int> peer_signal{0};
+std::atomic<std::size_t> peer_rank{0};
+bool installed_for_process = false;  // InterruptGuard::install_for_process
 
 extern "C" void on_stop_signal(int signal) {
-    if (cancel_requested.load()) _exit(128 + signal);
-    received_signal = signal;
+    // A second signal to this process exits at once (a stop passed on from a peer does not count: mpirun's own
+    // SIGTERM after it must still let this process write what finished).
+    if (received_signal.load() != 0) _exit(128 + signal);
+    received_signal.store(signal);
     cancel_requested.store(true);
+}
+
+std::string signal_name(int signal) {
+    switch (signal) {
+        case SIGTERM: return "SIGTERM";
+        case SIGHUP: return "SIGHUP";
+        default: return "SIGINT";
+    }
 }
 
 // Runs longer than this are announced once, with their estimated duration.
@@ -74,19 +90,33 @@ InterruptGuard::InterruptGuard() {
     for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, on_stop_signal);
 }
 InterruptGuard::~InterruptGuard() {
+    if (installed_for_process) return;
     for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, SIG_DFL);
+}
+void InterruptGuard::install_for_process() {
+    installed_for_process = true;
+    for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, on_stop_signal);
 }
 const CancelFlag& InterruptGuard::cancel_flag() { return cancel_requested; }
 bool InterruptGuard::interrupted() { return cancel_requested.load(); }
 
 std::string InterruptGuard::reason() {
-    switch (received_signal) {
-        case SIGTERM: return "stopped (SIGTERM)";
-        case SIGHUP: return "stopped (SIGHUP)";
-        default: return "interrupted";
-    }
+    const int own = received_signal.load();
+    if (own == 0 && peer_signal.load() != 0) return fmt::format("stopped ({} to process {} of the job)", signal_name(peer_signal.load()), peer_rank.load());
+    return own == 0 || own == SIGINT ? std::string("interrupted") : "stopped (" + signal_name(own) + ")";
 }
 
-int InterruptGuard::exit_code() { return 128 + (received_signal ? static_cast<int>(received_signal) : SIGINT); }
+int InterruptGuard::exit_code() {
+    const int signal = received_signal.load() != 0 ? received_signal.load() : peer_signal.load();
+    return 128 + (signal != 0 ? signal : SIGINT);
+}
+
+int InterruptGuard::own_signal() { return received_signal.load(); }
+
+void InterruptGuard::stop_by_peer(int signal, std::size_t rank) {
+    peer_rank.store(rank);
+    peer_signal.store(signal);
+    cancel_requested.store(true);
+}
 
 }  // namespace skinspec::cli

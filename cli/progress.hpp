@@ -42,8 +42,15 @@ public:
     ~InterruptGuard();
     static const CancelFlag& cancel_flag();
     static bool interrupted();
-    static std::string reason();  // "interrupted (SIGINT)", "stopped (SIGTERM)", ...
+    static std::string reason();  // "interrupted", "stopped (SIGTERM)", "stopped (SIGTERM to process 1 of the job)"
     static int exit_code();       // 128 + the signal number, as a shell reports it
+    // The signal this process received (0: none), and a stop passed on from another process of the job, which
+    // stops this one as that signal would (cli/process_group.cpp).
+    static int own_signal();
+    static void stop_by_peer(int signal, std::size_t rank);
+    // The handlers from now until the process exits (a process of an MPI job: one that finished its share and
+    // waits for the others must still pass a stop on, not die of it).
+    static void install_for_process();
 };
 
 }  // namespace skinspec::cli
