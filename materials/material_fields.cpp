@@ -69,7 +69,7 @@ const std::vector<NumberField<VolumetricScattering>>& volumetric_fields() {
         {"volumetric_mu_s_per_cm_at_500nm", "1/cm", non_negative, &V::mu_s_per_cm_at_500nm, true,
          "volumetric walk: scattering coefficient at 500 nm, mu_s(l) = mu_s(500) (l / 500 nm)^-power"},
         {"volumetric_mu_s_power", "1", power_law_exponent, &V::power, false, "volumetric walk: power-law exponent of mu_s"},
-        {"volumetric_g", "1", anisotropy, &V::g, false, "volumetric solvers: HG asymmetry (not with a measured volumetric_phase)"},
+        {"volumetric_g", "1", anisotropy, &V::g, false, "volumetric solvers: HG asymmetry (not with a measured volumetric_phase; below 1 with volumetric_scattering = from_reduced_scattering)"},
     };
     return fields;
 }

@@ -224,7 +224,11 @@ TissueLayer read_layer(const Reader& r, const toml::table& t, std::size_t index)
                 throw InputError(r.where(t.get("volumetric_scattering"), source_key) + "layer '" + layer.name +
                                  "': volumetric_scattering = from_reduced_scattering needs reduced_scattering_table or the reduced power law");
             }
-            v.g = r.number(t, "volumetric_g", p + "volumetric_g", FieldRange{-1.0, 1.0, false, true}, 0.0);
+            v.g = r.number(t, "volumetric_g", p + "volumetric_g", FieldRange{-1.0, 1.0, false, false}, 0.0);
+            if (v.g == 1.0) {
+                throw InputError(r.where(t.get("volumetric_g"), p + "volumetric_g") + "key '" + p + "volumetric_g' = 1 is outside [-1, 1) with "
+                                 "volumetric_scattering = from_reduced_scattering (mu_s = mu_s' / (1 - g) would be infinite)");
+            }
         }
         layer.volumetric = v;
     }

@@ -177,3 +177,5 @@ skinspec_malformed_input("a file as a folder" 2 "/dev/full/o.json: /dev/full is 
 skinspec_malformed_input("an unknown view" 2 "--view: 'Bogus' is not a view of display 'sRGB' \\(allowed: Standard, Raw\\)" "${out}/view.png" swatch --view Bogus -o ${out}/view.png)
 skinspec_malformed_input("every weight zero" 2 "--weight: every measured wavelength of the window has weight 0" - fit-spectrum fit_two.csv --weight 400:700=0)
 skinspec_malformed_input("an output folder that cannot be made" 2 "--output-dir /proc/nope: cannot be made" - phase-study --output-dir /proc/nope)
+skinspec_malformed_input("an overflowing mu_a names its layer" 2 "layer 'papillary_dermis' of 'biospec-lightly': mu_a at 550 nm = inf 1/cm" - spectrum --mode rte --preset biospec-lightly --set papillary_dermis.hemoglobin_g_per_l=1e306 --wavelengths 550 --rays 1000)
+skinspec_malformed_input("g = 1 where mu_s = mu_s' / (1 - g)" 2 "key 'papillary_dermis.volumetric_g' = 1 is outside \\[-1, 1\\) with volumetric_scattering = from_reduced_scattering" - spectrum --mode rte --preset biospec-lightly --set papillary_dermis.volumetric_g=1 --wavelengths 550 --rays 100)

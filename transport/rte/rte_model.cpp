@@ -26,6 +26,13 @@ RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
             throw InputError("layer '" + stack.layers[k].name + "' of '" + stack.name +
                              "' has no volumetric scattering (set volumetric_mu_s_per_cm_at_500nm and volumetric_g)");
         }
+        // Chromophore concentrations far beyond tissue's overflow mu_a (validate() below would name only "layer 3").
+        for (const auto& [what, value] : {std::pair{"mu_a", o.mu_a_per_cm}, std::pair{"mu_s", *o.mu_s_per_cm}}) {
+            if (!std::isfinite(value)) {
+                throw InputError("layer '" + stack.layers[k].name + "' of '" + stack.name + "': " + what + " at " + format_number(wavelength_nm) +
+                                 " nm = " + format_number(value) + " 1/cm, from its fields' values: beyond what the model can compute");
+            }
+        }
         PhaseFunction phase = PhaseFunction::henyey_greenstein(*o.g);
         if (*o.phase == PhaseFunctionKind::isotropic) phase = PhaseFunction::isotropic();
         if (*o.phase == PhaseFunctionKind::rayleigh) phase.kind = PhaseFunction::Kind::rayleigh;
