@@ -275,10 +275,13 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
     if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
     request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
     SpectralProfiles p;
-    {
-        const py::gil_scoped_release release;
-        p = solve_profiles(solver, base.material, request);
-    }
+    run_interruptible(
+        [&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) {
+            auto r = request;
+            r.cancel = &cancel;
+            p = solve_profiles(solver, base.material, r);
+        },
+        py::none());
     const auto rows = static_cast<py::ssize_t>(p.channels.size());
     const auto radii = static_cast<py::ssize_t>(p.radii_mm.size());
     std::vector<double> nm, r, t, r_se, t_se, total_r, total_t, specular;

@@ -32,6 +32,17 @@ def test_ctrl_c_raises_keyboard_interrupt_promptly():
     assert a.R[0] == b.R[0]
 
 
+def test_ctrl_c_stops_a_walk_profile_promptly():
+    # skinspec.profiles ran without a stop: Ctrl-C waited for all 5e7 photons per wavelength (over 100 s).
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        skinspec.profiles("biospec-lightly", np.linspace(0, 5, 50), [450, 550, 650], mode="rte", rays=50_000_000)
+    elapsed = time.monotonic() - start
+    assert elapsed < 2.0, f"KeyboardInterrupt {elapsed - 0.5:.2f} s after Ctrl-C"
+
+
 def test_sigint_stops_a_script():
     script = textwrap.dedent("""
         import numpy as np, skinspec
