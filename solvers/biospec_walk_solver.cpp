@@ -36,7 +36,7 @@ public:
         const auto o = options(request.switches);
         if (o.estimator != AbsorptionEstimator::weighted) return SpectralSolver::solve_many(materials, request);
         return solve_in_replay_groups(materials, request, solve_groups(materials, request),
-                                      [&](const std::vector<const LayerStack*>& stacks) { return solve_biospec_sets(stacks, request.spectral, o); });
+                                      [&](const std::vector<const LayerStack*>& stacks, const SpectralRequest& part) { return solve_biospec_sets(stacks, part, o); });
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         if (options(request.switches).estimator != AbsorptionEstimator::weighted) return SpectralSolver::solve_groups(materials, request);

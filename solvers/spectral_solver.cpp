@@ -153,15 +153,36 @@ std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Mate
     return groups;
 }
 
+SpectralRequest PartProgress::part(const SpectralRequest& request, std::size_t part) {
+    auto out = request;
+    rays_of_part_ = 0;
+    if (!whole_) return out;
+    out.on_progress = [this, part](const Progress& p) {
+        rays_of_part_ = p.rays_done;
+        const std::size_t to_come = parts_ - part;  // this part included
+        const std::uint64_t expected = p.rays_expected > 0 ? rays_before_ + p.rays_expected * to_come : 0;
+        whole_(Progress{rays_before_ + p.rays_done, expected, part * p.wavelengths_total + p.wavelengths_done, parts_ * p.wavelengths_total});
+    };
+    return out;
+}
+
+void PartProgress::finish_part() {
+    rays_before_ += rays_of_part_;
+    rays_of_part_ = 0;
+}
+
 std::vector<SpectralResult> solve_in_replay_groups(
     const std::vector<const Material*>& materials, const SolverRequest& request, const std::vector<std::vector<std::size_t>>& groups,
-    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&)>& solve_group) {
+    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&, const SpectralRequest&)>& solve_group) {
     std::vector<std::optional<SpectralResult>> by_index(materials.size());
-    for (const auto& g : groups) {
+    PartProgress progress(request.spectral.on_progress, groups.size());
+    for (std::size_t k = 0; k < groups.size(); ++k) {
         if (request.spectral.cancel && request.spectral.cancel->load()) break;
+        const auto& g = groups[k];
         std::vector<const LayerStack*> stacks;
         for (const auto i : g) stacks.push_back(&std::get<LayerStack>(*materials[i]));
-        auto results = solve_group(stacks);
+        auto results = solve_group(stacks, progress.part(request.spectral, k));
+        progress.finish_part();
         for (std::size_t j = 0; j < results.size(); ++j) by_index[g[j]] = std::move(results[j]);
     }
     return solved_prefix(by_index);
@@ -331,12 +352,18 @@ std::vector<SpectralResult> solve_shared(const SpectralSolver& solver, const std
                                          const WorkShare& share) {
     const auto groups = solver.solve_groups(materials, request);
     std::vector<std::pair<std::size_t, std::string>> mine;
+    std::size_t own = 0, done = 0;
+    for (std::size_t g = 0; g < groups.size(); ++g) own += share.mine(g) ? 1 : 0;
+    PartProgress progress(request.spectral.on_progress, own);
     for (std::size_t g = 0; g < groups.size(); ++g) {
         if (!share.mine(g)) continue;
         if (request.spectral.cancel && request.spectral.cancel->load()) break;
         std::vector<const Material*> group;
         for (const auto i : groups[g]) group.push_back(materials[i]);
-        mine.emplace_back(g, results_to_bytes(solver.solve_many(group, request)));
+        auto part = request;
+        part.spectral = progress.part(request.spectral, done++);
+        mine.emplace_back(g, results_to_bytes(solver.solve_many(group, part)));
+        progress.finish_part();
     }
     const auto gathered = share.gather(mine, groups.size());
     if (share.rank() != 0) return {};

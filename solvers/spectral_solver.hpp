@@ -87,9 +87,28 @@ public:
 std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets);
 // For solve_many implementations that replay absorption: solves each of `groups` with `solve_group` (one result per
 // stack, in order) and returns the results in the materials' order, up to the first one not solved (cancelled).
+// `solve_group` gets the request for that group: its progress reports into the whole sweep's (PartProgress).
 std::vector<SpectralResult> solve_in_replay_groups(
     const std::vector<const Material*>& materials, const SolverRequest& request, const std::vector<std::vector<std::size_t>>& groups,
-    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&)>& solve_group);
+    const std::function<std::vector<SpectralResult>(const std::vector<const LayerStack*>&, const SpectralRequest&)>& solve_group);
+
+// Progress of work done in parts one after another (a sweep's replay groups), each reporting its own progress from 0,
+// as progress of the whole: the parts finished count, and the rays to come are estimated as the current part's for
+// each part still to come (a per-part bar reset at every group, and the estimates swung to "16 h" for 2 minutes).
+class PartProgress {
+public:
+    PartProgress(std::function<void(const Progress&)> whole, std::size_t parts) : whole_(std::move(whole)), parts_(parts) {}
+    // `request` with its progress reporting as part `part` of the whole (nothing reported without a whole).
+    SpectralRequest part(const SpectralRequest& request, std::size_t part);
+    // The last part reported is finished: its rays count as done.
+    void finish_part();
+
+private:
+    std::function<void(const Progress&)> whole_;
+    std::size_t parts_;
+    std::uint64_t rays_before_ = 0;  // rays of the parts finished
+    std::uint64_t rays_of_part_ = 0;  // the current part's rays reported so far
+};
 
 // The registered solvers, in the order `--mode` lists them.
 const std::vector<const SpectralSolver*>& solver_registry();

@@ -32,7 +32,7 @@ public:
     // Carlo (at most max_replay_sets together; a material alone runs MCML's way).
     std::vector<SpectralResult> solve_many(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         return solve_in_replay_groups(materials, request, solve_groups(materials, request),
-                                      [&](const std::vector<const LayerStack*>& stacks) { return solve_rte_spectra(stacks, request.spectral, boundaries(request), false); });
+                                      [&](const std::vector<const LayerStack*>& stacks, const SpectralRequest& part) { return solve_rte_spectra(stacks, part, boundaries(request), false); });
     }
     SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
         return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance,

@@ -282,3 +282,28 @@ TEST_CASE("a reduced-scattering sweep traces each value anew (issue 30)", "[solv
     CHECK(path_difference(std::get<LayerStack>(materials[0]), std::get<LayerStack>(materials[1])) ==
           "papillary_dermis.reduced_scattering_per_cm_at_500nm");
 }
+
+TEST_CASE("progress of a sweep's parts is progress of the whole: never back, rays to come estimated", "[solver]") {
+    std::vector<Progress> seen;
+    PartProgress progress([&](const Progress& p) { seen.push_back(p); }, 3);
+    for (std::size_t part = 0; part < 3; ++part) {
+        const auto request = progress.part(SpectralRequest{}, part);
+        // Each part reports from 0, as a solver does: 2 of 4 wavelengths, then all 4.
+        request.on_progress(Progress{500, 1000, 2, 4});
+        request.on_progress(Progress{1000, 1000, 4, 4});
+        progress.finish_part();
+    }
+    REQUIRE(seen.size() == 6);
+    CHECK(seen[0].rays_expected == 3000);  // this part's 1000, and as much for each of the two to come
+    CHECK(seen[2].rays_done == 1500);
+    CHECK(seen[2].rays_expected == 3000);
+    CHECK(seen[5].wavelengths_done == 12);
+    CHECK(seen[5].wavelengths_total == 12);
+    for (std::size_t i = 1; i < seen.size(); ++i) {
+        CHECK(seen[i].wavelengths_done >= seen[i - 1].wavelengths_done);
+        CHECK(seen[i].rays_done >= seen[i - 1].rays_done);
+    }
+    // No whole: the part's request reports nothing.
+    PartProgress silent({}, 2);
+    CHECK(!silent.part(SpectralRequest{}, 0).on_progress);
+}
