@@ -107,7 +107,7 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
     const double dr = h / samples_per_pixel_side;
     std::vector<double> radii;
     for (int j = 0; j * dr <= (margin + 2) * h * std::sqrt(2.0); ++j) radii.push_back(j * dr);
-    out.profiles = solve_profiles(solver, material, ProfileRequest{wavelengths, radii, false, switches, std::nullopt, 1, cancel});
+    out.profiles = solve_profiles(solver, material, ProfileRequest{wavelengths, radii, false, switches, std::nullopt, 1, cancel, {}});
     if (out.profiles.partial) {
         out.partial = true;
         return out;

@@ -49,6 +49,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     SolverRequest base;
     base.switches = request.switches;
     base.overrides = request.overrides;
+    base.sampling_options = request.sampling_options;
     auto& spectral = base.spectral;
     spectral.wavelengths = chart.wavelengths;
     spectral.quantities = Quantities{true, false, false, false};

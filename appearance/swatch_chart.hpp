@@ -30,6 +30,7 @@ struct SwatchRequest {
     double delta_e = 0.3;
     std::uint64_t seed = 1;
     std::uint64_t max_rays_per_wavelength = 1'000'000;
+    std::vector<std::string> sampling_options;  // as SolverRequest's: seed and ray budget given by the caller
     std::string solver = "biospec";  // a registry name (solvers/spectral_solver.hpp)
     MeasurementGeometry geometry = MeasurementGeometry::sci;  // the colour of R measured this way
     std::size_t patches_per_sweep = 64;  // patches solved together (replayed); 1: each patch traced on its own

@@ -50,4 +50,15 @@ CLI::Option* add_overwrite_flag(CLI::App& command, bool& overwrite, const std::s
     return command.add_flag("--overwrite,--force", overwrite, help);
 }
 
+std::vector<std::string> given_options(const CLI::App& command, const std::vector<std::string>& names) {
+    std::vector<std::string> out;
+    for (const auto& name : names) {
+        const auto* option = command.get_option_no_throw(name);
+        if (option && option->count() > 0) out.push_back(name);
+    }
+    return out;
+}
+
+std::vector<std::string> given_sampling_options(const CLI::App& command) { return given_options(command, {"--seed", "--max-rays"}); }
+
 }  // namespace skinspec::cli

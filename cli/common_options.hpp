@@ -3,6 +3,7 @@
 // --overwrite (alias --force). Material options: cli/material_options.hpp; solver options: cli/solver_options.hpp.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -15,5 +16,9 @@ CLI::Option* add_overwrite_flag(CLI::App& command, bool& overwrite, const std::s
 // whole number (INT, UINT) takes "1e3" when it is whole, and an unsigned one refuses a minus sign ("--gaussians -1"
 // became 18446744073709551615); a text (TEXT) refuses an empty value.
 void check_option_values(CLI::App& app);
+// The options of `names` the user gave to `command` (for refusals that name them), e.g. {"--seed"}.
+std::vector<std::string> given_options(const CLI::App& command, const std::vector<std::string>& names);
+// The Monte Carlo options of a command that a deterministic solver refuses when given (SolverRequest::sampling_options).
+std::vector<std::string> given_sampling_options(const CLI::App& command);
 
 }  // namespace skinspec::cli

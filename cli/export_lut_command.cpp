@@ -47,6 +47,7 @@ struct LutOptions {
     std::string display = "sRGB";
     std::string view = "Standard";
     std::uint64_t seed = 1;
+    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
     std::uint64_t max_rays = 1'000'000;
     unsigned threads = 0;
     bool overwrite = false;
@@ -137,6 +138,7 @@ void run_export_lut(const LutOptions& o) {
     request.observer = parse_observer(o.observer, "--observer");
     request.delta_e = o.delta_e;
     request.seed = o.seed;
+    request.sampling_options = o.sampling_given;
     request.max_rays_per_wavelength = o.max_rays;
     request.solver = std::string(chosen_solver(o.solver).name());
     request.switches = solver_switches(o.solver);
@@ -267,7 +269,10 @@ void add_export_lut_command(CLI::App& exporter) {
     cmd->add_flag("--json", o->json, "Print the summary as JSON");
     add_solver_options(*cmd, o->solver);
     add_geometry_option(*cmd, o->solver);
-    cmd->callback([o] { run_export_lut(*o); });
+    cmd->callback([o, cmd] {
+        o->sampling_given = given_sampling_options(*cmd);
+        run_export_lut(*o);
+    });
 }
 
 }  // namespace skinspec::cli

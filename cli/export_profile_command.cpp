@@ -44,6 +44,7 @@ struct ProfileExportOptions {
     bool overwrite = false;
     std::uint64_t rays = 0;
     std::uint64_t seed = 1;
+    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
 };
 
 struct FittedChannels {
@@ -115,7 +116,7 @@ void run_export_profile(const ProfileExportOptions& o) {
     const auto grid = o.channels == "rgb" ? WavelengthGrid::range(380.0, 780.0, 10.0) : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
     check_gaussian_count(o.gaussians);
 
-    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed));
+    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given));
     print_warning_summary(profiles.material, profiles.warnings);
     const auto channels = bands || o.channels == "wavelength" ? own_channels(profiles) : rgb_channels(profiles, {grid.nm().begin(), grid.nm().end()}, space, illuminant, observer);
     const auto fit = fit_gaussian_sum(GaussianSumRequest{radii, channels.profiles_per_mm2, o.gaussians, channels.total_reflectance});
@@ -197,7 +198,10 @@ void add_export_profile_command(CLI::App& exporter) {
     cmd->add_option("-o,--output", o->output, "JSON file of the fit (default: the JSON on standard output)");
     cmd->add_option("--table", o->table, "CSV table of variances and weights");
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
-    cmd->callback([o] { run_export_profile(*o); });
+    cmd->callback([o, cmd] {
+        o->sampling_given = given_sampling_options(*cmd);
+        run_export_profile(*o);
+    });
 }
 
 }  // namespace skinspec::cli

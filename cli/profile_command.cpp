@@ -34,6 +34,7 @@ struct ProfileOptions {
     bool overwrite = false;
     std::uint64_t rays = 0;  // 0: the solver's default (Monte Carlo solvers only)
     std::uint64_t seed = 1;
+    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
 };
 
 std::string column_tag(const ChannelProfile& c) {
@@ -99,7 +100,7 @@ void run_profile(const ProfileOptions& o) {
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
-    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed));
+    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given));
     print_warning_summary(profiles.material, profiles.warnings);
     const auto csv = to_csv(profiles);
     if (o.output.empty()) {
@@ -127,7 +128,10 @@ void add_profile_command(CLI::App& app) {
     cmd->add_option("--plot", o->plot, "Log-scale plot, FILE.png or FILE.svg");
     add_profile_ray_options(*cmd, o->rays, o->seed);
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
-    cmd->callback([o] { run_profile(*o); });
+    cmd->callback([o, cmd] {
+        o->sampling_given = given_sampling_options(*cmd);
+        run_profile(*o);
+    });
 }
 
 }  // namespace skinspec::cli

@@ -31,6 +31,6 @@ MeasurementGeometry measurement_geometry(const SolverOptions& options);
 // --rays and --seed of the commands that ask for radial profiles (a Monte Carlo solver's R(r)); rays 0: unset.
 void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64_t& seed);
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,
-                               std::uint64_t rays, std::uint64_t seed);
+                               std::uint64_t rays, std::uint64_t seed, std::vector<std::string> sampling_options);
 
 }  // namespace skinspec::cli

@@ -35,6 +35,7 @@ struct SpectrumOptions {
     double stderr_target = 0.0;
     std::uint64_t max_rays = 10'000'000;
     std::uint64_t seed = 1;
+    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
     unsigned threads = 0;
     std::string quantities = "R";
     std::string reflector;
@@ -66,6 +67,7 @@ void run_spectrum(const SpectrumOptions& o) {
 
     SolverRequest request;
     request.overrides = overrides_for(o);
+    request.sampling_options = o.sampling_given;
     request.switches = solver_switches(o.solver);
     auto& spectral = request.spectral;
     spectral.wavelengths = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
@@ -193,7 +195,10 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_flag("--json", o->json, "Print the JSON result on standard output");
     cmd->add_option("--illuminant", o->illuminant, "Illuminant for the colour summary: D65, D50, A, E")->capture_default_str();
     cmd->add_option("--observer", o->observer, "Observer for the colour summary: 2 or 10")->capture_default_str();
-    cmd->callback([o] { run_spectrum(*o); });
+    cmd->callback([o, cmd] {
+        o->sampling_given = given_sampling_options(*cmd);
+        run_spectrum(*o);
+    });
 }
 
 }  // namespace skinspec::cli

@@ -43,6 +43,7 @@ struct SwatchOptions {
     std::string view = "Standard";
     int patch_px = 112;
     std::uint64_t seed = 1;
+    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
     std::uint64_t max_rays = 1'000'000;
     unsigned threads = 0;
     bool overwrite = false;
@@ -176,6 +177,7 @@ void run_swatch(const SwatchOptions& o) {
     request.observer = parse_observer(o.observer, "--observer");
     request.delta_e = o.delta_e;
     request.seed = o.seed;
+    request.sampling_options = o.sampling_given;
     request.max_rays_per_wavelength = o.max_rays;
     request.solver = std::string(chosen_solver(o.solver).name());
     request.switches = solver_switches(o.solver);
@@ -329,7 +331,10 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--field", o->field_mm, "With --lit: width of the patch in mm")->capture_default_str();
     cmd->add_option("--pixels", o->pixels, "With --lit: image width in pixels, [8, 4096]")->capture_default_str();
     cmd->add_option("--spot-radius", o->spot_radius_mm, "With --lit spot: radius of the lit disc in mm")->capture_default_str();
-    cmd->callback([o] { run_swatch(*o); });
+    cmd->callback([o, cmd] {
+        o->sampling_given = given_sampling_options(*cmd);
+        run_swatch(*o);
+    });
 }
 
 }  // namespace skinspec::cli

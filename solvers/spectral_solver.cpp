@@ -212,6 +212,17 @@ const SpectralSolver& find_solver(std::string_view name, std::string_view what) 
     throw InputError(std::string(what) + ": '" + std::string(name) + "' is not a solver (allowed: " + solver_names() + ")");
 }
 
+namespace {
+
+// A deterministic solver has no seed, ray budget or other Monte Carlo setting: one given is refused, not ignored.
+void refuse_sampling_options(const SpectralSolver& solver, const std::vector<std::string>& given) {
+    if (solver.capabilities().uncertainty || given.empty()) return;
+    throw InputError(join(given) + ": solver '" + std::string(solver.name()) + "' is deterministic and takes no Monte Carlo setting (Monte Carlo solvers: " +
+                     offered_by([](const SolverCapabilities& c) { return c.uncertainty; }) + ")");
+}
+
+}  // namespace
+
 void check_request(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
     const auto& caps = solver.capabilities();
     const std::string who = "solver '" + std::string(solver.name()) + "'";
@@ -245,6 +256,7 @@ void check_request(const SpectralSolver& solver, const Material& material, const
         throw InputError(who + " is deterministic: it takes no standard-error target or ray count (Monte Carlo solvers: " +
                          offered_by([](const SolverCapabilities& c) { return c.uncertainty; }) + ")");
     }
+    refuse_sampling_options(solver, request.sampling_options);
     check_switches(solver, request.switches);
     check_overrides(solver, request.overrides);
 }
@@ -256,6 +268,7 @@ void check_request(const SpectralSolver& solver, const Material& material, const
     }
     check_material(solver, material);
     check_switches(solver, request.switches);
+    refuse_sampling_options(solver, request.sampling_options);
     if (!solver.capabilities().uncertainty && request.rays_per_wavelength) {
         throw InputError("solver '" + std::string(solver.name()) + "' is deterministic: it takes no ray count (Monte Carlo solvers with radial profiles: " +
                          offered_by([](const SolverCapabilities& c) { return c.uncertainty && c.radial_profiles; }) + ")");

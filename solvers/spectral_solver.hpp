@@ -43,6 +43,9 @@ struct SolverRequest {
     SolverSwitches switches;
     std::optional<std::uint64_t> fixed_rays_per_wavelength;  // exactly this many rays, no stderr target
     std::vector<MaterialOverride> overrides;
+    // Monte Carlo settings the caller gave (e.g. "--seed", "--max-rays"): a deterministic solver refuses them, as it
+    // refuses a ray count, rather than ignore them.
+    std::vector<std::string> sampling_options;
 };
 
 struct ProfileRequest {
@@ -53,6 +56,7 @@ struct ProfileRequest {
     std::optional<std::uint64_t> rays_per_wavelength;  // Monte Carlo solvers (unset: their default); refused by the others
     std::uint64_t seed = 1;
     const CancelFlag* cancel = nullptr;  // a stop leaves the channels finished so far (SpectralProfiles::partial)
+    std::vector<std::string> sampling_options;  // as SolverRequest's
 };
 
 class SpectralSolver {

@@ -10,7 +10,7 @@ namespace skinspec {
 
 PhaseComparison compare_thin_layer_phase(const LayerStack& stack, const SpectralRequest& request, const ThinLayerHg& hg,
                                          ComparedQuantity quantity, IlluminantKind illuminant) {
-    SolverRequest r{request, {}, {}, {}};
+    SolverRequest r{request, {}, {}, {}, {}};
     r.spectral.quantities = Quantities{true, quantity == ComparedQuantity::transmittance, false, false};
     const auto& walk = find_solver("biospec");
     const auto measured = solve_spectrum(walk, stack, r);

@@ -179,3 +179,7 @@ skinspec_malformed_input("every weight zero" 2 "--weight: every measured wavelen
 skinspec_malformed_input("an output folder that cannot be made" 2 "--output-dir /proc/nope: cannot be made" - phase-study --output-dir /proc/nope)
 skinspec_malformed_input("an overflowing mu_a names its layer" 2 "layer 'papillary_dermis' of 'biospec-lightly': mu_a at 550 nm = inf 1/cm" - spectrum --mode rte --preset biospec-lightly --set papillary_dermis.hemoglobin_g_per_l=1e306 --wavelengths 550 --rays 1000)
 skinspec_malformed_input("g = 1 where mu_s = mu_s' / (1 - g)" 2 "key 'papillary_dermis.volumetric_g' = 1 is outside \\[-1, 1\\) with volumetric_scattering = from_reduced_scattering" - spectrum --mode rte --preset biospec-lightly --set papillary_dermis.volumetric_g=1 --wavelengths 550 --rays 100)
+# New user's path (issue 33): a Monte Carlo setting given to a deterministic solver is refused, like --rays.
+skinspec_malformed_input("a seed for a deterministic solver" 2 "--seed: solver 'dipole' is deterministic and takes no Monte Carlo setting" - spectrum --mode dipole --seed 5)
+skinspec_malformed_input("a ray budget for adding-doubling" 2 "--max-rays: solver 'adding-doubling' is deterministic" "${out}/ad_lut.exr" export lut --mode adding-doubling --max-rays 100 -o ${out}/ad_lut.exr)
+skinspec_malformed_input("a seed for a multipole profile" 2 "--seed: solver 'multipole' is deterministic" - profile --seed 3)
