@@ -310,6 +310,14 @@ void check_result_values(const SpectralSolver& solver, const SpectralResult& res
     }
 }
 
+// A result reports what was asked for: a solver that computes more on the way (the volumetric walk tallies T and A
+// always) does not fill the output with columns nobody requested.
+void keep_requested(SpectralResult& result, const SolverRequest& request) {
+    const auto& asked = request.spectral.quantities;
+    auto& q = result.quantities;
+    q = Quantities{q.reflectance && asked.reflectance, q.transmittance && asked.transmittance, q.absorptance && asked.absorptance, q.angular && asked.angular};
+}
+
 void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material, std::shared_ptr<const std::string> material_toml,
                        const std::vector<MaterialOverride>& overrides, std::vector<std::pair<std::string, double>> varied) {
     result.provenance.solver = std::string(solver.name());
@@ -326,6 +334,7 @@ SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& mate
     check_request(solver, material, request);
     const auto effective = effective_request(request);
     std::vector<SpectralResult> one{solver.solve(material, effective)};
+    keep_requested(one.front(), request);
     check_result_values(solver, one.front(), request.overrides);
     solver.state_errors({&material}, {{}}, effective, one);
     auto result = std::move(one.front());
@@ -404,6 +413,7 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
     for (std::size_t i = 0; i < results.size(); ++i) {
         auto& overrides = overrides_of.emplace_back(request.overrides);
         overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());
+        keep_requested(results[i], request);
         check_result_values(solver, results[i], overrides);
     }
     if (!results.empty()) {

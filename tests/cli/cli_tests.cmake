@@ -70,3 +70,5 @@ skinspec_cli_test("export pbrt" 0 "read back: largest relative difference [0-9.e
 skinspec_cli_test("export mitsuba rgb" 0 "tabulated \\(181 points.*read back: largest relative difference" export mitsuba --rgb 650,550,450 -o ${CMAKE_CURRENT_BINARY_DIR}/skin.xml --overwrite)
 skinspec_cli_test("export profile from the volumetric walk" 0 "550 nm: profile error \\(relative L2, r dr\\) [0-9.]+ %" export profile --mode rte --rays 5000 --per wavelength --wavelengths 550 --radii 0:5:0.05 --gaussians 3 -o ${CMAKE_CURRENT_BINARY_DIR}/profile_rte.json --overwrite)
 skinspec_cli_test("profile of the volumetric walk" 0 "r_mm,R_550nm_per_mm2,R_550nm_stderr_per_mm2" profile --mode rte --rays 2000 --wavelengths 550 --radii 0:1:0.5)
+# Only what was asked is reported (issue 33): the volumetric walk tallies T and A on the way, R alone is shown.
+skinspec_cli_test("rte reports only R when R is asked" 0 "wavelength_nm +R +R_specular +rays\n" spectrum --mode rte --preset biospec-lightly --wavelengths 550 --rays 500)
