@@ -31,7 +31,7 @@ ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, 
     const auto& cm = ColorManagement::builtin();
     ColorSummary s{illuminant, observer, xyz, weights.white(), chromaticity(xyz), xyz_to_lab(xyz, weights.white()),
                    cm.from_xyz(xyz, weights.white(), "sRGB"), true, "", cm.from_xyz(xyz, weights.white(), "Linear Rec.709"),
-                   cm.from_xyz(xyz, weights.white(), "ACEScg"), {}, {}};
+                   cm.from_xyz(xyz, weights.white(), "ACEScg"), {}, {}, {}};
     // OCIO computes in float32: XYZ beyond ~1e38 (values of 1e100 with --allow-over-one) gives no colour.
     const auto finite = [](const RGB& v) { return std::all_of(v.begin(), v.end(), [](double c) { return std::isfinite(c); }); };
     if (!std::isfinite(s.xyz.X) || !std::isfinite(s.xyz.Y) || !std::isfinite(s.xyz.Z) || !finite(s.srgb) || !finite(s.linear_rec709) || !finite(s.acescg) ||
@@ -48,6 +48,7 @@ ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, 
     if (uncertainty) {
         s.uncertainty = ColorSpread{uncertainty->lab, uncertainty->delta_e2000, rgb_uncertainty(xyz, weights.white(), uncertainty->xyz_covariance, "sRGB")};
     }
+    s.skin_tone = skin_tone(s.lab, s.uncertainty ? s.uncertainty->lab : Lab{});
     return s;
 }
 
@@ -65,6 +66,12 @@ nlohmann::ordered_json to_json(const ColorSummary& s) {
         j["delta_e2000_uncertainty"] = u.delta_e2000;
         j["srgb_uncertainty"] = rgb_json(u.srgb);
         j["uncertainty_meaning"] = "standard uncertainties, R's standard errors (and a solver's stated error, common to every wavelength) propagated linearly through the CIE integrals";
+    }
+    if (s.skin_tone) {
+        j["ITA_deg"] = s.skin_tone->ita_deg;
+        if (s.uncertainty) j["ITA_uncertainty_deg"] = s.skin_tone->ita_stderr_deg;
+        j["skin_tone_category"] = std::string(to_string(s.skin_tone->category));
+        j["skin_tone_meaning"] = "individual typology angle atan((L* - 50) / b*) (Chardon et al. 1991) under this illuminant and observer; categories of Del Bino et al. 2006";
     }
     j["srgb"] = rgb_json(s.srgb);
     j["srgb_hex"] = s.srgb_hex;
@@ -91,6 +98,11 @@ std::string to_table(const ColorSummary& s) {
     if (s.uncertainty) {
         out += fmt::format("{:<16}{:9.4f} {:9.4f} {:9.4f}   (standard uncertainty; CIEDE2000 {:.4f})\n", "  +-", s.uncertainty->lab.L,
                            s.uncertainty->lab.a, s.uncertainty->lab.b, s.uncertainty->delta_e2000);
+    }
+    if (s.skin_tone) {
+        out += fmt::format("{:<16}{:9.2f}{} deg: {} (individual typology angle, Chardon et al. 1991; categories of Del Bino et al. 2006)\n", "ITA",
+                           s.skin_tone->ita_deg, s.uncertainty ? fmt::format(" +- {:.2f}", s.skin_tone->ita_stderr_deg) : std::string(),
+                           to_string(s.skin_tone->category));
     }
     out += row("sRGB", s.srgb);
     if (s.uncertainty) out += row("  +-", s.uncertainty->srgb);

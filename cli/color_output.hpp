@@ -11,6 +11,7 @@
 #include "spectral/color_management.hpp"
 #include "spectral/color_uncertainty.hpp"
 #include "spectral/colorimetry.hpp"
+#include "spectral/skin_tone.hpp"
 
 namespace skinspec::cli {
 
@@ -35,6 +36,7 @@ struct ColorSummary {
     RGB acescg;
     std::map<std::string, RGB> extra_spaces;  // spaces asked for with --space
     std::optional<ColorSpread> uncertainty;   // when the spectrum came with standard errors or a stated error
+    std::optional<SkinTone> skin_tone;        // ITA and its category (none where b* <= 0)
 };
 
 ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, IlluminantKind illuminant,

@@ -284,11 +284,12 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
         if (s.color) {
             const auto& u = s.color->uncertainty;
             out += fmt::format("  colour of R under {} ({} observer, held outside {:g}-{:g} nm): XYZ {:.4f} {:.4f} {:.4f}, "
-                               "Lab {:.2f} {:.2f} {:.2f}{}, sRGB {}{}\n",
+                               "Lab {:.2f} {:.2f} {:.2f}{}, {}sRGB {}{}\n",
                                short_name(s.color->illuminant), display_name(s.color->observer),
                                s.result.wavelengths.front().wavelength_nm, s.result.wavelengths.back().wavelength_nm,
                                s.color->xyz.X, s.color->xyz.Y, s.color->xyz.Z, s.color->lab.L, s.color->lab.a, s.color->lab.b,
                                u ? fmt::format(" +- {:.2f} {:.2f} {:.2f} (CIEDE2000 +- {:.2f})", u->lab.L, u->lab.a, u->lab.b, u->delta_e2000) : std::string(),
+                               s.color->skin_tone ? fmt::format("ITA {:.1f} deg ({}), ", s.color->skin_tone->ita_deg, to_string(s.color->skin_tone->category)) : std::string(),
                                s.color->srgb_hex, s.color->srgb_in_gamut ? "" : " (clipped: outside sRGB)");
         }
     }
@@ -301,7 +302,7 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
     const auto& first = spectra.front().result;
     out += fmt::format("{:<22}", "material");
     for (const auto& [field, value] : first.provenance.varied) out += fmt::format("  {:>30}", field.substr(0, 30));
-    out += fmt::format("  {:>9}  {:<22}  {:>9}  {:>12}  {:>10}\n", "sRGB", "Lab", "dE00 +-", "worst stderr", "rays");
+    out += fmt::format("  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", "sRGB", "Lab", "ITA deg (category)", "dE00 +-", "worst stderr", "rays");
     for (const auto& s : spectra) {
         out += fmt::format("{:<22}", s.result.material.substr(0, 22));
         for (const auto& [field, value] : s.result.provenance.varied) out += fmt::format("  {:>30.6g}", value);
@@ -313,7 +314,9 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
         }
         const auto lab = s.color ? fmt::format("{:.2f} {:.2f} {:.2f}", s.color->lab.L, s.color->lab.a, s.color->lab.b) : std::string("-");
         const auto spread = s.color && s.color->uncertainty ? fmt::format("{:.2f}", s.color->uncertainty->delta_e2000) : std::string("-");
-        out += fmt::format("  {:>9}  {:<22}  {:>9}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab, spread,
+        const auto tone = s.color && s.color->skin_tone ? fmt::format("{:.1f} ({})", s.color->skin_tone->ita_deg, to_string(s.color->skin_tone->category))
+                                                         : std::string("-");
+        out += fmt::format("  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab, tone, spread,
                            s.result.has_uncertainty ? fmt::format("{:.4f}", worst) : std::string("-"), s.result.has_uncertainty ? rays : 0);
     }
     const bool partial = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.partial; });

@@ -72,3 +72,6 @@ skinspec_cli_test("export profile from the volumetric walk" 0 "550 nm: profile e
 skinspec_cli_test("profile of the volumetric walk" 0 "r_mm,R_550nm_per_mm2,R_550nm_stderr_per_mm2" profile --mode rte --rays 2000 --wavelengths 550 --radii 0:1:0.5)
 # Only what was asked is reported (issue 33): the volumetric walk tallies T and A on the way, R alone is shown.
 skinspec_cli_test("rte reports only R when R is asked" 0 "wavelength_nm +R +R_specular +rays\n" spectrum --mode rte --preset biospec-lightly --wavelengths 550 --rays 500)
+# Skin colours a person can place (issue 33): ITA and its category with every colour.
+skinspec_cli_test("spectrum prints ITA and its category" 0 "ITA 43.4 deg \\(light\\)" spectrum --mode adding-doubling --preset biospec-lightly)
+skinspec_cli_test("spectrum JSON carries ITA" 0 "\"skin_tone_category\": \"light\"" spectrum --mode adding-doubling --preset biospec-lightly --json)
