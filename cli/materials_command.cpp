@@ -1,5 +1,6 @@
 #include "cli/materials_command.hpp"
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -150,7 +151,19 @@ void run_show(const MaterialsOptions& o) {
 }
 
 void run_save(const MaterialsOptions& o) {
-    const auto material = load_material(o.material, parsed_overrides(o.overrides));
+    const auto overrides = parsed_overrides(o.overrides);
+    auto material = load_material(o.material, overrides);
+    // A changed copy is named after its file (standard output: NAME_changed) and says what changed; an unchanged
+    // copy is the material itself.
+    const bool to_stdout = o.output == "-";
+    if (!overrides.empty()) {
+        const auto name = to_stdout ? material_name(material) + "_changed" : std::filesystem::path(o.output).stem().string();
+        material = relabelled(std::move(material), name, overrides);
+    }
+    if (to_stdout) {
+        std::cout << to_toml(material);
+        return;
+    }
     write_material(material, o.output, o.force);
     std::cout << "wrote " << o.output << '\n';
 }
@@ -205,7 +218,7 @@ void add_materials_command(CLI::App& app) {
 
     auto* save = cmd->add_subcommand("save", "Write a material (with --set overrides applied) as a TOML file");
     add_material_options(save);
-    save->add_option("output", options->output, "Output .toml file")->required();
+    save->add_option("output", options->output, "Output .toml file, or - for standard output; with --set, the copy is named after the file")->required();
     add_overwrite_flag(*save, options->force, "Replace the output file if it exists");
     save->callback([options] { run_save(*options); });
 }

@@ -35,7 +35,8 @@ struct SpectrumOptions {
     double stderr_target = 0.0;
     std::uint64_t max_rays = 10'000'000;
     std::uint64_t seed = 1;
-    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
+    std::vector<std::string> sampling_given;
+    std::vector<std::string> names_in_order;  // --preset and --material values in command-line order  // --seed, --max-rays as given (refused by deterministic solvers)
     unsigned threads = 0;
     std::string quantities = "R";
     std::string reflector;
@@ -60,8 +61,7 @@ std::vector<MaterialOverride> overrides_for(const SpectrumOptions& o) {
 }
 
 void run_spectrum(const SpectrumOptions& o) {
-    auto names = o.presets;
-    names.insert(names.end(), o.materials.begin(), o.materials.end());
+    auto names = o.names_in_order;
     if (names.empty()) names = {"biospec-lightly", "biospec-moderately", "biospec-heavily"};
     const auto& solver = chosen_solver(o.solver);
 
@@ -197,6 +197,18 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--observer", o->observer, "Observer for the colour summary: 2 or 10")->capture_default_str();
     cmd->callback([o, cmd] {
         o->sampling_given = given_sampling_options(*cmd);
+        // The materials in the order given (columns and results follow it), --preset and --material mixed.
+        const auto* preset = cmd->get_option("--preset");
+        const auto* material = cmd->get_option("--material");
+        std::size_t p = 0, m = 0;
+        o->names_in_order.clear();
+        for (const auto* option : cmd->parse_order()) {
+            if (option == preset && p < o->presets.size()) o->names_in_order.push_back(o->presets[p++]);
+            else if (option == material && m < o->materials.size()) o->names_in_order.push_back(o->materials[m++]);
+        }
+        // Several values after one option ("--preset a b") are one entry of the parse order: the rest, in order.
+        o->names_in_order.insert(o->names_in_order.end(), o->presets.begin() + static_cast<std::ptrdiff_t>(p), o->presets.end());
+        o->names_in_order.insert(o->names_in_order.end(), o->materials.begin() + static_cast<std::ptrdiff_t>(m), o->materials.end());
         run_spectrum(*o);
     });
 }

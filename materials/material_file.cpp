@@ -507,6 +507,18 @@ const std::string& material_description(const Material& material) {
     return std::visit([](const auto& m) -> const std::string& { return m.description; }, material);
 }
 
+Material relabelled(Material material, std::string name, const std::vector<MaterialOverride>& changes) {
+    std::visit(
+        [&](auto& m) {
+            std::string changed;
+            for (const auto& c : changes) changed += (changed.empty() ? "" : ", ") + c.key + "=" + c.value;
+            if (!changed.empty()) m.description += (m.description.empty() ? "" : "; ") + std::string("changed from ") + m.name + ": " + changed;
+            m.name = std::move(name);
+        },
+        material);
+    return material;
+}
+
 std::string to_toml(const Material& material) {
     std::ostringstream out;
     out << "# skinspec material, written by skinspec " << "(units in the key names; see docs/MATERIALS.md)\n";

@@ -53,6 +53,9 @@ Material load_material(std::string_view name_or_file, const std::vector<Material
 std::vector<std::filesystem::path> preset_files();
 const std::string& material_name(const Material& material);
 const std::string& material_description(const Material& material);
+// A changed copy's labels follow its data: `name`, and the description says what changed from what
+// ("BioSpec skin, lightly pigmented (...); changed from biospec-lightly: epidermis.melanosome_fraction=0.03").
+Material relabelled(Material material, std::string name, const std::vector<MaterialOverride>& changes);
 
 // The value of a field as --set addresses it: NAME, model.NAME (every switch, also those the variant sets),
 // surface.NAME, bottom.NAME or LAYER.NAME, where a LAYER suffix ("dermis") must address layers that agree.

@@ -75,3 +75,8 @@ skinspec_cli_test("rte reports only R when R is asked" 0 "wavelength_nm +R +R_sp
 # Skin colours a person can place (issue 33): ITA and its category with every colour.
 skinspec_cli_test("spectrum prints ITA and its category" 0 "ITA 43.4 deg \\(light\\)" spectrum --mode adding-doubling --preset biospec-lightly)
 skinspec_cli_test("spectrum JSON carries ITA" 0 "\"skin_tone_category\": \"light\"" spectrum --mode adding-doubling --preset biospec-lightly --json)
+# Labels follow the data (issue 33): a changed copy is named after its file and says what changed; materials appear
+# in command-line order; "-" is standard output.
+skinspec_cli_test("materials save - writes to standard output" 0 "name = 'biospec-lightly'" materials save biospec-lightly -)
+skinspec_cli_test("a changed copy says what changed" 0 "changed from biospec-lightly: epidermis.melanosome_fraction=0.03" materials save biospec-lightly - --set epidermis.melanosome_fraction=0.03)
+skinspec_cli_test("materials in command-line order" 0 "wavelength_nm +biospec-heavily +biospec-lightly\n" spectrum --mode dipole --wavelengths 550 --preset biospec-heavily --preset biospec-lightly)
