@@ -48,8 +48,13 @@ std::string to_csv(const SpectralProfiles& p) {
         out += fmt::format("# {}: diffuse R total {:.6g}, T total {:.6g}, specular {:.6g}\n", c.label, c.total_reflectance,
                            c.total_transmittance, c.specular_reflectance);
     }
-    out += fmt::format("# dipole pairs (largest): {}, inverse-transform samples: {}, converged: {}\n", p.max_pairs, p.frequencies,
-                       p.converged ? "yes" : "NO");
+    // The diffusion sums' own figures, only where a diffusion model made the profiles (the walk has neither).
+    if (p.max_pairs > 0 || p.frequencies > 0) {
+        out += fmt::format("# dipole pairs (largest): {}, inverse-transform samples: {}, converged: {}\n", p.max_pairs, p.frequencies,
+                           p.converged ? "yes" : "NO");
+    } else if (!p.converged) {
+        out += "# converged: NO\n";
+    }
     for (const auto& w : summarise_warnings(p.warnings)) out += "# warning: " + w + "\n";
     // Monte Carlo profiles add a standard-error column after each value column.
     const bool errors = !p.channels.empty() && !p.channels.front().reflectance_stderr_per_mm2.empty();

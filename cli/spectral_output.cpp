@@ -17,6 +17,12 @@
 namespace skinspec::cli {
 namespace {
 
+std::vector<double> wavelengths_of(const SpectralResult& r) {
+    std::vector<double> nm;
+    for (const auto& w : r.wavelengths) nm.push_back(w.wavelength_nm);
+    return nm;
+}
+
 using Json = nlohmann::ordered_json;
 
 Json setting_json(const SettingValue& v) {
@@ -291,6 +297,8 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
                                u ? fmt::format(" +- {:.2f} {:.2f} {:.2f} (CIEDE2000 +- {:.2f})", u->lab.L, u->lab.a, u->lab.b, u->delta_e2000) : std::string(),
                                s.color->skin_tone ? fmt::format("ITA {:.1f} deg ({}), ", s.color->skin_tone->ita_deg, to_string(s.color->skin_tone->category)) : std::string(),
                                s.color->srgb_hex, s.color->srgb_in_gamut ? "" : " (clipped: outside sRGB)");
+        } else if (s.result.bands.empty()) {
+            out += "  no colour: " + color_span_problem(wavelengths_of(s.result)) + "\n";
         }
     }
     return out;
@@ -321,6 +329,7 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
     }
     const bool partial = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.partial; });
     out += fmt::format("{} results (rays per result: traced once and shared where replayed){}\n", spectra.size(), partial ? "; PARTIAL (interrupted)" : "");
+    if (!first.wavelengths.empty() && first.bands.empty() && !spectra.front().color) out += "no colours (sRGB, Lab: -): " + color_span_problem(wavelengths_of(first)) + "\n";
     return out;
 }
 

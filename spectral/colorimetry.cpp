@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -77,13 +79,18 @@ TristimulusWeights::TristimulusWeights(std::span<const double> wavelengths_nm, I
     white_ = {white[0] / y_white, 1.0, white[2] / y_white};
 }
 
-bool has_color_span(std::span<const double> nm) {
-    if (nm.size() < 2 || nm.front() > 400.0 || nm.back() < 700.0) return false;
-    for (std::size_t i = 1; i < nm.size(); ++i) {
-        if (nm[i] - nm[i - 1] > max_color_step_nm) return false;
+std::string color_span_problem(std::span<const double> nm) {
+    const auto needs = fmt::format("a colour needs wavelengths covering 400-700 nm at steps of at most {:g} nm", max_color_step_nm);
+    if (nm.size() < 2 || nm.front() > 400.0 || nm.back() < 700.0) {
+        return nm.empty() ? needs : fmt::format("{} (these cover {:g}-{:g} nm)", needs, nm.front(), nm.back());
     }
-    return true;
+    for (std::size_t i = 1; i < nm.size(); ++i) {
+        if (nm[i] - nm[i - 1] > max_color_step_nm) return fmt::format("{} (a step of {:g} nm at {:g} nm)", needs, nm[i] - nm[i - 1], nm[i - 1]);
+    }
+    return {};
 }
+
+bool has_color_span(std::span<const double> nm) { return color_span_problem(nm).empty(); }
 
 XYZ TristimulusWeights::integrate(std::span<const double> samples) const {
     if (samples.size() != weights_.size()) {

@@ -4,6 +4,7 @@
 // reflector has Y = 1.
 #include <array>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "spectral/cie.hpp"
@@ -37,6 +38,8 @@ Lab xyz_to_lab(const XYZ& xyz, const XYZ& white);
 // most max_color_step_nm apart (linear interpolation across a wider gap would misstate it).
 inline constexpr double max_color_step_nm = 20.0;
 bool has_color_span(std::span<const double> nm);
+// Why `nm` has no colour ("a colour needs wavelengths covering 400-700 nm ... (these cover 500-600 nm)"); empty when it has.
+std::string color_span_problem(std::span<const double> nm);
 
 // Linear map from samples of a spectrum to XYZ. The spectrum is taken as piecewise-linear between its
 // samples and treated outside them by `outside`, then summed at 1 nm over 360-830 nm with the illuminant

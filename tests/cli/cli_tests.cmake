@@ -80,3 +80,6 @@ skinspec_cli_test("spectrum JSON carries ITA" 0 "\"skin_tone_category\": \"light
 skinspec_cli_test("materials save - writes to standard output" 0 "name = 'biospec-lightly'" materials save biospec-lightly -)
 skinspec_cli_test("a changed copy says what changed" 0 "changed from biospec-lightly: epidermis.melanosome_fraction=0.03" materials save biospec-lightly - --set epidermis.melanosome_fraction=0.03)
 skinspec_cli_test("materials in command-line order" 0 "wavelength_nm +biospec-heavily +biospec-lightly\n" spectrum --mode dipole --wavelengths 550 --preset biospec-heavily --preset biospec-lightly)
+# A colour left out says why (issue 33).
+skinspec_cli_test("no colour says why" 0 "no colour: a colour needs wavelengths covering 400-700 nm at steps of at most 20 nm \\(these cover 500-600 nm\\)" spectrum --mode dipole --preset biospec-lightly --wavelengths 500:600:10)
+skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [^\n]*model rte\n# units[^\n]*\n(# [0-9]+ nm[^\n]*\n)+r_mm" profile --mode rte --rays 1000 --radii 0:1:0.5)
