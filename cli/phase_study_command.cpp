@@ -14,6 +14,7 @@
 #include "spectral/chart_image.hpp"
 #include "spectral/data_paths.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
 #include "studies/phase_study/phantom_sheet.hpp"
@@ -33,7 +34,18 @@ struct PhaseStudyOptions {
     bool overwrite = false;
 };
 
-std::string case_name(const PhaseCase& c) { return fmt::format("{}_{:g}nm", c.tissue, c.wavelength_nm); }
+std::string case_name(const std::string& tissue, double wavelength_nm) { return fmt::format("{}_{:g}nm", tissue, wavelength_nm); }
+std::string case_name(const PhaseCase& c) { return case_name(c.tissue, c.wavelength_nm); }
+
+// Every file --output-dir gets, from the study's cases (known before it runs).
+std::vector<std::filesystem::path> output_files(const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> files{dir / "goniometer_btdf.csv"};
+    for (const auto& [tissue, nm] : phase_study_cases()) {
+        files.push_back(dir / ("goniometer_" + case_name(tissue, nm) + ".png"));
+        files.push_back(dir / ("phantom_" + case_name(tissue, nm) + ".png"));
+    }
+    return files;
+}
 
 std::string approach_label(PhaseApproach a) {
     switch (a) {
@@ -92,18 +104,11 @@ void print_tables(const PhaseStudy& s) {
 }
 
 void write_files(const PhaseStudy& s, const PhaseStudyOptions& o) {
-    const std::filesystem::path dir(o.output_dir);
-    std::filesystem::create_directories(dir);
     const auto& cm = ColorManagement::builtin();
     const auto background_file = o.background.empty() ? data_file("images/phantom_background.png") : std::filesystem::path(o.background);
     const auto background = read_linear_image(background_file, "Linear Rec.709", cm);
     const auto separations = WavelengthGrid::parse(o.separations, "--separations");  // positive, increasing numbers
-    std::vector<std::filesystem::path> files{dir / "goniometer_btdf.csv"};
-    for (const auto& c : s.cases) {
-        files.push_back(dir / ("goniometer_" + case_name(c) + ".png"));
-        files.push_back(dir / ("phantom_" + case_name(c) + ".png"));
-    }
-    for (const auto& f : files) check_output_path(f, o.overwrite, {".csv", ".png"});
+    const auto files = output_files(o.output_dir);
 
     std::string csv = "# skinspec phase-study: virtual goniometer BTDF (Baranoski et al. 2005 Eq. 10) per polar bin, 1/sr\n"
                       "tissue,wavelength_nm,bin_low_deg,bin_high_deg,measured,table_lookup,hg_rms,hg_van_gemert\n";
@@ -158,6 +163,10 @@ void run_phase_study_command(const PhaseStudyOptions& o) {
         std::error_code error;
         std::filesystem::create_directories(o.output_dir, error);
         if (error) throw InputError("--output-dir " + o.output_dir + ": cannot be made (" + error.message() + ")");
+        // Every output and input checked before the study (an existing file was refused after 6-9 s of it).
+        for (const auto& f : output_files(o.output_dir)) check_output_path(f, o.overwrite, {".csv", ".png"});
+        WavelengthGrid::parse(o.separations, "--separations");
+        if (!o.background.empty()) open_input_file(o.background, "--background");
     }
     PhaseStudySettings settings;
     settings.seed = o.seed;

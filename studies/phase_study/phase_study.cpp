@@ -34,12 +34,16 @@ std::string_view to_string(PhaseApproach approach) {
     return "?";
 }
 
+std::vector<std::pair<std::string, double>> phase_study_cases() {
+    return {{"stratum_corneum", 436.0}, {"stratum_corneum", 546.0}, {"epidermis", 436.0}, {"epidermis", 546.0}};
+}
+
 PhaseStudy run_phase_study(const PhaseStudySettings& settings) {
     PhaseStudy study;
     const auto angles = MeasuredProfile::stratum_corneum().angles_deg();
     study.bin_edges_deg.assign(angles.begin(), angles.end());
-    for (const char* tissue : {"stratum_corneum", "epidermis"}) {
-        for (const double nm : {436.0, 546.0}) {
+    for (const auto& [tissue, nm] : phase_study_cases()) {
+        {
             PhaseCase c;
             c.tissue = tissue;
             c.wavelength_nm = nm;

@@ -46,6 +46,8 @@ struct PhaseStudySettings {
 };
 
 PhaseStudy run_phase_study(const PhaseStudySettings& settings);
+// The study's cases in order, (tissue, wavelength nm), known before it runs (so that outputs are checked first).
+std::vector<std::pair<std::string, double>> phase_study_cases();
 
 // g of HG standing in for a measured profile at any wavelength: the fitted (RMS) or van Gemert values at 436
 // and 546 nm, linear in wavelength between them and held outside (issue "compare-phase").

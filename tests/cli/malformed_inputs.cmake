@@ -183,3 +183,7 @@ skinspec_malformed_input("g = 1 where mu_s = mu_s' / (1 - g)" 2 "key 'papillary_
 skinspec_malformed_input("a seed for a deterministic solver" 2 "--seed: solver 'dipole' is deterministic and takes no Monte Carlo setting" - spectrum --mode dipole --seed 5)
 skinspec_malformed_input("a ray budget for adding-doubling" 2 "--max-rays: solver 'adding-doubling' is deterministic" "${out}/ad_lut.exr" export lut --mode adding-doubling --max-rays 100 -o ${out}/ad_lut.exr)
 skinspec_malformed_input("a seed for a multipole profile" 2 "--seed: solver 'multipole' is deterministic" - profile --seed 3)
+# phase-study checks its outputs before the study (it refused an existing file after 6-9 s of work).
+file(MAKE_DIRECTORY "${out}/phase_existing")
+file(WRITE "${out}/phase_existing/goniometer_btdf.csv" "the user's file\n")
+skinspec_malformed_input("phase-study refuses an existing output before the study" 2 "goniometer_btdf.csv: exists already" - phase-study --output-dir ${out}/phase_existing)
