@@ -223,7 +223,7 @@ void run_swatch(const SwatchOptions& o) {
                            {"skinspec:seed", std::to_string(request.seed)},
                            {"skinspec:partial", chart.partial ? "true" : "false"}};
     std::string parameters;
-    for (const auto& s : request.sweeps) parameters += fmt::format("{}{}={:g}:{:g}:{}", parameters.empty() ? "" : "; ", s.field, s.first, s.last, s.steps);
+    for (const auto& s : request.sweeps) parameters += (parameters.empty() ? "" : "; ") + s.text();
     for (const auto& ov : request.overrides) parameters += "; set " + ov.key + "=" + ov.value;
     metadata.push_back({"skinspec:parameters", parameters});
     // Each patch's standard uncertainty (from R's standard errors and the solver's stated error), in patch order.

@@ -13,6 +13,10 @@ constexpr std::size_t max_steps = 1000;
 
 }  // namespace
 
+std::string ParameterSweep::text() const {
+    return field + "=" + format_number(first) + ":" + format_number(last) + ":" + std::to_string(steps) + (log ? ":log" : "");
+}
+
 std::vector<double> ParameterSweep::values() const {
     std::vector<double> v(steps);
     for (std::size_t i = 0; i < steps; ++i) {

@@ -22,6 +22,7 @@ struct ParameterSweep {
     bool log = false;
     std::vector<double> values() const;
     SweepAxis axis() const;
+    std::string text() const;  // as parse_sweep reads it: "FIELD=FIRST:LAST:STEPS[:log]", numbers exact
 };
 
 // One swept field and its values in order (a parsed --vary, or any list, e.g. from Python).
