@@ -46,6 +46,13 @@ void set_fields(PyMaterial& m, const std::vector<std::pair<std::string, std::str
     m.overrides.insert(m.overrides.end(), overrides.begin(), overrides.end());
 }
 
+// The material as its labels should read once fields were set: NAME_changed, its description saying what changed
+// (materials/material_file.hpp relabelled, as `materials save --set` labels a changed copy).
+Material labelled(const PyMaterial& m) {
+    if (m.overrides.empty()) return m.material;
+    return relabelled(m.material, material_name(m.material) + "_changed", m.overrides);
+}
+
 std::string repr(const PyMaterial& m) {
     std::string parts;
     if (const auto* stack = std::get_if<LayerStack>(&m.material)) {
@@ -55,7 +62,7 @@ std::string repr(const PyMaterial& m) {
         for (const auto& b : std::get<HomogeneousMaterial>(m.material).bands) parts += (parts.empty() ? "" : ", ") + b;
         parts = "homogeneous, bands " + parts;
     }
-    return "<skinspec.Material '" + material_name(m.material) + "' (" + parts + ")" +
+    return "<skinspec.Material '" + material_name(labelled(m)) + "' (" + parts + ")" +
            (m.overrides.empty() ? std::string() : ", " + std::to_string(m.overrides.size()) + " field(s) set") + ">";
 }
 
@@ -102,8 +109,8 @@ void bind_materials(py::module_& m) {
                  for (const auto& key : material_keys(self.material)) out[py::str(key)] = python_value(material_field(self.material, key));
                  return out;
              })
-        .def_property_readonly("name", [](const PyMaterial& self) { return material_name(self.material); })
-        .def_property_readonly("description", [](const PyMaterial& self) { return material_description(self.material); })
+        .def_property_readonly("name", [](const PyMaterial& self) { return material_name(labelled(self)); })
+        .def_property_readonly("description", [](const PyMaterial& self) { return material_description(labelled(self)); })
         .def_property_readonly("kind",
                                [](const PyMaterial& self) { return std::holds_alternative<LayerStack>(self.material) ? "layered" : "homogeneous"; })
         .def_property_readonly("layers",
@@ -126,15 +133,15 @@ void bind_materials(py::module_& m) {
                                    return out;
                                },
                                "The (field, TOML value) pairs set since loading, in order.")
-        .def("to_toml", [](const PyMaterial& self) { return to_toml(self.material); })
+        .def("to_toml", [](const PyMaterial& self) { return to_toml(labelled(self)); })
         .def(
-            "save", [](const PyMaterial& self, const std::filesystem::path& file, bool overwrite) { write_material(self.material, file, overwrite); },
+            "save", [](const PyMaterial& self, const std::filesystem::path& file, bool overwrite) { write_material(labelled(self), file, overwrite); },
             py::arg("file"), py::kw_only(), py::arg("overwrite") = false,
             "Writes the material as TOML; an existing file is replaced only with overwrite=True.")
         .def("copy", [](const PyMaterial& self) { return self; })
         .def("__copy__", [](const PyMaterial& self) { return self; })
         .def("__deepcopy__", [](const PyMaterial& self, const py::dict&) { return self; })
-        .def("__eq__", [](const PyMaterial& a, const PyMaterial& b) { return a.material == b.material; })
+        .def("__eq__", [](const PyMaterial& a, const PyMaterial& b) { return labelled(a) == labelled(b); })
         .def("__repr__", &repr)
         .def(py::pickle(
             [](const PyMaterial& self) {

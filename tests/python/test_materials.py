@@ -27,6 +27,10 @@ def test_set_field_reads_back_and_is_recorded():
     m["dermis.oxygen_saturation"] = 0.8
     assert m["papillary_dermis.oxygen_saturation"] == 0.8 and m["reticular_dermis.oxygen_saturation"] == 0.8
     assert m["dermis.oxygen_saturation"] == 0.8
+    # Its labels follow the data (issue 33): the name and description say it was changed, and how.
+    assert m.name == "biospec-moderately_changed"
+    assert "changed from biospec-moderately: epidermis.melanosome_fraction=0.03, dermis.oxygen_saturation=0.8" in m.description
+    assert skinspec.Material("biospec-moderately").name == "biospec-moderately"
 
 
 def test_same_material_as_the_cli_set():
