@@ -1,5 +1,6 @@
 #include "cli/color_command.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 
@@ -8,6 +9,7 @@
 #include "cli/color_output.hpp"
 #include "spectral/data_paths.hpp"
 #include "formats/spectrum_csv.hpp"
+#include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec::cli {
@@ -23,6 +25,8 @@ struct ColorOptions {
     bool transmittance = false;
     std::string column;
     std::string material;
+    std::size_t member = 0;
+    std::vector<std::string> where;
 };
 
 void run_color(const ColorOptions& o) {
@@ -32,6 +36,13 @@ void run_color(const ColorOptions& o) {
     rules.allow_over_one = o.allow_over_one;
     rules.column = o.column;
     rules.material = o.material;
+    rules.member = o.member;
+    for (const auto& w : o.where) {
+        const auto eq = w.find('=');
+        const auto value = eq == std::string::npos ? std::nullopt : parse_double(w.substr(eq + 1));
+        if (!value || !std::isfinite(*value)) throw InputError("--where '" + w + "' must have the form FIELD=NUMBER (e.g. epidermis.melanosome_fraction=0.1)");
+        rules.where.emplace_back(w.substr(0, eq), *value);
+    }
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
     const auto [spectrum, standard_errors] = read_spectrum_file(file, rules);
@@ -75,6 +86,8 @@ void add_color_command(CLI::App& app) {
                     "Value column by header name, e.g. R or T of a 'skinspec spectrum --output F.csv' file (default: the second of "
                     "two columns, else R); a column VALUE_stderr next to it gives the colour's standard uncertainty");
     cmd->add_option("--material", options->material, "The rows of this material, in a file with a material column (e.g. spectrum's CSV)");
+    cmd->add_option("--member", options->member, "A sweep's member by position, 1 = the first (a 'spectrum --vary' CSV)")->check(CLI::PositiveNumber);
+    cmd->add_option("--where", options->where, "A sweep's member by a swept field's value, FIELD=NUMBER (repeatable: one per swept field)");
     cmd->callback([options] { run_color(*options); });
 }
 

@@ -7,20 +7,135 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "spectral/input_error.hpp"
 #include "spectral/input_file.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
 
+namespace {
+
+// The checks every sample passes, from either format; `where` locates it ("F.csv:12: ", "F.json: result 3: ").
+void check_sample(const std::string& where, const std::string& value_field, double wavelength, double value, const std::vector<double>& before,
+                  const SpectrumFileRules& rules) {
+    const std::string value_range = rules.allow_over_one ? "[0, inf)" : "[0, 1] (use --allow-over-one for values above 1)";
+    if (!std::isfinite(wavelength) || wavelength <= 0.0) {
+        throw InputError(where + "field 'wavelength_nm' = " + format_number(wavelength) + " is not allowed (allowed: finite, > 0 nm)");
+    }
+    if (!std::isfinite(value)) throw InputError(where + "field '" + value_field + "' = " + format_number(value) + " is not allowed (allowed: " + value_range + ")");
+    if (value < 0.0 || (!rules.allow_over_one && value > 1.0)) {
+        throw InputError(where + "field '" + value_field + "' = " + format_number(value) + " is outside " + value_range);
+    }
+    if (!before.empty() && !(wavelength > before.back())) {
+        throw InputError(where + "field 'wavelength_nm' = " + format_number(wavelength) + " does not follow " + format_number(before.back()) +
+                         " nm (allowed: strictly increasing wavelengths)");
+    }
+}
+
+// The file's samples as a spectrum, once they are known to be at least 2 and to cover the range asked for.
+SpectrumFile finished(const std::string& name, std::vector<double> wavelengths, std::vector<double> values, std::vector<double> standard_errors,
+                      const SpectrumFileRules& rules) {
+    if (wavelengths.size() < 2) {
+        throw InputError(name + ": " + std::to_string(wavelengths.size()) + " data point(s) (allowed: at least 2)");
+    }
+    if (wavelengths.front() > rules.must_cover_from_nm || wavelengths.back() < rules.must_cover_to_nm) {
+        throw InputError(name + ": wavelengths cover " + format_number(wavelengths.front()) + "-" +
+                         format_number(wavelengths.back()) + " nm (allowed: must span at least " +
+                         format_number(rules.must_cover_from_nm) + "-" + format_number(rules.must_cover_to_nm) + " nm)");
+    }
+    return {TabulatedSpectrum(name, std::move(wavelengths), std::move(values), rules.outside), std::move(standard_errors)};
+}
+
+// `skinspec spectrum --json` output: the results of the chosen material, the chosen member among them.
+SpectrumFile read_spectrum_json(const std::string& name, std::istream& in, const SpectrumFileRules& rules) {
+    using Json = nlohmann::json;
+    try {
+        const auto j = Json::parse(in);
+        if (!j.is_object() || !j.contains("results") || !j.value("schema", std::string()).starts_with("skinspec-spectral-result/")) {
+            throw InputError(name + ": a JSON file that is not a skinspec spectral result (schema skinspec-spectral-result/1)");
+        }
+        std::vector<const Json*> of_material;
+        std::vector<std::string> materials;
+        for (const auto& r : j.at("results")) {
+            const auto material = r.at("material").get<std::string>();
+            if (std::find(materials.begin(), materials.end(), material) == materials.end()) materials.push_back(material);
+            if (rules.material.empty() ? material == materials.front() : material == rules.material) of_material.push_back(&r);
+        }
+        std::string seen;
+        for (const auto& m : materials) seen += (seen.empty() ? "" : ", ") + m;
+        if (rules.material.empty() && materials.size() > 1) throw InputError(name + ": the file holds several materials (" + seen + "); choose one with --material");
+        if (of_material.empty()) throw InputError(name + ": " + (rules.material.empty() ? std::string("no results") : "--material " + rules.material + " has no results (materials: " + seen + ")"));
+        const auto varied = [](const Json& r) { return r.contains("provenance") && r["provenance"].contains("varied") ? r["provenance"]["varied"] : Json::object(); };
+        const auto key = [&](const Json& r) {
+            std::string k;
+            const auto fields = varied(r);
+            for (const auto& [field, value] : fields.items()) k += (k.empty() ? "" : ", ") + field + "=" + format_number(value.get<double>());
+            return k;
+        };
+        const std::size_t n = of_material.size();
+        const Json* chosen = nullptr;
+        if (rules.member > 0) {
+            if (rules.member > n) throw InputError(name + ": --member " + std::to_string(rules.member) + " is outside [1, " + std::to_string(n) + "] (the file's members)");
+            chosen = of_material[rules.member - 1];
+        } else if (!rules.where.empty()) {
+            for (const auto* r : of_material) {
+                const auto v = varied(*r);
+                const bool match = std::all_of(rules.where.begin(), rules.where.end(), [&](const auto& w) {
+                    return v.contains(w.first) && std::abs(v[w.first].template get<double>() - w.second) <= 1e-9 * std::max(std::abs(w.second), 1e-300);
+                });
+                if (!match) continue;
+                if (chosen) throw InputError(name + ": --where matches several members (" + key(*chosen) + "; " + key(*r) + "): give every swept field");
+                chosen = r;
+            }
+            if (!chosen) throw InputError(name + ": --where: no member matches (members: " + key(*of_material.front()) + (n > 1 ? "; ... " + key(*of_material.back()) : std::string()) + ")");
+        } else if (n > 1) {
+            throw InputError(name + ": the file holds " + std::to_string(n) + " members of a sweep (the first: " + key(*of_material.front()) +
+                             "); choose one with --member 1.." + std::to_string(n) + " or --where FIELD=VALUE");
+        } else {
+            chosen = of_material.front();
+        }
+        const auto column = rules.column.empty() ? std::string("R") : rules.column;
+        if (!chosen->contains(column) || column == "wavelength_nm" || !(*chosen)[column].is_array()) {
+            throw InputError(name + ": --column " + column + " is not a value of the result (a quantity such as R or T)");
+        }
+        const auto nm = chosen->at("wavelength_nm").get<std::vector<double>>();
+        const auto values = chosen->at(column).get<std::vector<double>>();
+        const auto errors = chosen->contains(column + "_stderr") ? chosen->at(column + "_stderr").get<std::vector<double>>() : std::vector<double>{};
+        if (values.size() != nm.size() || (!errors.empty() && errors.size() != nm.size())) {
+            throw InputError(name + ": " + column + " has " + std::to_string(values.size()) + " values for " + std::to_string(nm.size()) + " wavelengths");
+        }
+        std::vector<double> wavelengths, kept;
+        for (std::size_t i = 0; i < nm.size(); ++i) {
+            check_sample(name + ": " + column + " at index " + std::to_string(i) + ": ", column, nm[i], values[i], wavelengths, rules);
+            if (!errors.empty() && !(std::isfinite(errors[i]) && errors[i] >= 0.0)) {
+                throw InputError(name + ": " + column + "_stderr at index " + std::to_string(i) + " = " + format_number(errors[i]) + " is outside [0, inf)");
+            }
+            wavelengths.push_back(nm[i]);
+            kept.push_back(values[i]);
+        }
+        return finished(name, std::move(wavelengths), std::move(kept), errors, rules);
+    } catch (const Json::exception& e) {
+        throw InputError(name + ": not a readable skinspec spectral result JSON (" + e.what() + ")");
+    }
+}
+
+}  // namespace
+
 SpectrumFile read_spectrum_file(const std::filesystem::path& file, const SpectrumFileRules& rules) {
     const std::string name = file.string();
     auto in = open_input_file(file, "spectrum file");
+    // A JSON result (spectrum --json) starts with '{'; anything else is read as CSV.
+    in >> std::ws;
+    if (in.peek() == '{') return read_spectrum_json(name, in, rules);
 
-    const std::string value_range = rules.allow_over_one ? "[0, inf)" : "[0, 1] (use --allow-over-one for values above 1)";
     std::vector<std::string> header;
     std::size_t wavelength_column = 0, value_column = 1;
     std::optional<std::size_t> material_column, stderr_column;
+    std::vector<std::size_t> key_columns;  // a sweep's swept fields: the columns before wavelength_nm but material
+    std::vector<std::string> members_seen;  // the chosen material's members (their key fields), in file order
+    std::string member_chosen;  // the key of the member whose rows are read
     std::string value_field = rules.quantity;
     std::vector<std::string> materials_seen;
     // Chooses the columns once the header (or the first data row, without one) is known.
@@ -55,6 +170,26 @@ SpectrumFile read_spectrum_file(const std::filesystem::path& file, const Spectru
         }
         value_field = header[value_column];
         stderr_column = find(value_field + "_stderr");
+        for (std::size_t c = 0; c < wavelength_column; ++c) {
+            if (c != material_column) key_columns.push_back(c);
+        }
+        for (const auto& [field, value] : rules.where) {
+            const auto c = find(field);
+            if (!c || std::find(key_columns.begin(), key_columns.end(), *c) == key_columns.end()) {
+                std::string swept;
+                for (const auto k : key_columns) swept += (swept.empty() ? "" : ", ") + header[k];
+                throw InputError(where + "--where " + field + ": not a swept field of the file (swept: " + (swept.empty() ? "none" : swept) + ")");
+            }
+        }
+    };
+    // Whether a row's key fields match --where (numbers equal to 1e-9 relative: the file holds 9 significant digits).
+    const auto matches = [&](const std::vector<std::string_view>& fields) {
+        for (const auto& [field, value] : rules.where) {
+            const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), field) - header.begin());
+            const auto v = parse_double(fields[c]);
+            if (!v || std::abs(*v - value) > 1e-9 * std::max(std::abs(value), 1e-300)) return false;
+        }
+        return true;
     };
     std::vector<double> wavelengths;
     std::vector<double> values, standard_errors;
@@ -89,24 +224,26 @@ SpectrumFile read_spectrum_file(const std::filesystem::path& file, const Spectru
             }
             if (!rules.material.empty() && material != rules.material) continue;
         }
+        if (!key_columns.empty()) {
+            std::string key;
+            for (const auto c : key_columns) key += (key.empty() ? "" : ", ") + header[c] + "=" + std::string(fields[c]);
+            auto seen = std::find(members_seen.begin(), members_seen.end(), key);
+            if (seen == members_seen.end()) seen = members_seen.insert(members_seen.end(), key);
+            const auto position = static_cast<std::size_t>(seen - members_seen.begin()) + 1;
+            const bool chosen = rules.member > 0 ? position == rules.member
+                                                 : (rules.where.empty() ? members_seen.size() == 1 : matches(fields));
+            if (!chosen) continue;
+            if (member_chosen.empty()) member_chosen = key;
+            if (key != member_chosen) {
+                throw InputError(where + "--where matches several members (" + member_chosen + "; " + key + "): give every swept field");
+            }
+        }
         const auto wavelength = parse_double(fields[wavelength_column]);
         const auto value = parse_double(fields[value_column]);
         const std::string wavelength_text(fields[wavelength_column]), value_text(fields[value_column]);
         if (!wavelength) throw InputError(where + "field 'wavelength_nm' = '" + wavelength_text + "' is not a number");
         if (!value) throw InputError(where + "field '" + value_field + "' = '" + value_text + "' is not a number");
-        if (!std::isfinite(*wavelength) || *wavelength <= 0.0) {
-            throw InputError(where + "field 'wavelength_nm' = " + wavelength_text + " is not allowed (allowed: finite, > 0 nm)");
-        }
-        if (!std::isfinite(*value)) {
-            throw InputError(where + "field '" + value_field + "' = " + value_text + " is not allowed (allowed: " + value_range + ")");
-        }
-        if (*value < 0.0 || (!rules.allow_over_one && *value > 1.0)) {
-            throw InputError(where + "field '" + value_field + "' = " + value_text + " is outside " + value_range);
-        }
-        if (!wavelengths.empty() && !(*wavelength > wavelengths.back())) {
-            throw InputError(where + "field 'wavelength_nm' = " + wavelength_text + " does not follow " +
-                             format_number(wavelengths.back()) + " nm (allowed: strictly increasing wavelengths)");
-        }
+        check_sample(where, value_field, *wavelength, *value, wavelengths, rules);
         if (stderr_column) {
             const std::string text(fields[*stderr_column]);
             const auto error = parse_double(text);
@@ -118,20 +255,25 @@ SpectrumFile read_spectrum_file(const std::filesystem::path& file, const Spectru
         wavelengths.push_back(*wavelength);
         values.push_back(*value);
     }
+    if (members_seen.size() > 1 && rules.member == 0 && rules.where.empty()) {
+        throw InputError(name + ": the file holds " + std::to_string(members_seen.size()) + " members of a sweep (the first: " + members_seen.front() +
+                         "); choose one with --member 1.." + std::to_string(members_seen.size()) + " or --where FIELD=VALUE");
+    }
+    if ((rules.member > 0 || !rules.where.empty()) && key_columns.empty()) {
+        throw InputError(name + ": " + (rules.member > 0 ? std::string("--member") : std::string("--where")) + ": the file holds no sweep (no swept fields before wavelength_nm)");
+    }
+    if (rules.member > members_seen.size()) {
+        throw InputError(name + ": --member " + std::to_string(rules.member) + " is outside [1, " + std::to_string(members_seen.size()) + "] (the file's members)");
+    }
+    if (!rules.where.empty() && member_chosen.empty()) {
+        throw InputError(name + ": --where: no member matches (members: " + members_seen.front() + (members_seen.size() > 1 ? "; ... " + members_seen.back() : std::string()) + ")");
+    }
     if (!rules.material.empty() && wavelengths.empty()) {
         std::string seen;
         for (const auto& m : materials_seen) seen += (seen.empty() ? "" : ", ") + m;
         throw InputError(name + ": --material " + rules.material + " has no rows (materials: " + seen + ")");
     }
-    if (wavelengths.size() < 2) {
-        throw InputError(name + ": " + std::to_string(wavelengths.size()) + " data point(s) (allowed: at least 2)");
-    }
-    if (wavelengths.front() > rules.must_cover_from_nm || wavelengths.back() < rules.must_cover_to_nm) {
-        throw InputError(name + ": wavelengths cover " + format_number(wavelengths.front()) + "-" +
-                         format_number(wavelengths.back()) + " nm (allowed: must span at least " +
-                         format_number(rules.must_cover_from_nm) + "-" + format_number(rules.must_cover_to_nm) + " nm)");
-    }
-    return {TabulatedSpectrum(name, std::move(wavelengths), std::move(values), rules.outside), std::move(standard_errors)};
+    return finished(name, std::move(wavelengths), std::move(values), std::move(standard_errors), rules);
 }
 
 TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const SpectrumFileRules& rules) {

@@ -3,7 +3,10 @@
 // '#' comments and blank lines allowed; also files with more columns under a header, such as `skinspec
 // spectrum --output F.csv` writes (material,wavelength_nm,R,R_stderr,...): the value column is chosen by name
 // (default R when there is one) and, when a `material` column holds several materials, the rows of one; a column
-// named VALUE_stderr next to it is read as the value's standard errors.
+// named VALUE_stderr next to it is read as the value's standard errors. A sweep's file (`spectrum --vary`) holds its
+// members one after another, each named by its swept fields' values in the columns before wavelength_nm: one is
+// chosen by its position or by those values. A `spectrum --json` file (schema skinspec-spectral-result/1) is read
+// the same way: the results of one material, one member among them, a value array with its _stderr array.
 // Every problem is an InputError of one line naming file, line, field, value and the allowed range.
 #include <filesystem>
 #include <vector>
@@ -20,6 +23,8 @@ struct SpectrumFileRules {
     OutOfRangePolicy outside = OutOfRangePolicy::hold;  // policy of the returned spectrum
     std::string column;    // value column by header name ("" = the second of two columns, else R)
     std::string material;  // rows whose `material` column is this ("" = the only material in the file)
+    std::size_t member = 0;  // a sweep's member by position, 1 = the first in the file (0: chosen by `where`, or the only one)
+    std::vector<std::pair<std::string, double>> where;  // a sweep's member by its swept fields' values
 };
 
 struct SpectrumFile {

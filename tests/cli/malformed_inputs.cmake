@@ -187,3 +187,8 @@ skinspec_malformed_input("a seed for a multipole profile" 2 "--seed: solver 'mul
 file(MAKE_DIRECTORY "${out}/phase_existing")
 file(WRITE "${out}/phase_existing/goniometer_btdf.csv" "the user's file\n")
 skinspec_malformed_input("phase-study refuses an existing output before the study" 2 "goniometer_btdf.csv: exists already" - phase-study --output-dir ${out}/phase_existing)
+skinspec_malformed_input("a sweep's CSV without a member chosen" 2 "holds 2 members of a sweep .*choose one with --member 1..2 or --where FIELD=VALUE" - color sweep_two_members.csv)
+skinspec_malformed_input("a sweep member that is not there" 2 "--member 3 is outside \\[1, 2\\]" - color sweep_two_members.csv --member 3)
+skinspec_malformed_input("a value no member has" 2 "--where: no member matches" - color sweep_two_members.csv --where epidermis.melanosome_fraction=0.5)
+skinspec_malformed_input("a JSON sweep without a member chosen" 2 "sweep_two_members.json: the file holds 2 members of a sweep" - color sweep_two_members.json)
+skinspec_malformed_input("a JSON that is no spectral result" 2 "not a skinspec spectral result" - color not_a_result.json)
