@@ -222,8 +222,16 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
     spectral.quantities = parse_quantities(quantity_text, "quantities");
     spectral.incidence_deg = one_number(incidence_deg, "incidence_deg");
     spectral.geometry = parse_measurement_geometry(geometry, "geometry");
-    spectral.seed = whole_number(seed, 0, 9.223372036854775808e18, "seed");
-    spectral.max_rays_per_wavelength = whole_number(max_rays, 1, 1.125899906842624e15, "max_rays");
+    // Given (not None) to a deterministic solver, these are refused by check_request, as --seed and --max-rays are.
+    if (!seed.is_none()) {
+        spectral.seed = whole_number(seed, 0, 9.223372036854775808e18, "seed");
+        request.sampling_options.push_back("seed");
+    }
+    spectral.max_rays_per_wavelength = 10'000'000;  // as the CLI's --max-rays
+    if (!max_rays.is_none()) {
+        spectral.max_rays_per_wavelength = whole_number(max_rays, 1, 1.125899906842624e15, "max_rays");
+        request.sampling_options.push_back("max_rays");
+    }
     if (!rays.is_none() && !stderr_target.is_none()) throw InputError("rays and stderr: give one (a fixed ray count or a target), not both");
     if (!rays.is_none()) {
         request.fixed_rays_per_wavelength = whole_number(rays, 1, 1.125899906842624e15, "rays");
@@ -273,7 +281,10 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
     request.transmittance = transmittance;
     request.switches = solver_switches(switches);
     if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
-    request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
+    if (!seed.is_none()) {
+        request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
+        request.sampling_options.push_back("seed");
+    }
     SpectralProfiles p;
     run_interruptible(
         [&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) {
@@ -366,7 +377,8 @@ void bind_spectra(py::module_& m) {
     m.def("spectrum", &spectrum, R"doc(Spectral reflectance (and T, A per layer, BRDF) of a material by any registered solver.
 
     The same computation as `skinspec spectrum`: same defaults (400-700 nm every 10 nm; Monte Carlo solvers stop
-    each wavelength at a standard error of 0.002 unless rays= or stderr= is given), same seed -> same numbers.
+    each wavelength at a standard error of 0.002 unless rays= or stderr= is given), same seed -> same numbers (seed
+    default 1, max_rays default 1e7; both refused by deterministic modes, as rays= is).
     mode: a solver of skinspec.solvers(). quantities: "R", "R,T,A,brdf" or a list. vary={field: values} sweeps
     one or more fields (a grid): every array then has the sweep's shape in front, R[i, j, w] at the i-th value of
     the first field and the j-th of the second; fields that only absorb are replayed from one set of traced paths.
@@ -375,8 +387,8 @@ void bind_spectra(py::module_& m) {
     the registry knows (skinspec.switches(): estimator, fold_into_skin, boundaries, roughness, channels); one the
     solver does not take is refused. Returns a skinspec.Spectrum.)doc",
           py::arg("material"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = "biospec", py::arg("quantities") = "R",
-          py::arg("stderr") = py::none(), py::arg("rays") = py::none(), py::arg("max_rays") = 10'000'000, py::arg("geometry") = "sci",
-          py::arg("incidence_deg") = 0.0, py::arg("seed") = 1, py::arg("threads") = py::none(), py::arg("reflector") = py::none(),
+          py::arg("stderr") = py::none(), py::arg("rays") = py::none(), py::arg("max_rays") = py::none(), py::arg("geometry") = "sci",
+          py::arg("incidence_deg") = 0.0, py::arg("seed") = py::none(), py::arg("threads") = py::none(), py::arg("reflector") = py::none(),
           py::arg("variant") = py::none(), py::arg("layers") = py::none(), py::arg("vary") = py::none(), py::arg("progress") = py::none());
     m.def("profiles", &profiles, R"doc(Radial diffuse reflectance R(r) (and T(r)) in 1/mm^2, as `skinspec profile` computes it.
 
@@ -386,7 +398,7 @@ void bind_spectra(py::module_& m) {
     solver does not take is refused.
     Returns a skinspec.Profiles.)doc",
           py::arg("material"), py::arg("radii_mm"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = "multipole",
-          py::arg("transmittance") = false, py::arg("rays") = py::none(), py::arg("seed") = 1);
+          py::arg("transmittance") = false, py::arg("rays") = py::none(), py::arg("seed") = py::none());
     m.def("solvers", &solvers, "The registered solvers and what each declares it supports.");
     m.def("result_quantities", &quantities, "The result quantities (the rows of skinspec.Spectrum's arrays), with units.");
     m.def("switches", &switches, "The solver switches (keywords of spectrum and profiles), with the values each takes.");

@@ -186,3 +186,14 @@ def test_spectrum_arrays_follow_the_result_quantity_table():
     for name in names:
         assert hasattr(s, name) and hasattr(s, name + "_stderr")
     assert s.T is None and s.A.shape == (2, 4) and s.brdf_per_sr.shape[0] == 2 and s.btdf_per_sr.shape == s.brdf_per_sr.shape
+
+
+def test_monte_carlo_settings_are_refused_by_deterministic_modes():
+    # As the CLI refuses --seed / --max-rays for them (issue 33): given, never silently ignored.
+    with pytest.raises(skinspec.InputError, match="seed: solver 'dipole' is deterministic"):
+        skinspec.spectrum("biospec-lightly", [550], mode="dipole", seed=5)
+    with pytest.raises(skinspec.InputError, match="max_rays: solver 'adding-doubling' is deterministic"):
+        skinspec.spectrum("biospec-lightly", [550], mode="adding-doubling", max_rays=100)
+    with pytest.raises(skinspec.InputError, match="seed: solver 'multipole' is deterministic"):
+        skinspec.profiles("biospec-lightly", [0.0, 0.5, 1.0], seed=2)
+    assert skinspec.spectrum("biospec-lightly", [550], mode="dipole").R[0] > 0.0
