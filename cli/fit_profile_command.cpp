@@ -160,6 +160,12 @@ void run_fit_profile(const FitOptions& o) {
     }
 
     if (!o.output_dir.empty()) write_outputs(o, names, reports, geometry);
+    for (std::size_t c = 0; c < reports.size(); ++c) {
+        for (const auto& b : reports[c].fit.at_bounds) {
+            std::cerr << "skinspec: warning: channel " << names[c] << ": " << b
+                      << " (the best fit may lie beyond it: widen --grid-scattering / --grid-absorption; or the profile does not constrain it)\n";
+        }
+    }
     if (o.json) {
         Json channels = Json::array();
         for (std::size_t c = 0; c < reports.size(); ++c) {
@@ -175,6 +181,7 @@ void run_fit_profile(const FitOptions& o) {
                    {"distance_mm", r.estimate.distances_mm},
                    {"profile_estimate_per_mm2", r.estimate.profile_per_mm2}};
             if (r.psnr_db) j["psnr_db"] = std::isfinite(*r.psnr_db) ? Json(*r.psnr_db) : Json("identical");
+            j["at_bounds"] = r.fit.at_bounds;
             channels.push_back(j);
         }
         std::cout << Json{{"skinspec_version", version}, {"input", input}, {"eta", o.eta}, {"step_mm", o.step_mm}, {"channels", channels}}.dump(2) << '\n';

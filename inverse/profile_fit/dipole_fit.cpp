@@ -46,7 +46,9 @@ double absorption_ratio_for_total(double total, double eta) {
     return (1.0 - albedo) / albedo;
 }
 
-DipoleFitResult fit_dipole(std::span<const double> distances_mm, std::span<const double> profile, std::span<const char> use,
+namespace {
+
+DipoleFitResult fit_on_grid_and_refine(std::span<const double> distances_mm, std::span<const double> profile, std::span<const char> use,
                            const DipoleFitOptions& options) {
     if (distances_mm.size() != profile.size() || use.size() != profile.size()) throw InputError("dipole fit: distances and profile differ in size");
     std::vector<double> d, target;
@@ -136,6 +138,21 @@ DipoleFitResult fit_dipole(std::span<const double> distances_mm, std::span<const
         result.absorption_per_mm = absorption_of(x[0], x.size() > 1 ? x[1] : 0.0);
         result.residual = value;
     }
+    return result;
+}
+
+}  // namespace
+
+DipoleFitResult fit_dipole(std::span<const double> distances_mm, std::span<const double> profile_per_mm2, std::span<const char> use,
+                           const DipoleFitOptions& options) {
+    auto result = fit_on_grid_and_refine(distances_mm, profile_per_mm2, use, options);
+    const auto edge = [&](const char* name, double value, const ParameterGrid& grid) {
+        const double tolerance = 1e-6 * std::max(grid.step, 1e-12);
+        if (std::abs(value - grid.first) <= tolerance) result.at_bounds.push_back(fmt::format("{} = {} /mm, the search's lower bound", name, format_number(value)));
+        else if (std::abs(value - grid.last) <= tolerance) result.at_bounds.push_back(fmt::format("{} = {} /mm, the search's upper bound", name, format_number(value)));
+    };
+    edge("sigma_s'", result.reduced_scattering_per_mm, options.reduced_scattering_per_mm);
+    if (!options.total_diffuse_reflectance) edge("sigma_a", result.absorption_per_mm, options.absorption_per_mm);
     return result;
 }
 

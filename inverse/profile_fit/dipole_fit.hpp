@@ -6,6 +6,8 @@
 // Sec. 3), sigma_a follows from sigma_s' through the closed-form R_d(alpha'), leaving a 1-D search.
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace skinspec {
 
@@ -31,6 +33,9 @@ struct DipoleFitResult {
     double grid_absorption_per_mm = 0.0;
     double grid_residual = 0.0;
     int evaluations = 0;
+    // The parameters that ended on an edge of the search box, e.g. "sigma_s' = 3 /mm, the search's upper bound": the
+    // minimum may lie outside it (widen the grid), or the data do not constrain the parameter.
+    std::vector<std::string> at_bounds;
 };
 
 // Bins with `use` = 0 are left out. InputError for sizes that differ, no usable bin, NaN values, grids with
