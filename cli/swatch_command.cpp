@@ -279,14 +279,17 @@ void run_swatch(const SwatchOptions& o) {
                          .dump(2)
                   << '\n';
     } else {
-        std::cout << fmt::format("{:<28}{:>9}  {:<26}{:<22}{:>8}{:>12}\n", "parameters", "sRGB", "Lab", "Lab +-", "dE unc", "rays");
+        std::cout << fmt::format("{:<28}{:>9}  {:<26}{:<22}{:<24}{:>8}{:>12}\n", "parameters", "sRGB", "Lab", "Lab +-", "ITA deg (category)", "dE unc",
+                                 "rays");
         for (std::size_t i = 0; i < chart.patches.size(); ++i) {
             const auto& p = chart.patches[i];
             std::string params;
             for (const double v : p.parameters) params += fmt::format("{:<10.4g}", v);
-            std::cout << fmt::format("{:<28}{:>9}  {:<26}{:<22}{:>8.3f}{:>12}\n", params, colours[i].srgb_hex,
+            const auto& tone = colours[i].skin_tone;
+            std::cout << fmt::format("{:<28}{:>9}  {:<26}{:<22}{:<24}{:>8.3f}{:>12}\n", params, colours[i].srgb_hex,
                                      fmt::format("{:.2f} {:.2f} {:.2f}", p.lab.L, p.lab.a, p.lab.b),
                                      fmt::format("{:.2f} {:.2f} {:.2f}", p.uncertainty.lab.L, p.uncertainty.lab.a, p.uncertainty.lab.b),
+                                     tone ? fmt::format("{:.1f} ({})", tone->ita_deg, to_string(tone->category)) : std::string("-"),
                                      p.uncertainty.delta_e2000, p.rays);
         }
         std::cout << fmt::format("{} patches, {} rays in {:.2f} s; colour uncertainty (CIEDE2000, RMS) at most {:.3f} "

@@ -87,3 +87,4 @@ skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [
 skinspec_cli_test("color of a sweep member by position" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --member 2)
 skinspec_cli_test("color of a sweep member by value" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --where epidermis.melanosome_fraction=0.1)
 skinspec_cli_test("color of a spectrum --json member" 0 "ITA +[0-9.]+ deg" color sweep_two_members.json --where epidermis.melanosome_fraction=0.02)
+skinspec_cli_test("swatch table gives each patch's ITA" 0 "ITA deg \\(category\\)[^\n]*\n[^\n]*[0-9.]+ \\((very light|light|intermediate|tan|brown|dark)\\)" swatch --mode dipole --vary epidermis.melanosome_fraction=0.02:0.2:2)
