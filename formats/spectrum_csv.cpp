@@ -34,6 +34,31 @@ void check_sample(const std::string& where, const std::string& value_field, doub
     }
 }
 
+// A sweep's member is chosen the same way in both formats. Swept values match to 1e-9 relative (a CSV holds 9
+// significant digits).
+bool same_swept_value(double value, double wanted) { return std::abs(value - wanted) <= 1e-9 * std::max(std::abs(wanted), 1e-300); }
+
+std::string several_match(const std::string& one, const std::string& other) {
+    return "--where matches several members (" + one + "; " + other + "): give every swept field";
+}
+
+// The choice (rules.member, rules.where; `found`: whether --where found a member) against the file's members (their
+// swept values, in file order): one message for each way it fails, none when it holds.
+void check_member_choice(const std::string& name, const std::vector<std::string>& members, bool found, const SpectrumFileRules& rules) {
+    const auto n = std::to_string(members.size());
+    if (rules.member == 0 && rules.where.empty()) {
+        if (members.size() > 1) {
+            throw InputError(name + ": the file holds " + n + " members of a sweep (the first: " + members.front() + "); choose one with --member 1.." + n +
+                             " or --where FIELD=VALUE");
+        }
+        return;
+    }
+    if (rules.member > members.size()) throw InputError(name + ": --member " + std::to_string(rules.member) + " is outside [1, " + n + "] (the file's members)");
+    if (!rules.where.empty() && !found) {
+        throw InputError(name + ": --where: no member matches (members: " + members.front() + (members.size() > 1 ? "; ... " + members.back() : std::string()) + ")");
+    }
+}
+
 // The file's samples as a spectrum, once they are known to be at least 2 and to cover the range asked for.
 SpectrumFile finished(const std::string& name, std::vector<double> wavelengths, std::vector<double> values, std::vector<double> standard_errors,
                       const SpectrumFileRules& rules) {
@@ -74,28 +99,19 @@ SpectrumFile read_spectrum_json(const std::string& name, std::istream& in, const
             for (const auto& [field, value] : fields.items()) k += (k.empty() ? "" : ", ") + field + "=" + format_number(value.get<double>());
             return k;
         };
-        const std::size_t n = of_material.size();
-        const Json* chosen = nullptr;
-        if (rules.member > 0) {
-            if (rules.member > n) throw InputError(name + ": --member " + std::to_string(rules.member) + " is outside [1, " + std::to_string(n) + "] (the file's members)");
-            chosen = of_material[rules.member - 1];
-        } else if (!rules.where.empty()) {
-            for (const auto* r : of_material) {
-                const auto v = varied(*r);
-                const bool match = std::all_of(rules.where.begin(), rules.where.end(), [&](const auto& w) {
-                    return v.contains(w.first) && std::abs(v[w.first].template get<double>() - w.second) <= 1e-9 * std::max(std::abs(w.second), 1e-300);
-                });
-                if (!match) continue;
-                if (chosen) throw InputError(name + ": --where matches several members (" + key(*chosen) + "; " + key(*r) + "): give every swept field");
-                chosen = r;
-            }
-            if (!chosen) throw InputError(name + ": --where: no member matches (members: " + key(*of_material.front()) + (n > 1 ? "; ... " + key(*of_material.back()) : std::string()) + ")");
-        } else if (n > 1) {
-            throw InputError(name + ": the file holds " + std::to_string(n) + " members of a sweep (the first: " + key(*of_material.front()) +
-                             "); choose one with --member 1.." + std::to_string(n) + " or --where FIELD=VALUE");
-        } else {
-            chosen = of_material.front();
+        std::vector<std::string> members;
+        for (const auto* r : of_material) members.push_back(key(*r));
+        const Json* chosen = rules.member > 0 && rules.member <= of_material.size() ? of_material[rules.member - 1] : nullptr;
+        for (std::size_t m = 0; m < of_material.size() && rules.member == 0 && !rules.where.empty(); ++m) {
+            const auto v = varied(*of_material[m]);
+            const bool match = std::all_of(rules.where.begin(), rules.where.end(),
+                                           [&](const auto& w) { return v.contains(w.first) && same_swept_value(v[w.first].template get<double>(), w.second); });
+            if (!match) continue;
+            if (chosen) throw InputError(name + ": " + several_match(key(*chosen), members[m]));
+            chosen = of_material[m];
         }
+        check_member_choice(name, members, chosen != nullptr, rules);
+        if (!chosen) chosen = of_material.front();
         const auto column = rules.column.empty() ? std::string("R") : rules.column;
         if (!chosen->contains(column) || column == "wavelength_nm" || !(*chosen)[column].is_array()) {
             throw InputError(name + ": --column " + column + " is not a value of the result (a quantity such as R or T)");
@@ -187,7 +203,7 @@ SpectrumFile read_spectrum_file(const std::filesystem::path& file, const Spectru
         for (const auto& [field, value] : rules.where) {
             const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), field) - header.begin());
             const auto v = parse_double(fields[c]);
-            if (!v || std::abs(*v - value) > 1e-9 * std::max(std::abs(value), 1e-300)) return false;
+            if (!v || !same_swept_value(*v, value)) return false;
         }
         return true;
     };
@@ -235,7 +251,7 @@ SpectrumFile read_spectrum_file(const std::filesystem::path& file, const Spectru
             if (!chosen) continue;
             if (member_chosen.empty()) member_chosen = key;
             if (key != member_chosen) {
-                throw InputError(where + "--where matches several members (" + member_chosen + "; " + key + "): give every swept field");
+                throw InputError(where + several_match(member_chosen, key));
             }
         }
         const auto wavelength = parse_double(fields[wavelength_column]);
@@ -255,19 +271,10 @@ SpectrumFile read_spectrum_file(const std::filesystem::path& file, const Spectru
         wavelengths.push_back(*wavelength);
         values.push_back(*value);
     }
-    if (members_seen.size() > 1 && rules.member == 0 && rules.where.empty()) {
-        throw InputError(name + ": the file holds " + std::to_string(members_seen.size()) + " members of a sweep (the first: " + members_seen.front() +
-                         "); choose one with --member 1.." + std::to_string(members_seen.size()) + " or --where FIELD=VALUE");
-    }
     if ((rules.member > 0 || !rules.where.empty()) && key_columns.empty()) {
         throw InputError(name + ": " + (rules.member > 0 ? std::string("--member") : std::string("--where")) + ": the file holds no sweep (no swept fields before wavelength_nm)");
     }
-    if (rules.member > members_seen.size()) {
-        throw InputError(name + ": --member " + std::to_string(rules.member) + " is outside [1, " + std::to_string(members_seen.size()) + "] (the file's members)");
-    }
-    if (!rules.where.empty() && member_chosen.empty()) {
-        throw InputError(name + ": --where: no member matches (members: " + members_seen.front() + (members_seen.size() > 1 ? "; ... " + members_seen.back() : std::string()) + ")");
-    }
+    check_member_choice(name, members_seen, !member_chosen.empty(), rules);
     if (!rules.material.empty() && wavelengths.empty()) {
         std::string seen;
         for (const auto& m : materials_seen) seen += (seen.empty() ? "" : ", ") + m;

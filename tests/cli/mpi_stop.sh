@@ -17,6 +17,17 @@ rank_pid() {
         if tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$2"; then echo "$pid"; return; fi
     done
 }
+# Sends SIGNAL to PID, waits for the job started as $job: rc its exit, ms the time it took after the signal.
+stop_job() {  # SIGNAL PID
+    local t0
+    t0=$(date +%s%N)
+    kill "-$1" "$2"
+    wait "$job"
+    rc=$?
+    ms=$(( ($(date +%s%N) - t0) / 1000000 ))
+}
+# 0 when the job ended non-zero within 8 s of the signal (mpirun's own abort of a non-zero job takes ~2 s of it).
+ended_promptly() { [ "$rc" -ne 0 ] && [ "$ms" -le 8000 ]; echo $?; }
 check() {  # NAME CONDITION-RESULT MESSAGE
     if [ "$2" -eq 0 ]; then echo "ok   $1"; else echo "FAIL $1: $3"; failures=$((failures + 1)); fi
 }
@@ -26,12 +37,8 @@ check() {  # NAME CONDITION-RESULT MESSAGE
     --wavelengths 400:700:10 --rays 1000000 --output sweep.csv > sweep.txt 2> sweep.err &
 job=$!
 sleep 3
-t0=$(date +%s%N)
-kill -TERM "$(rank_pid spectrum 1)"
-wait "$job"
-rc=$? ms=$(( ($(date +%s%N) - t0) / 1000000 ))
-check "sweep: SIGTERM to rank 1 ends the job (exit $rc after $ms ms; mpirun's own abort adds ~2 s)" \
-      "$([ "$rc" -ne 0 ] && [ "$ms" -le 8000 ]; echo $?)" "exit $rc after $ms ms"
+stop_job TERM "$(rank_pid spectrum 1)"
+check "sweep: SIGTERM to rank 1 ends the job (exit $rc after $ms ms; mpirun's own abort adds ~2 s)" "$(ended_promptly)" "exit $rc after $ms ms"
 check "sweep: rank 0 wrote the finished results marked partial" "$(grep -q "partial true" sweep.csv; echo $?)" "$(tail -2 sweep.err)"
 check "sweep: rank 0 says why" "$(grep -q "stopped (SIGTERM to process 1 of the job)" sweep.err; echo $?)" "$(tail -2 sweep.err)"
 
@@ -40,11 +47,8 @@ check "sweep: rank 0 says why" "$(grep -q "stopped (SIGTERM to process 1 of the 
     -o lut.exr --spectra lut.csv > lut.txt 2> lut.err &
 job=$!
 sleep 4
-t0=$(date +%s%N)
-kill -INT "$job"
-wait "$job"
-rc=$? ms=$(( ($(date +%s%N) - t0) / 1000000 ))
-check "export lut: SIGINT to mpirun ends the job (exit $rc after $ms ms)" "$([ "$rc" -ne 0 ] && [ "$ms" -le 8000 ]; echo $?)" "exit $rc after $ms ms"
+stop_job INT "$job"
+check "export lut: SIGINT to mpirun ends the job (exit $rc after $ms ms)" "$(ended_promptly)" "exit $rc after $ms ms"
 check "export lut: the finished texels written, marked partial" \
       "$([ -s lut.exr ] && grep -Eq "PARTIAL \(.*\): [1-9][0-9]* of 1024 texels" lut.txt; echo $?)" "$(cat lut.txt lut.err | tail -3)"
 exit "$failures"
