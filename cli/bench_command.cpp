@@ -239,35 +239,40 @@ Json to_json(const BenchReport& report, const BenchCommandOptions& o) {
             {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}};
 }
 
-// Error against time, log-log: a line per walk and case; a diffusion point as a dashed level from its time on.
+// Error against time, log-log, a panel per case: a line per walk; a diffusion point as a dashed level from its time
+// on. An error the reference cannot resolve is drawn on the reference's resolution (grey), as the upper bound it is.
 void write_plot(const std::string& file, const BenchReport& report) {
-    static const std::vector<RGB> palette{{0.85, 0.15, 0.10}, {0.10, 0.55, 0.20}, {0.10, 0.30, 0.90}, {0.75, 0.45, 0.00},
-                                          {0.55, 0.10, 0.65}, {0.00, 0.60, 0.65}, {0.40, 0.40, 0.40}};
     double longest = 0.0;
     for (const auto& p : report.points) longest = std::max(longest, p.seconds);
-    std::vector<PlotCurve> curves;
+    std::vector<PlotPanel> panels;
     for (std::size_t c = 0; c < report.cases.size(); ++c) {
-        const auto colour = palette[c % palette.size()];
+        const auto& k = report.cases[c];
+        PlotPanel panel{fmt::format("Relative error of {} (%)", k.quantity), {}, {.log_x = true, .log_y = true}, k.name};
         for (const auto solver : {BenchSolver::biospec_walk, BenchSolver::volumetric_walk, BenchSolver::multipole, BenchSolver::dipole, BenchSolver::adding_doubling}) {
-            // Colour: the case; marker: the solver; dashed: a deterministic level.
-            PlotCurve curve{fmt::format("{}: {}", report.cases[c].name, to_string(solver)), {}, {}, {}, colour, !is_walk(solver),
-                            1 + static_cast<int>(solver)};
+            const auto style = distinct_series_style(static_cast<std::size_t>(solver));
+            PlotCurve curve{std::string(to_string(solver)), {}, {}, {}, style.colour, !is_walk(solver), style.marker};
             for (const auto i : points_of(report, c)) {
                 const auto& p = report.points[i];
                 if (p.solver != solver) continue;
+                const double percent = 100.0 * std::max(p.relative_error, k.resolvable_error);
                 curve.x.push_back(p.seconds);
-                curve.value.push_back(100.0 * p.relative_error);
+                curve.value.push_back(percent);
                 if (!is_walk(solver)) {
                     curve.x.push_back(longest);
-                    curve.value.push_back(100.0 * p.relative_error);
+                    curve.value.push_back(percent);
                 }
             }
-            curve.stderr.assign(curve.x.size(), 0.0);
-            if (!curve.x.empty()) curves.push_back(std::move(curve));
+            if (!curve.x.empty()) panel.curves.push_back(std::move(curve));
         }
+        if (k.resolvable_error > 0.0 && !panel.curves.empty()) {
+            double first = longest;
+            for (const auto& curve : panel.curves) first = std::min(first, curve.x.front());
+            panel.curves.push_back({"reference's resolution (errors below it drawn on it)", {first, longest},
+                                    {100.0 * k.resolvable_error, 100.0 * k.resolvable_error}, {}, {0.55, 0.55, 0.55}, true, 0});
+        }
+        if (!panel.curves.empty()) panels.push_back(std::move(panel));
     }
-    write_line_plot(file, "Error against run time", "Run time (s); walks solid, diffusion dashed; marker per solver", "Relative error (%)",
-                    curves, {.log_x = true, .log_y = true});
+    write_figure(file, "Error against run time", "Run time (s); walks solid, diffusion and adding-doubling dashed", panels);
 }
 
 void run_bench(const BenchCommandOptions& o) {

@@ -119,25 +119,32 @@ void run_compare_phase(const ComparePhaseOptions& o) {
         for (const auto& c : comparisons) std::cout << comparison_table(c);
     }
     if (!o.plot.empty()) {
-        std::vector<PlotCurve> curves;
-        const std::vector<RGB> colours{{0.75, 0.2, 0.1}, {0.15, 0.35, 0.75}, {0.2, 0.6, 0.25}, {0.5, 0.3, 0.6}, {0.6, 0.5, 0.1}};
+        // Top: the spectra, measured solid and HG dashed in one colour per material and quantity; bottom: their
+        // difference, the quantity of interest, with its +-2 combined standard errors.
+        PlotPanel spectra{"Reflectance R, transmittance T (fraction)", {}, {}};
+        PlotPanel differences{"HG - measured (fraction)", {}, {}};
         for (std::size_t i = 0; i < comparisons.size(); ++i) {
             const auto& c = comparisons[i];
-            PlotCurve measured{c.material + " " + c.quantity + " measured", {}, {}, {}, colours[(i / 2) % colours.size()], false};
-            PlotCurve modelled{c.material + " " + c.quantity + " HG", {}, {}, {}, colours[(i / 2) % colours.size()], true};
+            const auto style = distinct_series_style(i);
+            const auto name = c.material + " " + c.quantity;
+            PlotCurve measured{name + " measured", {}, {}, {}, style.colour, false};
+            PlotCurve modelled{name + " HG", {}, {}, {}, style.colour, true};
+            PlotCurve difference{name + " HG - measured", {}, {}, {}, style.colour, false, style.marker};
             for (const auto& r : c.rows) {
-                measured.x.push_back(r.wavelength_nm);
+                for (auto* curve : {&measured, &modelled, &difference}) curve->x.push_back(r.wavelength_nm);
                 measured.value.push_back(r.measured.value);
                 measured.stderr.push_back(r.measured.stderr);
-                modelled.x.push_back(r.wavelength_nm);
                 modelled.value.push_back(r.hg.value);
                 modelled.stderr.push_back(r.hg.stderr);
+                difference.value.push_back(r.difference.value);
+                difference.stderr.push_back(r.difference.stderr);
             }
-            curves.push_back(std::move(measured));
-            curves.push_back(std::move(modelled));
+            spectra.curves.push_back(std::move(measured));
+            spectra.curves.push_back(std::move(modelled));
+            differences.curves.push_back(std::move(difference));
         }
-        write_line_plot(o.plot, "Measured (solid) vs HG (dashed) thin layers; R of the skin, T of SC + epidermis", "Wavelength (nm)",
-                        "Reflectance R, transmittance T (fraction)", curves);
+        write_figure(o.plot, "Measured (solid) vs HG (dashed) thin layers; R of the skin, T of SC + epidermis; bands +-2 s.e.", "Wavelength (nm)",
+                     {spectra, differences});
         std::cerr << "wrote " << o.plot << '\n';
     }
 }

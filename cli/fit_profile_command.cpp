@@ -67,14 +67,12 @@ void write_outputs(const FitOptions& o, const std::vector<std::string>& names, c
     }
     write_text_file((dir / "profile_estimate.csv").string(), csv, o.overwrite);
     std::vector<PlotCurve> curves;
-    static const std::vector<RGB> palette{{0.85, 0.15, 0.1}, {0.1, 0.6, 0.2}, {0.1, 0.3, 0.9}};
     for (std::size_t c = 0; c < reports.size(); ++c) {
         const auto& r = reports[c];
-        const auto colour = palette[c % palette.size()];
-        curves.push_back({"R' estimate " + names[c], r.estimate.distances_mm, r.estimate.profile_per_mm2,
-                          std::vector<double>(r.estimate.distances_mm.size(), 0.0), colour, true});
+        const auto style = distinct_series_style(c);
+        curves.push_back({"R' estimate " + names[c], r.estimate.distances_mm, r.estimate.profile_per_mm2, {}, style.colour, true, style.marker});
         curves.push_back({fmt::format("dipole {} (s' {:.3f}, a {:.4f})", names[c], r.fit.reduced_scattering_per_mm, r.fit.absorption_per_mm),
-                          r.estimate.distances_mm, r.fitted_profile, std::vector<double>(r.estimate.distances_mm.size(), 0.0), colour, false});
+                          r.estimate.distances_mm, r.fitted_profile, {}, style.colour, false});
     }
     const auto plot = dir / "profile_fit.png";
     if (fs::exists(plot) && !o.overwrite) throw InputError(plot.string() + ": exists already (use --overwrite to replace it)");

@@ -181,17 +181,15 @@ std::string table_of(const std::vector<SpectrumFit>& fits) {
 }
 
 void write_fit_plot(const std::string& file, const std::vector<SpectrumFit>& fits) {
-    static const std::vector<RGB> palette{{0.12, 0.47, 0.71}, {1.0, 0.5, 0.05}, {0.17, 0.63, 0.17}, {0.84, 0.15, 0.16},
-                                          {0.58, 0.40, 0.74}, {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.5, 0.5, 0.5}};
     std::vector<PlotCurve> spectra, residuals;
     for (std::size_t i = 0; i < fits.size(); ++i) {
         const auto& f = fits[i];
-        const RGB colour = palette[i % palette.size()];
-        spectra.push_back({f.name + " measured", f.wavelength_nm, f.measured, {}, colour, true, static_cast<int>(i % 8) + 1});
-        spectra.push_back({f.name + " fitted", f.wavelength_nm, f.fitted, f.fitted_stderr, colour, false, 0});
+        const auto style = distinct_series_style(i);
+        spectra.push_back({f.name + " measured", f.wavelength_nm, f.measured, {}, style.colour, true, style.marker});
+        spectra.push_back({f.name + " fitted", f.wavelength_nm, f.fitted, f.fitted_stderr, style.colour, false, 0});
         std::vector<double> r;
         for (std::size_t w = 0; w < f.measured.size(); ++w) r.push_back(f.fitted[w] - f.measured[w]);
-        residuals.push_back({f.name, f.wavelength_nm, r, f.fitted_stderr, colour, false, static_cast<int>(i % 8) + 1});
+        residuals.push_back({f.name, f.wavelength_nm, r, f.fitted_stderr, style.colour, false, style.marker});
     }
     write_line_plot(file, "Measured and fitted R (bands: +-2 model s.e.)", "wavelength (nm)", "R", spectra);
     const auto path = std::filesystem::path(file);

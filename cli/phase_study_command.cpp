@@ -121,16 +121,17 @@ void write_files(const PhaseStudy& s, const PhaseStudyOptions& o) {
     }
     write_text_file(files[0].string(), csv, true);
 
-    const std::vector<RGB> colours{{0.1, 0.1, 0.1}, {0.75, 0.2, 0.1}, {0.15, 0.35, 0.75}, {0.2, 0.6, 0.25}};
     for (std::size_t i = 0; i < s.cases.size(); ++i) {
         const auto& c = s.cases[i];
         std::vector<double> centres;
         for (std::size_t b = 0; b + 1 < s.bin_edges_deg.size(); ++b) centres.push_back(0.5 * (s.bin_edges_deg[b] + s.bin_edges_deg[b + 1]));
-        const std::vector<double> no_band(centres.size(), 0.0);
         std::vector<PlotCurve> curves;
-        for (std::size_t a = 0; a < 3; ++a) curves.push_back({approach_label(all_phase_approaches[a]), centres, c.btdf_per_sr[a], no_band, colours[a + 1], false});
-        // Drawn last, with open circles, so that the curves that agree with it do not hide it.
-        curves.push_back({"measured (Bruls & van der Leun)", centres, c.btdf_measured_per_sr, no_band, colours[0], true, 5});
+        for (std::size_t a = 0; a < 3; ++a) {
+            const auto style = distinct_series_style(a);
+            curves.push_back({approach_label(all_phase_approaches[a]), centres, c.btdf_per_sr[a], {}, style.colour, false, style.marker});
+        }
+        // Drawn last, black with open circles, so that the curves that agree with it do not hide it.
+        curves.push_back({"measured (Bruls & van der Leun)", centres, c.btdf_measured_per_sr, {}, {0.1, 0.1, 0.1}, true, 5});
         write_line_plot(files[1 + 2 * i], fmt::format("Virtual goniometer: {} at {:g} nm", c.tissue, c.wavelength_nm),
                         "Polar angle (deg)", "BTDF (1/sr)", curves);
 

@@ -76,18 +76,16 @@ std::string to_csv(const SpectralProfiles& p) {
 }
 
 void write_profile_plot(const std::string& file, const SpectralProfiles& p) {
-    static const std::vector<RGB> palette = {{0.1, 0.3, 0.9}, {0.1, 0.6, 0.2}, {0.85, 0.15, 0.1}, {0.6, 0.2, 0.7},
-                                             {0.9, 0.6, 0.0}, {0.2, 0.7, 0.8}, {0.4, 0.4, 0.4}};
     std::vector<PlotCurve> curves;
     bool any_t = false;
     for (std::size_t k = 0; k < p.channels.size(); ++k) {
         const auto& c = p.channels[k];
-        const auto colour = palette[k % palette.size()];
-        curves.push_back({"R " + c.label, p.radii_mm, c.reflectance_per_mm2, std::vector<double>(p.radii_mm.size(), 0.0), colour, false});
+        const auto style = distinct_series_style(k);
+        curves.push_back({"R " + c.label, p.radii_mm, c.reflectance_per_mm2, c.reflectance_stderr_per_mm2, style.colour, false, style.marker});
         bool has_t = false;
         for (const double v : c.transmittance_per_mm2) has_t = has_t || v > 0.0;
         if (has_t) {
-            curves.push_back({"T " + c.label, p.radii_mm, c.transmittance_per_mm2, std::vector<double>(p.radii_mm.size(), 0.0), colour, true});
+            curves.push_back({"T " + c.label, p.radii_mm, c.transmittance_per_mm2, c.transmittance_stderr_per_mm2, style.colour, true, style.marker});
             any_t = true;
         }
     }

@@ -335,11 +335,14 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
 
 void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra) {
     std::vector<PlotCurve> curves;
-    bool any_t = false;
-    for (const auto& s : spectra) {
-        const RGB colour = s.color ? s.color->srgb : RGB{0.4, 0.4, 0.4};
+    const bool any_t = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.quantities.transmittance; });
+    // Curves take their skin's colour; without colours (a short range, one wavelength) each its own colour and marker.
+    const bool coloured = std::all_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.color.has_value(); });
+    for (std::size_t k = 0; k < spectra.size(); ++k) {
+        const auto& s = spectra[k];
+        const auto style = distinct_series_style(k);
         const auto curve = [&](const char* quantity, auto get, bool dashed) {
-            PlotCurve c{s.result.material + " " + quantity, {}, {}, {}, colour, dashed};
+            PlotCurve c{(any_t ? quantity + std::string(" ") : std::string()) + result_label(s.result), {}, {}, {}, coloured ? s.color->srgb : style.colour, dashed, coloured ? 0 : style.marker};
             for (const auto& w : s.result.wavelengths) {
                 c.x.push_back(w.wavelength_nm);
                 c.value.push_back(get(w).value);
@@ -348,14 +351,16 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
             curves.push_back(std::move(c));
         };
         if (s.result.quantities.reflectance) curve("R", [](const WavelengthResult& w) { return w.reflectance; }, false);
-        if (s.result.quantities.transmittance) {
-            curve("T", [](const WavelengthResult& w) { return w.transmittance; }, true);
-            any_t = true;
-        }
+        if (s.result.quantities.transmittance) curve("T", [](const WavelengthResult& w) { return w.transmittance; }, true);
     }
     const bool uncertain = !spectra.empty() && spectra.front().result.has_uncertainty;
-    write_line_plot(file, "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +
-                              (uncertain ? " spectra (bands: +-2 standard errors)" : " spectra"),
+    std::string varied;
+    if (!spectra.empty()) {
+        for (const auto& [field, value] : spectra.front().result.provenance.varied) varied += (varied.empty() ? "" : ", ") + field;
+    }
+    write_line_plot(file,
+                    "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +
+                        (uncertain ? " spectra (bands: +-2 standard errors)" : " spectra") + (varied.empty() ? "" : "; curves labelled by " + varied),
                     "Wavelength (nm)", any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
 }
 

@@ -20,3 +20,11 @@ TEST_CASE("measurement geometries parse by name", "[spectral_request]") {
     CHECK(parse_measurement_geometry("0-45", "--geometry") == MeasurementGeometry::zero_45);
     CHECK_THROWS_WITH(parse_measurement_geometry("45-0", "--geometry"), Catch::Contains("'45-0' is not a measurement geometry"));
 }
+
+TEST_CASE("a result is labelled by its material and a sweep member's swept values in --vary order", "[spectral_request]") {
+    SpectralResult result;
+    result.material = "biospec-lightly";
+    CHECK(result_label(result) == "biospec-lightly");
+    result.provenance.varied = {{"epidermis.melanosome_fraction", 0.068}, {"papillary_dermis.blood_fraction", 0.002}};
+    CHECK(result_label(result) == "biospec-lightly: 0.068, 0.002");
+}

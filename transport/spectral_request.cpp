@@ -49,6 +49,12 @@ std::vector<double> default_angular_bin_edges_deg() {
     return edges;
 }
 
+std::string result_label(const SpectralResult& result) {
+    auto label = result.material;
+    for (std::size_t i = 0; i < result.provenance.varied.size(); ++i) label += fmt::format("{}{:g}", i == 0 ? ": " : ", ", result.provenance.varied[i].second);
+    return label;
+}
+
 void check_incidence_deg(double incidence_deg) {
     if (!std::isfinite(incidence_deg) || incidence_deg < 0.0 || incidence_deg >= 90.0) {
         throw InputError("incidence angle " + format_number(incidence_deg) + " deg is outside [0, 90)");

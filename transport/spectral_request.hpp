@@ -150,4 +150,8 @@ struct SpectralResult {
     Provenance provenance;
 };
 
+// How a result is named beside others: its material, and a sweep member's swept values in --vary order
+// ("biospec-lightly: 0.01, 0.2").
+std::string result_label(const SpectralResult& result);
+
 }  // namespace skinspec

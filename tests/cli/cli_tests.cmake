@@ -88,3 +88,6 @@ skinspec_cli_test("color of a sweep member by position" 0 "ITA +[0-9.]+ deg" col
 skinspec_cli_test("color of a sweep member by value" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --where epidermis.melanosome_fraction=0.1)
 skinspec_cli_test("color of a spectrum --json member" 0 "ITA +[0-9.]+ deg" color sweep_two_members.json --where epidermis.melanosome_fraction=0.02)
 skinspec_cli_test("swatch table gives each patch's ITA" 0 "ITA deg \\(category\\)[^\n]*\n[^\n]*[0-9.]+ \\((very light|light|intermediate|tan|brown|dark)\\)" swatch --mode dipole --vary epidermis.melanosome_fraction=0.02:0.2:2)
+skinspec_cli_test("spectrum sweep plot" 0 "wrote .*sweep_plot.png" spectrum --mode dipole --preset biospec-lightly --vary epidermis.melanosome_fraction=0.01:0.4:6 --plot ${CMAKE_CURRENT_BINARY_DIR}/sweep_plot.png --overwrite)
+skinspec_cli_test("spectrum one-wavelength plot" 0 "wrote .*one_wavelength_plot.png" spectrum --wavelengths 550 --rays 2000 --plot ${CMAKE_CURRENT_BINARY_DIR}/one_wavelength_plot.png --overwrite)
+skinspec_cli_test("compare-phase plot with a difference panel" 0 "wrote .*compare_phase.png" compare-phase --preset biospec-lightly --wavelengths 400:700:50 --stderr 0.01 --plot ${CMAKE_CURRENT_BINARY_DIR}/compare_phase.png --overwrite)
