@@ -63,6 +63,32 @@ void write(const DataImage& image, const std::filesystem::path& file, PixelForma
     write_atomically(file, [&](const std::filesystem::path& temporary) { write_image_file(temporary, image, format, attributes, file); });
 }
 
+// `text` with its lines broken at spaces so that each fits `width_px` in type of `font_px` (0.62 em a character,
+// DejaVu Sans's average); a word longer than the width is left whole.
+std::string wrapped_to(const std::string& text, int width_px, int font_px) {
+    const auto max_chars = static_cast<std::size_t>(std::max(4.0, (width_px - 8) / (0.62 * font_px)));
+    std::string out, line;
+    const auto flush = [&] {
+        out += (out.empty() ? "" : "\n") + line;
+        line.clear();
+    };
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const auto end = std::min(text.find('\n', start), text.size());
+        std::size_t word_start = start;
+        while (word_start < end) {
+            const auto word_end = std::min(text.find(' ', word_start), end);
+            const auto word = text.substr(word_start, word_end - word_start);
+            if (!line.empty() && line.size() + 1 + word.size() > max_chars) flush();
+            line += (line.empty() ? "" : " ") + word;
+            word_start = word_end + 1;
+        }
+        flush();
+        start = end + 1;
+    }
+    return out;
+}
+
 // Draws `label` (lines separated by '\n') at the top-left of `rect`, in black or white for contrast.
 void draw_label(DataImage& image, const PixelRect& rect, const std::string& label, int font_px, double background_luma) {
     const float ink = background_luma > 0.5 ? 0.0f : 1.0f;
@@ -162,19 +188,21 @@ void write_display_chart(const std::filesystem::path& file, const ChartLayout& l
     // Margins for the axes: the titles and the column values on top, the row values on the left.
     auto framed = layout;
     const int axis_px = std::max(12, layout.patch_px / 8);
-    const auto title_lines = static_cast<int>(!axes.column_title.empty()) + static_cast<int>(!axes.row_title.empty());
-    if (title_lines > 0 || !axes.column_values.empty()) framed.top_px = axis_px * (title_lines + (axes.column_values.empty() ? 0 : 1)) + axis_px / 2;
     std::size_t widest = 0;
     for (const auto& v : axes.row_values) widest = std::max(widest, v.size());
     if (widest > 0) framed.left_px = static_cast<int>(std::ceil(0.62 * axis_px * static_cast<double>(widest))) + layout.gap_px;
-    auto image = filled_chart(framed, encoded, background);
-    const double background_luma = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
+    // The titles, wrapped to the chart's width (one row of a few patches is narrower than a field's description).
     std::string titles;
     if (!axes.column_title.empty()) titles += "columns: " + axes.column_title;
     if (!axes.row_title.empty()) {
         if (!titles.empty()) titles += '\n';
         titles += "rows: " + axes.row_title;
     }
+    titles = wrapped_to(titles, chart_size(framed).width, axis_px);
+    const auto title_lines = titles.empty() ? 0 : 1 + static_cast<int>(std::count(titles.begin(), titles.end(), '\n'));
+    if (title_lines > 0 || !axes.column_values.empty()) framed.top_px = axis_px * (title_lines + (axes.column_values.empty() ? 0 : 1)) + axis_px / 2;
+    auto image = filled_chart(framed, encoded, background);
+    const double background_luma = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
     if (!titles.empty()) draw_label(image, PixelRect{0, 0, image.width, framed.top_px}, titles, axis_px, background_luma);
     for (std::size_t c = 0; c < axes.column_values.size() && c < layout.columns; ++c) {
         const auto rect = patch_rect(framed, c);
@@ -229,7 +257,7 @@ void write_image_grid(const std::filesystem::path& file, const std::vector<Linea
                 if (y < 40 && x < 120) luma += (0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2]) / (40.0 * 120.0);
             }
         }
-        if (i < labels.size()) draw_label(image, PixelRect{x0, y0, x0 + w, y0 + h}, labels[i], 13, luma);
+        if (i < labels.size()) draw_label(image, PixelRect{x0, y0, x0 + w, y0 + h}, wrapped_to(labels[i], w, 13), 13, luma);
     }
     write_display_referred(image, file, display, metadata);
 }

@@ -90,3 +90,23 @@ TEST_CASE("a data image rewritten with another size reads back at its new size (
     CHECK(again.values.back() == 0.25f);
     std::filesystem::remove(file);
 }
+
+TEST_CASE("a one-row chart's long axis title is wrapped inside the image, not cut at its edge", "[chart_image]") {
+    const auto& cm = ColorManagement::builtin();
+    const ChartLayout layout{3, 1, 112, 8};
+    const std::vector<RGB> patches(3, RGB{0.2, 0.15, 0.1});
+    const ChartAxes axes{"epidermis.melanosome_fraction: volume fraction of melanosomes (v_m) (unitless), log spacing", {"0.005", "0.0354", "0.25"}, "", {}};
+    const auto file = temp("skinspec_chart_title.png");
+    std::filesystem::remove(file);
+    write_display_chart(file, layout, patches, {}, "ACEScg", "sRGB", "Standard", {}, cm, axes);
+    OIIO::ImageBuf buf(file.string());
+    REQUIRE(buf.read(0, 0, true, OIIO::TypeDesc::UINT8));
+    const int width = buf.spec().width;
+    const auto background = pixel(buf, width - 1, 0);
+    // The title needs three lines at this width; the right-most 4 columns of the header stay background.
+    const int header_px = 3 * 14 + 14;
+    for (int y = 0; y < header_px; ++y) {
+        for (int x = width - 4; x < width; ++x) CHECK(pixel(buf, x, y) == background);
+    }
+    CHECK(buf.spec().height >= 2 * 8 + 112 + 4 * 14);  // room above the patches for three title lines and the values
+}
