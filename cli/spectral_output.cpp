@@ -274,8 +274,9 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
             all_converged = all_converged && w.converged;
         }
         if (s.result.has_uncertainty) {
-            out += fmt::format("{}: {} wavelengths, {} rays in {:.2f} s{}{}{}\n", s.result.material, s.result.wavelengths.size(), rays,
-                               s.seconds, all_converged ? "" : "; standard error target NOT met at some wavelengths (budget spent)",
+            const char* rows = s.result.bands.empty() ? "wavelengths" : "bands";
+            out += fmt::format("{}: {} {}, {} rays in {:.2f} s{}{}{}\n", s.result.material, s.result.wavelengths.size(), rows, rays, s.seconds,
+                               all_converged ? "" : fmt::format("; standard error target NOT met at some {} (budget spent)", rows),
                                truncated ? fmt::format("; {} rays stopped at the event limit", truncated) : "",
                                s.result.partial ? "; PARTIAL (interrupted)" : "");
         } else {

@@ -64,7 +64,7 @@ void write(const DataImage& image, const std::filesystem::path& file, PixelForma
 }
 
 // `text` with its lines broken at spaces so that each fits `width_px` in type of `font_px` (0.62 em a character,
-// DejaVu Sans's average); a word longer than the width is left whole.
+// DejaVu Sans's average); a word longer than the width is broken where it reaches the edge.
 std::string wrapped_to(const std::string& text, int width_px, int font_px) {
     const auto max_chars = static_cast<std::size_t>(std::max(4.0, (width_px - 8) / (0.62 * font_px)));
     std::string out, line;
@@ -78,8 +78,13 @@ std::string wrapped_to(const std::string& text, int width_px, int font_px) {
         std::size_t word_start = start;
         while (word_start < end) {
             const auto word_end = std::min(text.find(' ', word_start), end);
-            const auto word = text.substr(word_start, word_end - word_start);
+            auto word = text.substr(word_start, word_end - word_start);
             if (!line.empty() && line.size() + 1 + word.size() > max_chars) flush();
+            while (word.size() > max_chars) {  // a word wider than the image is broken across lines
+                line += word.substr(0, max_chars);
+                word.erase(0, max_chars);
+                flush();
+            }
             line += (line.empty() ? "" : " ") + word;
             word_start = word_end + 1;
         }
@@ -95,8 +100,10 @@ void draw_label(DataImage& image, const PixelRect& rect, const std::string& labe
     std::size_t line_start = 0;
     for (int line = 0;; ++line) {
         const auto end = label.find('\n', line_start);
-        render_text(image, rect.x0 + 4, rect.y0 + 4 + font_px * (line + 1), label.substr(line_start, end - line_start), font_px, label_font,
-                    {ink, ink, ink});
+        // Lines below the rectangle are not drawn (OpenImageIO asserts on text outside the image).
+        const int baseline = rect.y0 + 4 + font_px * (line + 1);
+        if (baseline > std::min(rect.y1, image.height - 1)) break;
+        render_text(image, rect.x0 + 4, baseline, label.substr(line_start, end - line_start), font_px, label_font, {ink, ink, ink});
         if (end == std::string::npos) break;
         line_start = end + 1;
     }
@@ -257,7 +264,8 @@ void write_image_grid(const std::filesystem::path& file, const std::vector<Linea
                 if (y < 40 && x < 120) luma += (0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2]) / (40.0 * 120.0);
             }
         }
-        if (i < labels.size()) draw_label(image, PixelRect{x0, y0, x0 + w, y0 + h}, wrapped_to(labels[i], w, 13), 13, luma);
+        const int font_px = std::clamp(w / 10, 8, 13);  // smaller type on a small image
+        if (i < labels.size()) draw_label(image, PixelRect{x0, y0, x0 + w, y0 + h}, wrapped_to(labels[i], w, font_px), font_px, luma);
     }
     write_display_referred(image, file, display, metadata);
 }

@@ -10,6 +10,8 @@
 #include <tbb/global_control.h>
 
 #include "formats/adding_doubling_reference.hpp"
+#include "materials/material_file.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
 #include "transport/rte/rte_model.hpp"
 #include "spectral/input_error.hpp"
 
@@ -184,4 +186,30 @@ TEST_CASE("absorption replay: each replayed set equals its own white run, grids 
     // More absorption, less light back: an ordering the sets must keep.
     CHECK(replayed[0].diffuse_reflectance.value > replayed[1].diffuse_reflectance.value);
     CHECK(replayed[1].diffuse_reflectance.value > replayed[2].diffuse_reflectance.value);
+}
+
+TEST_CASE("a band material is walked as its semi-infinite medium: R per band agrees with adding-doubling, nothing leaves below", "[rte_solver]") {
+    for (const auto* preset : {"jensen2001-skin1", "jensen2001-marble"}) {
+        CAPTURE(preset);
+        const auto material = std::get<HomogeneousMaterial>(load_material(preset));
+        SpectralRequest request;
+        request.stderr_target = 0.002;
+        request.seed = 5;
+        const auto result = solve_rte_bands(material, request);
+        REQUIRE(result.wavelengths.size() == material.bands.size());
+        CHECK(result.bands == material.bands);
+        CHECK(result.warnings.empty());
+        for (std::size_t b = 0; b < material.bands.size(); ++b) {
+            CAPTURE(material.bands[b]);
+            const auto& w = result.wavelengths[b];
+            // The independent solver (adding-doubling, checked against Prahl's tables) on the same slab.
+            const auto reference = solve_adding_doubling(rte_band_slab(material, b), {});
+            const double r_reference = reference.specular_reflectance + reference.diffuse_reflectance;
+            CHECK(std::abs(w.reflectance.value - r_reference) <= 4.0 * w.reflectance.stderr + reference.accuracy);
+            CHECK(w.transmittance.value < 1e-9);
+            double absorbed = 0.0;
+            for (const auto& a : w.absorptance_layers) absorbed += a.value;
+            CHECK(w.reflectance.value + w.transmittance.value + absorbed == Approx(1.0).margin(1e-12));  // energy conservation
+        }
+    }
 }

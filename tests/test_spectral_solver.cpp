@@ -50,8 +50,8 @@ TEST_CASE("a request for what a solver does not declare is refused with one mess
     auto rough = one_wavelength();
     rough.switches.surface_roughness = 0.3;
     CHECK_THROWS_WITH(solve_spectrum(find_solver("biospec"), skin, rough), Catch::Contains("taken by: multipole, dipole"));
-    CHECK_THROWS_WITH(solve_spectrum(find_solver("rte"), bands, one_wavelength()),
-                      Catch::Contains("solver 'rte' needs a layered material; 'jensen2001-skin1' is a homogeneous material given per band"));
+    CHECK_THROWS_WITH(solve_spectrum(find_solver("adding-doubling"), bands, SolverRequest{}),
+                      Catch::Contains("solver 'adding-doubling' needs a layered material; 'jensen2001-skin1' is a homogeneous material given per band"));
     CHECK_THROWS_WITH(solve_spectrum(find_solver("dipole"), skin, one_wavelength()),
                       Catch::Contains("solver 'dipole' is deterministic: it takes no standard-error target or ray count"));
     auto target = SolverRequest{};

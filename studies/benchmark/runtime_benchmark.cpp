@@ -202,22 +202,20 @@ void preset_cases(Benchmark& bench) {
     }
 }
 
-// Jensen's skin1, G band, as a 200-mfp slab for the walk (isotropic, sigma_s = sigma_s'): R total.
+// Jensen's skin1, G band, for the walk as `spectrum --mode rte` takes a band material (rte_band_slab): R total.
 void jensen_case(Benchmark& bench) {
     const auto material = std::get<HomogeneousMaterial>(load_material("jensen2001-skin1"));
     const std::size_t band = 1;
-    const double reduced = material.reduced_scattering_per_mm[band], absorption = material.absorption_per_mm[band];
-    const double n = material.relative_refractive_index;
     const auto walk = [&](std::uint64_t rays, std::uint64_t seed) {
         RteRequest request;
-        request.stack.layers.push_back({n, absorption * 10.0, reduced * 10.0, 200.0 / (reduced + absorption) / 10.0, PhaseFunction::isotropic()});
+        request.stack = rte_band_slab(material, band);
         request.photons = rays;
         request.seed = seed;
         request.cancel = bench.options().cancel;
         const auto r = solve_rte(request);
         return Estimate{r.specular_reflectance.value + r.diffuse_reflectance.value, r.diffuse_reflectance.stderr};
     };
-    const auto index = bench.add_walk_reference_case("jensen2001-skin1 G (200 mfp)", "R", walk, "volumetric");
+    const auto index = bench.add_walk_reference_case("jensen2001-skin1 G", "R", walk, "volumetric");
     bench.sweep_walk(index, BenchSolver::volumetric_walk, walk);
     for (const auto mode : {DiffusionMode::multipole, DiffusionMode::dipole}) {
         SpectralRequest request;

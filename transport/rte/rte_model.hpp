@@ -8,6 +8,7 @@
 #include "transport/phase_function.hpp"
 #include "transport/spectral_request.hpp"
 #include "materials/layer_stack.hpp"
+#include "materials/material_file.hpp"
 
 namespace skinspec {
 
@@ -91,6 +92,15 @@ std::vector<RteResult> solve_rte_sets(const RteRequest& request, const std::vect
 // A material's spectra with the volumetric walk, in the shared result type and schema (model "rte"):
 // R = specular + diffuse, R_specular, T, A per layer; requires volumetric scattering in every layer.
 SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest& request, BoundaryMode boundaries = BoundaryMode::random);
+
+// A homogeneous band material's band as the walk's medium: isotropic scattering with mu_s = sigma_s' (the material
+// gives reduced scattering only; the similarity relation, Wyman et al. 1989), its refractive index against air, in a
+// slab deep enough to stand for the semi-infinite medium (rte_solver.cpp says how deep).
+inline constexpr double band_slab_min_mean_free_paths = 200.0, band_slab_max_mean_free_paths = 1e4;
+inline constexpr double band_slab_transmittance_worth_a_warning = 1e-6;
+RteStack rte_band_slab(const HomogeneousMaterial& material, std::size_t band);
+// R, T, A per band of `material` (rows named by material.bands, wavelength 0), T ~ 0 by construction.
+SpectralResult solve_rte_bands(const HomogeneousMaterial& material, const SpectralRequest& request, BoundaryMode boundaries = BoundaryMode::random);
 // Absorption replay of stacks that differ only in absorbers (white Monte Carlo, one trace per wavelength), one
 // result per stack; `white` with one stack: its own white run (what a replayed set equals to rounding).
 std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack*>& stacks, const SpectralRequest& request,

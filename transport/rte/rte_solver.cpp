@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <span>
 
 #include "materials/path_key.hpp"
 #include "transport/direction.hpp"
@@ -465,30 +467,36 @@ SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest
     return solve_rte_spectra({&stack}, request, boundaries, false).front();
 }
 
-std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack*>& stacks, const SpectralRequest& request,
-                                              BoundaryMode boundaries, bool white) {
-    if (stacks.empty()) throw InputError("absorption replay: no stacks to simulate");
-    const bool replay = stacks.size() > 1 || white;
-    require_shared_paths(stacks);
-    std::vector<SpectralResult> out(stacks.size());
-    for (std::size_t s = 0; s < stacks.size(); ++s) {
-        auto& o = out[s];
-        o.model = "rte";
-        o.material = stacks[s]->name;
-        o.quantities = Quantities{true, true, true, false};
-        for (const auto& l : stacks[s]->layers) o.layer_names.push_back(l.name);
-        o.settings = {{"incidence_deg", request.incidence_deg},
-                      {"seed", request.seed},
-                      {"max_rays_per_wavelength", request.max_rays_per_wavelength},
-                      {"boundaries", std::string(to_string(boundaries))},
-                      {"bottom", std::string(to_string(stacks[s]->bottom))},
-                      {"absorption", std::string(replay ? "white Monte Carlo (Beer-Lambert along mu_s paths)" : "MCML (albedo per interaction)")},
-                      {"absorption_sets_traced_together", std::uint64_t{stacks.size()}},
-                      {"roulette", std::string("weight < 1e-4, survival 0.1, energy-conserving")}};
-        if (request.stderr_target) o.settings["stderr_target"] = *request.stderr_target;
-    }
-    // One progress for the whole spectrum: rays and wavelengths count on across the per-wavelength runs.
-    const std::size_t total = request.wavelengths.size();
+namespace {
+
+// A result's model, names and settings before its rows.
+SpectralResult walk_result(const std::string& material, const std::vector<std::string>& layer_names, const SpectralRequest& request,
+                           BoundaryMode boundaries, const std::string& bottom, bool replay, std::size_t sets) {
+    SpectralResult o;
+    o.model = "rte";
+    o.material = material;
+    o.quantities = Quantities{true, true, true, false};
+    o.layer_names = layer_names;
+    o.settings = {{"incidence_deg", request.incidence_deg},
+                  {"seed", request.seed},
+                  {"max_rays_per_wavelength", request.max_rays_per_wavelength},
+                  {"boundaries", std::string(to_string(boundaries))},
+                  {"bottom", bottom},
+                  {"absorption", std::string(replay ? "white Monte Carlo (Beer-Lambert along mu_s paths)" : "MCML (albedo per interaction)")},
+                  {"absorption_sets_traced_together", std::uint64_t{sets}},
+                  {"roulette", std::string("weight < 1e-4, survival 0.1, energy-conserving")}};
+    if (request.stderr_target) o.settings["stderr_target"] = *request.stderr_target;
+    return o;
+}
+
+// The walk row by row (a wavelength or a band: `row_nm` is the row's wavelength, 0 for a band; `row_keys` keys its
+// random streams), every result's medium at a row from `medium(row, result)`; the first result's medium is traced,
+// the others replayed on its paths when `replay`. Rows stop at a cancellation, the results marked partial.
+std::vector<SpectralResult> walk_rows(std::vector<SpectralResult> out, const SpectralRequest& request, BoundaryMode boundaries, bool replay,
+                                      std::span<const double> row_nm, std::span<const double> row_keys,
+                                      const std::function<RteStack(std::size_t, std::size_t)>& medium) {
+    // One progress for the whole spectrum: rays and rows count on across the per-row runs.
+    const std::size_t total = row_nm.size();
     std::uint64_t rays_before = 0;
     std::size_t index = 0;
     const auto progress = [&](const Progress& p) {
@@ -497,13 +505,13 @@ std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack
         request.on_progress(Progress{rays_before + p.rays_done, rays_before + p.rays_expected + expected_rest,
                                      index + p.wavelengths_done, total});
     };
-    for (const double nm : request.wavelengths.nm()) {
+    for (; index < total;) {
         RteRequest r;
-        r.stack = rte_stack_from(*stacks.front(), nm);
+        r.stack = medium(index, 0);
         r.photons = request.max_rays_per_wavelength;
         r.stderr_target = request.stderr_target;
         r.seed = request.seed;
-        r.stream_key = nm;
+        r.stream_key = row_keys[index];
         r.incidence_deg = request.incidence_deg;
         r.boundaries = boundaries;
         r.on_progress = progress;
@@ -511,18 +519,19 @@ std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack
         std::vector<RteResult> results;
         if (replay) {
             std::vector<std::vector<double>> sets;
-            for (const auto* stack : stacks) sets.push_back(own_absorption(rte_stack_from(*stack, nm)));
+            for (std::size_t s = 0; s < out.size(); ++s) sets.push_back(own_absorption(medium(index, s)));
             results = solve_rte_sets(r, sets);
         } else {
             results = {solve_rte(r)};
         }
         rays_before += results.front().photons;
+        const double nm = row_nm[index];
         ++index;
         if (results.front().partial) {
             for (auto& o : out) o.partial = true;
             break;
         }
-        for (std::size_t s = 0; s < stacks.size(); ++s) {
+        for (std::size_t s = 0; s < out.size(); ++s) {
             const auto& res = results[s];
             WavelengthResult w;
             w.wavelength_nm = nm;
@@ -538,6 +547,59 @@ std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack
         }
     }
     return out;
+}
+
+}  // namespace
+
+std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack*>& stacks, const SpectralRequest& request,
+                                              BoundaryMode boundaries, bool white) {
+    if (stacks.empty()) throw InputError("absorption replay: no stacks to simulate");
+    const bool replay = stacks.size() > 1 || white;
+    require_shared_paths(stacks);
+    std::vector<SpectralResult> out;
+    for (const auto* stack : stacks) {
+        std::vector<std::string> layers;
+        for (const auto& l : stack->layers) layers.push_back(l.name);
+        out.push_back(walk_result(stack->name, layers, request, boundaries, std::string(to_string(stack->bottom)), replay, stacks.size()));
+    }
+    const auto nm = request.wavelengths.nm();
+    return walk_rows(std::move(out), request, boundaries, replay, nm, nm,
+                     [&](std::size_t row, std::size_t s) { return rte_stack_from(*stacks[s], nm[row]); });
+}
+
+RteStack rte_band_slab(const HomogeneousMaterial& material, std::size_t band) {
+    const double reduced_per_mm = material.reduced_scattering_per_mm[band], absorption_per_mm = material.absorption_per_mm[band];
+    const double transport_per_mm = reduced_per_mm + absorption_per_mm;
+    // Deep enough that diffuse light reaching the bottom is below exp(-25) ~ 1e-11 of the incident: 25 / mu_eff, with
+    // mu_eff = sqrt(3 mu_a (mu_a + mu_s')) (Farrell et al. 1992 Eq. 7); at least 200 and at most 1e4 mean free paths.
+    const double effective_per_mm = std::sqrt(3.0 * absorption_per_mm * transport_per_mm);
+    const double mean_free_paths = std::clamp(effective_per_mm > 0.0 ? 25.0 * transport_per_mm / effective_per_mm : band_slab_max_mean_free_paths,
+                                              band_slab_min_mean_free_paths, band_slab_max_mean_free_paths);
+    RteStack stack;
+    stack.layers.push_back({material.relative_refractive_index, absorption_per_mm * 10.0, reduced_per_mm * 10.0,
+                            mean_free_paths / transport_per_mm / 10.0, PhaseFunction::isotropic()});
+    return stack;
+}
+
+SpectralResult solve_rte_bands(const HomogeneousMaterial& material, const SpectralRequest& request, BoundaryMode boundaries) {
+    std::vector<SpectralResult> one;
+    one.push_back(walk_result(material.name, {material.name}, request, boundaries,
+                              "none: a slab deep enough to be semi-infinite to 1e-11 (200 to 1e4 transport mean free paths)", false, 1));
+    one.front().bands = material.bands;
+    std::vector<double> row_nm(material.bands.size(), 0.0), keys;
+    for (std::size_t b = 0; b < material.bands.size(); ++b) keys.push_back(static_cast<double>(b + 1));
+    auto result = walk_rows(std::move(one), request, boundaries, false, row_nm, keys,
+                            [&](std::size_t row, std::size_t) { return rte_band_slab(material, row); })
+                      .front();
+    // A nearly non-absorbing band needs a deeper slab than the walk is given: say how much light left through it.
+    for (std::size_t b = 0; b < result.wavelengths.size(); ++b) {
+        const auto& t = result.wavelengths[b].transmittance;
+        if (t.value > band_slab_transmittance_worth_a_warning) {
+            result.warnings.push_back({"rte: the band's slab lets light through (R is below the semi-infinite medium's by about T)", material.name,
+                                       "band " + material.bands[b], t.value});
+        }
+    }
+    return result;
 }
 
 }  // namespace skinspec
