@@ -163,11 +163,13 @@ std::string table_of(const std::vector<SpectrumFit>& fits) {
     const auto& keys = fits.front().parameter_keys;
     std::size_t width = 24;
     for (const auto& k : keys) width = std::max(width, k.size());
-    std::string out = fmt::format("{:<12}", "spectrum");
+    std::size_t name_width = 12;
+    for (const auto& f : fits) name_width = std::max(name_width, f.name.size());
+    std::string out = fmt::format("{:<{}}", "spectrum", name_width);
     for (const auto& k : keys) out += fmt::format("  {:>{}}", k, width);
     out += fmt::format("  {:>7}  {:>6}  {:>13}\n", "rms", "dE00", "L* meas/fit");
     for (const auto& f : fits) {
-        out += fmt::format("{:<12}", f.name);
+        out += fmt::format("{:<{}}", f.name, name_width);
         for (std::size_t i = 0; i < keys.size(); ++i) {
             const std::string se = std::isfinite(f.parameter_stderr[i]) ? fmt::format("{:.2g}", f.parameter_stderr[i]) : "n/a";
             out += fmt::format("  {:>{}}", fmt::format("{:.4g} +- {}{}", f.parameters[i], se, f.on_bound[i] ? " *" : ""), width);
@@ -237,7 +239,7 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     settings.geometry = measurement_geometry(o.solver);
     settings.incidence_deg = o.incidence_deg;
     settings.starts = o.starts;
-    for (const auto line : measured.line_of_row) settings.wavelength_sources.push_back(measured.file + ":" + std::to_string(line));
+    settings.wavelength_sources = measured.row_sources;
 
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
+
+#include "formats/spectrum_csv.hpp"
 
 #include "spectral/input_error.hpp"
 #include "spectral/input_file.hpp"
@@ -9,7 +12,48 @@
 
 namespace skinspec {
 
+namespace {
+
+// A skinspec result's R spectra (formats/spectrum_csv.hpp) as spectra to fit: one grid, values in range.
+MeasuredSpectra from_result(const std::filesystem::path& path) {
+    MeasuredSpectra out;
+    out.file = path.string();
+    SpectrumFileRules rules;
+    rules.allow_over_one = true;  // checked against max_measured_reflectance below
+    rules.must_cover_from_nm = std::numeric_limits<double>::infinity();
+    rules.must_cover_to_nm = 0.0;
+    for (const auto& s : read_result_spectra(path, rules)) {
+        const auto span_nm = s.file.spectrum.wavelengths_nm(), span_values = s.file.spectrum.values();
+        const std::vector<double> nm(span_nm.begin(), span_nm.end()), values(span_values.begin(), span_values.end());
+        if (out.names.empty()) {
+            out.wavelength_nm = nm;
+            for (const double w : nm) out.row_sources.push_back(out.file + ": " + s.name + " at " + format_number(w) + " nm");
+        } else if (nm != out.wavelength_nm) {
+            throw InputError(out.file + ": " + s.name + " has other wavelengths than " + out.names.front() + " (spectra fitted together share one grid)");
+        }
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            if (values[i] > max_measured_reflectance) {
+                throw InputError(out.file + ": " + s.name + " at " + format_number(nm[i]) + " nm: R = " + format_number(values[i]) +
+                                 " is not a reflectance in [0, " + format_number(max_measured_reflectance) + "]");
+            }
+        }
+        out.names.push_back(s.name);
+        out.reflectance.push_back(values);
+    }
+    return out;
+}
+
+}  // namespace
+
 MeasuredSpectra read_measured_spectra(const std::filesystem::path& path) {
+    if (is_skinspec_result(path, "measured spectra file")) {
+        auto out = from_result(path);
+        if (out.wavelength_nm.size() < min_measured_points) {
+            throw InputError(out.file + ": " + std::to_string(out.wavelength_nm.size()) + " wavelengths; a fit needs at least " +
+                             std::to_string(min_measured_points));
+        }
+        return out;
+    }
     MeasuredSpectra out;
     out.file = path.string();
     auto in = open_input_file(path, "measured spectra file");
@@ -57,7 +101,7 @@ MeasuredSpectra read_measured_spectra(const std::filesystem::path& path) {
             out.reflectance[c].push_back(*v);
         }
         out.wavelength_nm.push_back(*wavelength);
-        out.line_of_row.push_back(number);
+        out.row_sources.push_back(out.file + ":" + std::to_string(number));
     }
     if (!header) throw InputError(out.file + ": no header line 'wavelength_nm,NAME,...'");
     if (out.wavelength_nm.size() < min_measured_points) {

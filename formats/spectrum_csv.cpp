@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "spectral/input_error.hpp"
@@ -281,6 +282,83 @@ SpectrumFile read_spectrum_file(const std::filesystem::path& file, const Spectru
         throw InputError(name + ": --material " + rules.material + " has no rows (materials: " + seen + ")");
     }
     return finished(name, std::move(wavelengths), std::move(values), std::move(standard_errors), rules);
+}
+
+bool is_skinspec_result(const std::filesystem::path& file, const char* kind) {
+    auto in = open_input_file(file, kind);
+    in >> std::ws;
+    if (in.peek() == '{') return true;
+    std::string first;
+    std::getline(in, first);
+    return first.starts_with("# skinspec");
+}
+
+std::vector<NamedSpectrum> read_result_spectra(const std::filesystem::path& file, SpectrumFileRules rules) {
+    // The members: (material, position among the material's members, their swept values), in file order.
+    struct Member {
+        std::string material;
+        std::size_t position;
+        std::string swept;
+    };
+    std::vector<Member> members;
+    const auto add = [&](const std::string& material, const std::string& swept) {
+        std::size_t position = 1;
+        for (const auto& m : members) {
+            if (m.material != material) continue;
+            if (m.swept == swept) return;
+            ++position;
+        }
+        members.push_back({material, position, swept});
+    };
+    auto in = open_input_file(file, "spectrum file");
+    in >> std::ws;
+    if (in.peek() == '{') {
+        try {
+            const auto j = nlohmann::json::parse(in);
+            for (const auto& r : j.at("results")) {
+                std::string swept;
+                if (r.contains("provenance") && r["provenance"].contains("varied")) {
+                    for (const auto& [field, value] : r["provenance"]["varied"].items()) swept += (swept.empty() ? "" : ";") + field + "=" + format_number(value.get<double>());
+                }
+                add(r.at("material").get<std::string>(), swept);
+            }
+        } catch (const nlohmann::json::exception& e) {
+            throw InputError(file.string() + ": not a readable skinspec spectral result JSON (" + e.what() + ")");
+        }
+    } else {
+        std::vector<std::string> header;
+        std::string line;
+        while (std::getline(in, line)) {
+            const auto text = trim(line);
+            if (text.empty() || text.front() == '#') continue;
+            const auto fields = split_fields(text);
+            if (header.empty()) {
+                header.assign(fields.begin(), fields.end());
+                continue;
+            }
+            if (fields.size() != header.size()) continue;  // read_spectrum_file names the row
+            std::string material, swept;
+            for (std::size_t c = 0; c < header.size() && header[c] != "wavelength_nm"; ++c) {
+                if (header[c] == "material") material = std::string(fields[c]);
+                else swept += (swept.empty() ? "" : ";") + header[c] + "=" + std::string(fields[c]);
+            }
+            add(material, swept);
+        }
+    }
+    std::size_t materials = 0;
+    for (std::size_t i = 0; i < members.size(); ++i) materials += members[i].position == 1 ? 1 : 0;
+    std::vector<NamedSpectrum> out;
+    for (const auto& m : members) {
+        rules.material = materials > 1 ? m.material : std::string();
+        rules.member = m.swept.empty() ? 0 : m.position;
+        rules.where.clear();
+        // A name without blanks or commas, so that it is one field of a CSV: "MATERIAL[FIELD=VALUE;FIELD=VALUE]".
+        auto name = m.material.empty() ? file.stem().string() : m.material;
+        if (!m.swept.empty()) name += fmt::format("[{}]", m.swept);
+        out.push_back({std::move(name), read_spectrum_file(file, rules)});
+    }
+    if (out.empty()) throw InputError(file.string() + ": no spectrum (no data rows)");
+    return out;
 }
 
 TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const SpectrumFileRules& rules) {

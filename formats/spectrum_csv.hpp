@@ -9,6 +9,7 @@
 // the same way: the results of one material, one member among them, a value array with its _stderr array.
 // Every problem is an InputError of one line naming file, line, field, value and the allowed range.
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "spectral/tabulated_spectrum.hpp"
@@ -33,6 +34,19 @@ struct SpectrumFile {
 };
 
 SpectrumFile read_spectrum_file(const std::filesystem::path& file, const SpectrumFileRules& rules = {});
+
+// Whether `file` is a result skinspec wrote (spectrum --output F.csv, --json): its first line is a '# skinspec'
+// comment or it is a JSON object. A file that cannot be read is an InputError naming it as `kind`.
+bool is_skinspec_result(const std::filesystem::path& file, const char* kind = "spectrum file");
+
+// Every spectrum of a skinspec result, one per material and sweep member in file order, each read as
+// read_spectrum_file reads it under `rules` (its material and member set here) and named "MATERIAL" or, in a
+// sweep, "MATERIAL[FIELD=VALUE;FIELD=VALUE]" (no blank or comma: one field of a CSV).
+struct NamedSpectrum {
+    std::string name;
+    SpectrumFile file;
+};
+std::vector<NamedSpectrum> read_result_spectra(const std::filesystem::path& file, SpectrumFileRules rules);
 // The spectrum alone.
 TabulatedSpectrum read_spectrum_csv(const std::filesystem::path& file, const SpectrumFileRules& rules = {});
 

@@ -29,7 +29,7 @@ TEST_CASE("measured spectra: one column per spectrum under its name", "[measured
     CHECK(m.names == std::vector<std::string>{"a", "b"});
     CHECK(m.wavelength_nm.size() == 6);
     CHECK(m.reflectance[1][5] == 0.3);
-    CHECK(m.line_of_row.front() == 3);
+    CHECK(m.row_sources.front().ends_with(":3"));
     const auto one = read_measured_spectra(write_file("one.csv", "wavelength_nm R\n400 0.1\n410 0.2\n420 0.2\n430 0.3\n440 0.3\n"));
     CHECK(one.names == std::vector<std::string>{"R"});
 }
@@ -47,4 +47,18 @@ TEST_CASE("measured spectra: every problem names file, line and column", "[measu
     fails("header.csv", "400,0.1\n", ":1: the header must be 'wavelength_nm' followed by one name per spectrum");
     fails("twice.csv", "wavelength_nm,a,a\n", "column name 'a' is used twice");
     CHECK_THROWS_WITH(read_measured_spectra("/nonexistent/x.csv"), "/nonexistent/x.csv: measured spectra file not found");
+}
+
+TEST_CASE("a skinspec result (a sweep's CSV or JSON) is read as one spectrum per member, named after its swept values", "[measured_spectra]") {
+    for (const auto* name : {"sweep_two_members.csv", "sweep_two_members.json"}) {
+        CAPTURE(name);
+        const auto m = read_measured_spectra(std::filesystem::path(SKINSPEC_TEST_INPUT_DIR) / name);
+        REQUIRE(m.names.size() == 2);
+        CHECK(m.names[0] == "biospec-lightly[epidermis.melanosome_fraction=0.02]");
+        CHECK(m.names[1] == "biospec-lightly[epidermis.melanosome_fraction=0.1]");
+        CHECK(m.wavelength_nm.size() == m.reflectance[0].size());
+        CHECK(m.reflectance[1].size() == m.wavelength_nm.size());
+        CHECK(m.row_sources.size() == m.wavelength_nm.size());
+        CHECK(m.reflectance[0][10] > m.reflectance[1][10]);  // more melanin, less reflectance
+    }
 }

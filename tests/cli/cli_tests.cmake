@@ -92,3 +92,4 @@ skinspec_cli_test("spectrum sweep plot" 0 "wrote .*sweep_plot.png" spectrum --mo
 skinspec_cli_test("spectrum one-wavelength plot" 0 "wrote .*one_wavelength_plot.png" spectrum --wavelengths 550 --rays 2000 --plot ${CMAKE_CURRENT_BINARY_DIR}/one_wavelength_plot.png --overwrite)
 skinspec_cli_test("compare-phase plot with a difference panel" 0 "wrote .*compare_phase.png" compare-phase --preset biospec-lightly --wavelengths 400:700:50 --stderr 0.01 --plot ${CMAKE_CURRENT_BINARY_DIR}/compare_phase.png --overwrite)
 skinspec_cli_test("spectrum rte on a band material, as bench runs it" 0 "jensen2001-skin1: 3 bands, [0-9]+ rays" spectrum --mode rte --preset jensen2001-skin1 --stderr 0.005)
+skinspec_cli_test("fit-spectrum reads a sweep's result" 0 "biospec-lightly\\[epidermis.melanosome_fraction=0.1\\] +0.0" fit-spectrum sweep_two_members.json --threads 1)
