@@ -58,14 +58,10 @@ void ProgressBar::clear() {
 void ProgressBar::operator()(const Progress& p) {
     const auto now = std::chrono::steady_clock::now();
     const double elapsed = std::chrono::duration<double>(now - start_).count();
-    // Share of the work done: rays against the planner's estimate when there is one, else finished items.
-    double share = p.wavelengths_total ? static_cast<double>(p.wavelengths_done) / static_cast<double>(p.wavelengths_total) : 1.0;
-    if (p.rays_expected > 0 && p.rays_done > 0) share = std::max(share, std::min(1.0, static_cast<double>(p.rays_done) / static_cast<double>(p.rays_expected)));
-    // The rate since the first report after 0.5 s, not since the start: start-up (tables, paths, the first batches
-    // of every wavelength) made the first estimates swing from 46 h to 1 min for one 12.5 s run.
-    if (!rate_from_ && share > 0.0 && elapsed > 0.5) rate_from_ = std::pair{elapsed, share};
-    const bool estimable = rate_from_ && elapsed - rate_from_->first >= 1.0 && share > rate_from_->second;
-    const double left = estimable ? (1.0 - share) * (elapsed - rate_from_->first) / (share - rate_from_->second) : 0.0;
+    const double share = work_share(p);
+    const auto estimate = time_left_.update(elapsed, share);
+    const bool estimable = estimate.has_value();
+    const double left = estimate.value_or(0.0);
     if (estimable && !noted_ && elapsed + left > long_run_seconds) {
         noted_ = true;
         clear();

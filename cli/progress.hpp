@@ -4,11 +4,10 @@
 // minutes, and handlers for SIGINT, SIGTERM and SIGHUP (what Ctrl-C, batch schedulers, `timeout` and
 // container stops send) that ask the solver to stop, so what finished is kept; a second signal exits at once.
 #include <chrono>
-#include <optional>
-#include <utility>
 #include <string>
 
 #include "transport/spectral_request.hpp"
+#include "transport/time_left.hpp"
 
 namespace skinspec::cli {
 
@@ -27,7 +26,7 @@ private:
     bool enabled_;
     bool drawn_ = false;
     bool noted_ = false;
-    std::optional<std::pair<double, double>> rate_from_;  // (seconds, share done) where the rate is measured from
+    TimeLeft time_left_;
     std::chrono::steady_clock::time_point start_;
     std::chrono::steady_clock::time_point last_;
 };
