@@ -15,9 +15,7 @@
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/line_plot.hpp"
-#include "spectral/text_fields.hpp"
 #include "studies/phase_study/phase_comparison.hpp"
-#include "studies/phase_study/phase_study.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -27,30 +25,16 @@ using Json = nlohmann::ordered_json;
 struct ComparePhaseOptions {
     std::vector<std::string> presets;
     std::vector<std::string> overrides;
-    std::string hg_source = "rms";
-    std::string wavelengths = "400:700:10";
-    double stderr_target = 0.002;
-    std::uint64_t max_rays = 10'000'000;
+    std::string hg_source = ComparePhaseDefaults::hg_source;
+    std::string wavelengths = ComparePhaseDefaults::wavelengths;
+    double stderr_target = ComparePhaseDefaults::stderr_target;
+    std::uint64_t max_rays = ComparePhaseDefaults::max_rays;
     std::uint64_t seed = 1;
     unsigned threads = 0;
     std::string plot;
     bool overwrite = false;
     bool json = false;
 };
-
-ThinLayerHg hg_from(const std::string& source) {
-    if (source == "rms" || source == "van-gemert") {
-        const auto g = source == "rms" ? thin_layer_asymmetry_rms() : thin_layer_asymmetry_van_gemert();
-        return {[g](double nm) { return g.stratum_corneum(nm); }, [g](double nm) { return g.epidermis(nm); },
-                source == "rms" ? "g fitted by RMS (Eq. 9), linear 436-546 nm, clamped" : "g of van Gemert et al. 1989, linear 436-546 nm, clamped"};
-    }
-    const auto value = parse_double(source);
-    if (!value || *value < -1.0 || *value > 1.0) {
-        throw InputError("--hg-source '" + source + "' is not allowed (allowed: rms, van-gemert, or a number in [-1, 1])");
-    }
-    const double g = *value;
-    return {[g](double) { return g; }, [g](double) { return g; }, "g = " + format_number(g)};
-}
 
 Json comparison_json(const PhaseComparison& c) {
     Json rows = Json::array();
@@ -84,7 +68,7 @@ std::string comparison_table(const PhaseComparison& c) {
 
 void run_compare_phase(const ComparePhaseOptions& o) {
     const auto names = o.presets.empty() ? std::vector<std::string>{"biospec-lightly", "biospec-moderately", "biospec-heavily"} : o.presets;
-    const auto hg = hg_from(o.hg_source);
+    const auto hg = thin_layer_hg(o.hg_source, "--hg-source");
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     SpectralRequest request;
@@ -105,10 +89,7 @@ void run_compare_phase(const ComparePhaseOptions& o) {
         const auto material = load_material(name, overrides);
         const auto* stack = std::get_if<LayerStack>(&material);
         if (!stack) throw InputError("material '" + name + "' is homogeneous; compare-phase needs a layered material");
-        comparisons.push_back(compare_thin_layer_phase(*stack, request, hg, ComparedQuantity::reflectance));
-        auto sub = stack->sub_stack({"stratum_corneum", "epidermis"});
-        sub.bottom = BottomBoundary::exit;
-        comparisons.push_back(compare_thin_layer_phase(sub, request, hg, ComparedQuantity::transmittance));
+        for (auto& c : compare_phase_in_skin(*stack, request, hg)) comparisons.push_back(std::move(c));
     }
     if (o.json) {
         Json all = Json::array();

@@ -103,3 +103,26 @@ class Fit:
     def __repr__(self) -> str:
         values = ", ".join(f"{k}={v:.4g}" for k, v in self.parameters.items())
         return f"<skinspec.Fit {self.name}: {values}; RMS {self.rms:.4f}, dE00 {self.delta_e2000:.2f}>"
+
+
+@dataclass(frozen=True, repr=False)
+class PhaseComparison:
+    """One comparison of skinspec.compare_phase: measured versus HG thin layers for one quantity (R or T)."""
+    material: str
+    quantity: str
+    hg_source: str
+    wavelength_nm: np.ndarray
+    measured: np.ndarray
+    measured_stderr: np.ndarray
+    hg: np.ndarray
+    hg_stderr: np.ndarray
+    difference: np.ndarray  # hg - measured
+    difference_stderr: np.ndarray  # combined in quadrature (independent runs)
+    significant: np.ndarray  # |difference| > 3 standard errors
+    delta_e2000: Optional[float]  # R only: colour of measured vs HG (D65)
+    delta_e2000_uncertainty: Optional[float]
+
+    def __repr__(self) -> str:
+        colour = "" if self.delta_e2000 is None else f", dE00 {self.delta_e2000:.2f} +- {self.delta_e2000_uncertainty:.2f}"
+        return (f"<skinspec.PhaseComparison {self.material} {self.quantity}: significant at {int(self.significant.sum())} of "
+                f"{len(self.wavelength_nm)} wavelengths{colour}>")

@@ -5,6 +5,9 @@
 #include "solvers/spectral_solver.hpp"
 #include "spectral/ciede2000.hpp"
 #include "spectral/color_uncertainty.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+#include "studies/phase_study/phase_study.hpp"
 
 namespace skinspec {
 
@@ -43,6 +46,28 @@ PhaseComparison compare_thin_layer_phase(const LayerStack& stack, const Spectral
         out.delta_e00_uncertainty = std::hypot(ciede2000_uncertainty(weights, r_measured, se_measured),
                                                ciede2000_uncertainty(weights, r_hg, se_hg));
     }
+    return out;
+}
+
+ThinLayerHg thin_layer_hg(const std::string& source, const std::string& what) {
+    if (source == "rms" || source == "van-gemert") {
+        const auto g = source == "rms" ? thin_layer_asymmetry_rms() : thin_layer_asymmetry_van_gemert();
+        return {[g](double nm) { return g.stratum_corneum(nm); }, [g](double nm) { return g.epidermis(nm); },
+                source == "rms" ? "g fitted by RMS (Eq. 9), linear 436-546 nm, clamped" : "g of van Gemert et al. 1989, linear 436-546 nm, clamped"};
+    }
+    const auto value = parse_double(source);
+    if (!value || *value < -1.0 || *value > 1.0) {
+        throw InputError(what + " '" + source + "' is not allowed (allowed: rms, van-gemert, or a number in [-1, 1])");
+    }
+    const double g = *value;
+    return {[g](double) { return g; }, [g](double) { return g; }, "g = " + format_number(g)};
+}
+
+std::vector<PhaseComparison> compare_phase_in_skin(const LayerStack& stack, const SpectralRequest& request, const ThinLayerHg& hg) {
+    std::vector<PhaseComparison> out{compare_thin_layer_phase(stack, request, hg, ComparedQuantity::reflectance)};
+    auto sub = stack.sub_stack({"stratum_corneum", "epidermis"});
+    sub.bottom = BottomBoundary::exit;
+    out.push_back(compare_thin_layer_phase(sub, request, hg, ComparedQuantity::transmittance));
     return out;
 }
 
