@@ -14,4 +14,5 @@ PYBIND11_MODULE(_skinspec, m) {
     skinspec::python::bind_color(m);
     skinspec::python::bind_fit(m);
     skinspec::python::bind_phase(m);
+    skinspec::python::bind_bench(m);
 }

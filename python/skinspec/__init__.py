@@ -13,7 +13,7 @@ Every function is the library the `skinspec` program runs, with the same default
 import os as _os
 
 from . import _skinspec
-from ._skinspec import (InputError, Material, __version__, absorption_only_fields, color, color_spaces, data_directory,
+from ._skinspec import (InputError, Material, __version__, absorption_only_fields, bench, color, color_spaces, data_directory,
                         compare_phase, delta_e2000, fields, fit_spectrum, presets, profiles, result_quantities, solvers, spectrum, switches)
 from .results import Color, Fit, PhaseComparison, Profiles, Spectrum
 
@@ -22,6 +22,6 @@ _packaged_data = _os.path.join(_os.path.dirname(__file__), "data")
 if _os.path.isdir(_packaged_data):
     _skinspec._set_default_data_directory(_packaged_data)
 
-__all__ = ["InputError", "Material", "Spectrum", "Profiles", "Color", "Fit", "PhaseComparison", "absorption_only_fields", "color", "color_spaces", "compare_phase",
+__all__ = ["InputError", "Material", "Spectrum", "Profiles", "Color", "Fit", "PhaseComparison", "absorption_only_fields", "bench", "color", "color_spaces", "compare_phase",
            "data_directory", "delta_e2000", "fields", "fit_spectrum", "presets", "profiles", "result_quantities", "solvers", "spectrum", "switches",
            "__version__"]

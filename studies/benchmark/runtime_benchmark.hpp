@@ -5,7 +5,8 @@
 //     multipole (the finite slab) and the dipole (semi-infinite);
 //   - the lightly/moderately/heavily pigmented presets at 550 nm: R by the BioSpec walk against a long BioSpec
 //     run with a different seed (its standard error is stated), and by both diffusion modes;
-//   - Jensen's skin1 (G band) as a 200-mfp slab: R by the volumetric walk against a long walk, and diffusion;
+//   - Jensen's skin1 (G band) as `spectrum --mode rte` walks it (rte_band_slab): R by the volumetric walk against a
+//     long walk, and diffusion;
 //   - one skin in every mode: each pigmentation preset's 31-wavelength spectrum (400-700 nm) by every solver on one
 //     thread against adding-doubling (the exact transport of the same mu_a, mu_s, phase), and the volumetric walk
 //     against adding-doubling in standard errors at 550 nm (1e7 photons).
