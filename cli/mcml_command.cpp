@@ -37,45 +37,6 @@ struct McmlOptions {
     bool json = false;
 };
 
-Json estimates(const std::vector<Estimate>& v, const char* key) {
-    std::vector<double> value, stderr;
-    for (const auto& e : v) {
-        value.push_back(e.value);
-        stderr.push_back(e.stderr);
-    }
-    return Json{{key, value}, {std::string(key) + "_stderr", stderr}};
-}
-
-Json run_json(const McmlRun& run, const RteResult& r, double seconds) {
-    Json j{{"model", "rte"},
-           {"input", Json{{"output_file", run.output_file}, {"photons", run.photons}, {"dz_cm", run.grid.dz_cm}, {"dr_cm", run.grid.dr_cm},
-                          {"nz", run.grid.nz}, {"nr", run.grid.nr}, {"na", run.grid.na}}},
-           {"partial", r.partial},
-           {"photons", r.photons},
-           {"truncated_photons", r.truncated_photons},
-           {"seconds", seconds},
-           {"R", r.specular_reflectance.value + r.diffuse_reflectance.value},
-           {"R_stderr", r.diffuse_reflectance.stderr},
-           {"R_specular", r.specular_reflectance.value},
-           {"R_specular_stderr", r.specular_reflectance.stderr},
-           {"R_diffuse", r.diffuse_reflectance.value},
-           {"R_diffuse_stderr", r.diffuse_reflectance.stderr},
-           {"T", r.transmittance.value},
-           {"T_stderr", r.transmittance.stderr},
-           {"A", r.absorbed.value},
-           {"A_stderr", r.absorbed.stderr}};
-    j.update(estimates(r.absorption_layers, "A_layers"));
-    j.update(estimates(r.absorption_z, "A_z_per_cm"));
-    j.update(estimates(r.reflectance_r, "R_r_per_cm2"));
-    j.update(estimates(r.transmittance_r, "T_r_per_cm2"));
-    j.update(estimates(r.reflectance_a, "R_a_per_sr"));
-    j.update(estimates(r.transmittance_a, "T_a_per_sr"));
-    j.update(estimates(r.absorption_rz, "A_rz_per_cm3"));
-    j.update(estimates(r.reflectance_ra, "R_ra_per_cm2_sr"));
-    j.update(estimates(r.transmittance_ra, "T_ra_per_cm2_sr"));
-    return j;
-}
-
 void run_mcml(const McmlOptions& o) {
     auto runs = read_mci(o.file);
     // An .mci names its outputs; they stay in the output folder (or the current one): an absolute name or one
@@ -118,12 +79,7 @@ void run_mcml(const McmlOptions& o) {
     for (std::size_t i = 0; i < runs.size(); ++i) {
         auto run = runs[i];
         if (o.photons > 0) run.photons = o.photons;
-        RteRequest request;
-        request.stack = run.stack;
-        request.photons = run.photons;
-        request.seed = o.seed;
-        request.boundaries = o.boundaries == "split" ? BoundaryMode::split : BoundaryMode::random;
-        request.grid = run.grid;
+        auto request = mcml_request(run, o.seed, o.boundaries == "split" ? BoundaryMode::split : BoundaryMode::random);
         request.cancel = &InterruptGuard::cancel_flag();
         ProgressBar bar(fmt::format("run {}", i + 1));
         request.on_progress = [&bar](const Progress& p) { bar(p); };
@@ -131,22 +87,14 @@ void run_mcml(const McmlOptions& o) {
         if (deterministic) {
             const auto ad = solve_adding_doubling(run.stack, {});
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            RteResult totals;
-            totals.specular_reflectance = {ad.specular_reflectance, 0.0};
-            totals.diffuse_reflectance = {ad.diffuse_reflectance, 0.0};
-            totals.transmittance = {ad.transmittance, 0.0};
-            double absorbed = 0.0;
-            for (const double a : ad.absorbed_layers) {
-                totals.absorption_layers.push_back({a, 0.0});
-                absorbed += a;
-            }
-            totals.absorbed = {absorbed, 0.0};
+            const auto totals = rte_totals(ad);
+            const double absorbed = totals.absorbed.value;
             write_text_file(run.output_file,
                             mco_text(run, totals, fmt::format("skinspec {} adding-doubling: {} channels, accuracy {:.1e}, {:.4f} sec", version,
                                                               ad.channels, ad.accuracy, seconds),
                                      false),
                             true);
-            auto j = run_json(run, totals, seconds);
+            auto j = mcml_run_json(run, totals, seconds);
             j["model"] = "adding-doubling";
             j["accuracy"] = ad.accuracy;
             all.push_back(std::move(j));
@@ -164,7 +112,7 @@ void run_mcml(const McmlOptions& o) {
                         mco_text(run, result, fmt::format("skinspec {} volumetric walk: {} photons in {:.2f} sec{}", version, result.photons,
                                                           seconds, result.partial ? " (INTERRUPTED)" : "")),
                         true);
-        all.push_back(run_json(run, result, seconds));
+        all.push_back(mcml_run_json(run, result, seconds));
         if (!o.json) {
             std::cout << fmt::format("run {} -> {}: {} photons in {:.2f} s ({:.3g} photons/s)\n", i + 1, run.output_file, result.photons, seconds,
                                      result.photons / seconds)

@@ -170,4 +170,58 @@ std::string mco_text(const McmlRun& run, const RteResult& r, const std::string& 
     return out;
 }
 
+RteRequest mcml_request(const McmlRun& run, std::uint64_t seed, BoundaryMode boundaries) {
+    RteRequest request;
+    request.stack = run.stack;
+    request.photons = run.photons;
+    request.seed = seed;
+    request.boundaries = boundaries;
+    request.grid = run.grid;
+    return request;
+}
+
+namespace {
+
+nlohmann::ordered_json estimates(const std::vector<Estimate>& v, const char* key) {
+    std::vector<double> value, stderr;
+    for (const auto& e : v) {
+        value.push_back(e.value);
+        stderr.push_back(e.stderr);
+    }
+    return nlohmann::ordered_json{{key, value}, {std::string(key) + "_stderr", stderr}};
+}
+
+}  // namespace
+
+nlohmann::ordered_json mcml_run_json(const McmlRun& run, const RteResult& r, double seconds) {
+    using Json = nlohmann::ordered_json;
+    Json j{{"model", "rte"},
+           {"input", Json{{"output_file", run.output_file}, {"photons", run.photons}, {"dz_cm", run.grid.dz_cm}, {"dr_cm", run.grid.dr_cm},
+                          {"nz", run.grid.nz}, {"nr", run.grid.nr}, {"na", run.grid.na}}},
+           {"partial", r.partial},
+           {"photons", r.photons},
+           {"truncated_photons", r.truncated_photons},
+           {"seconds", seconds},
+           {"R", r.specular_reflectance.value + r.diffuse_reflectance.value},
+           {"R_stderr", r.diffuse_reflectance.stderr},
+           {"R_specular", r.specular_reflectance.value},
+           {"R_specular_stderr", r.specular_reflectance.stderr},
+           {"R_diffuse", r.diffuse_reflectance.value},
+           {"R_diffuse_stderr", r.diffuse_reflectance.stderr},
+           {"T", r.transmittance.value},
+           {"T_stderr", r.transmittance.stderr},
+           {"A", r.absorbed.value},
+           {"A_stderr", r.absorbed.stderr}};
+    j.update(estimates(r.absorption_layers, "A_layers"));
+    j.update(estimates(r.absorption_z, "A_z_per_cm"));
+    j.update(estimates(r.reflectance_r, "R_r_per_cm2"));
+    j.update(estimates(r.transmittance_r, "T_r_per_cm2"));
+    j.update(estimates(r.reflectance_a, "R_a_per_sr"));
+    j.update(estimates(r.transmittance_a, "T_a_per_sr"));
+    j.update(estimates(r.absorption_rz, "A_rz_per_cm3"));
+    j.update(estimates(r.reflectance_ra, "R_ra_per_cm2_sr"));
+    j.update(estimates(r.transmittance_ra, "T_ra_per_cm2_sr"));
+    return j;
+}
+
 }  // namespace skinspec

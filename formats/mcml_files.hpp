@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "transport/rte/rte_model.hpp"
 
 namespace skinspec {
@@ -24,5 +26,12 @@ std::vector<McmlRun> read_mci(const std::filesystem::path& file);
 // The .mco text of one run (MCML 1.2 layout; `time_report` becomes the "# ..." line after the header).
 // With `grids` false (a deterministic solver's totals) the file ends after A_l with a note.
 std::string mco_text(const McmlRun& run, const RteResult& result, const std::string& time_report, bool grids = true);
+
+// The walk's request for one run: its stack, photons, grid; `seed` and `boundaries` from the caller.
+RteRequest mcml_request(const McmlRun& run, std::uint64_t seed, BoundaryMode boundaries);
+
+// One run's result as `skinspec mcml --json` writes it and skinspec.mcml returns it: totals with standard errors
+// and MCML's arrays (grids [r][z] and [r][a] row-major), each with its _stderr, in MCML's units (named).
+nlohmann::ordered_json mcml_run_json(const McmlRun& run, const RteResult& result, double seconds);
 
 }  // namespace skinspec

@@ -15,4 +15,5 @@ PYBIND11_MODULE(_skinspec, m) {
     skinspec::python::bind_fit(m);
     skinspec::python::bind_phase(m);
     skinspec::python::bind_bench(m);
+    skinspec::python::bind_mcml(m);
 }

@@ -480,4 +480,18 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     return result;
 }
 
+RteResult rte_totals(const AdResult& result) {
+    RteResult totals;
+    totals.specular_reflectance = {result.specular_reflectance, 0.0};
+    totals.diffuse_reflectance = {result.diffuse_reflectance, 0.0};
+    totals.transmittance = {result.transmittance, 0.0};
+    double absorbed = 0.0;
+    for (const double a : result.absorbed_layers) {
+        totals.absorption_layers.push_back({a, 0.0});
+        absorbed += a;
+    }
+    totals.absorbed = {absorbed, 0.0};
+    return totals;
+}
+
 }  // namespace skinspec

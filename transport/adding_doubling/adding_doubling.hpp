@@ -58,4 +58,7 @@ struct AdCache {
 // InputError for stacks the solver cannot take (validate(RteStack) plus the incidence).
 AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& incidence, const AdOptions& options = {}, AdCache* cache = nullptr);
 
+// Its totals as the walk's result type (standard errors 0, no grids): what `mcml --solver adding-doubling` writes.
+RteResult rte_totals(const AdResult& result);
+
 }  // namespace skinspec
