@@ -56,28 +56,6 @@ std::string approach_label(PhaseApproach a) {
     return "?";
 }
 
-Json study_json(const PhaseStudy& s) {
-    Json cases = Json::array();
-    for (const auto& c : s.cases) {
-        Json approaches = Json::object();
-        for (std::size_t a = 0; a < c.samplers.size(); ++a) {
-            approaches[std::string(to_string(all_phase_approaches[a]))] =
-                Json{{"fractions", c.sampled[a].fractions}, {"kept", c.sampled[a].kept}, {"drawn", c.sampled[a].drawn},
-                     {"max_relative_error_percent", c.errors[a].max_percent},
-                     {"average_relative_error_percent", c.errors[a].average_percent}, {"btdf_per_sr", c.btdf_per_sr[a]}};
-        }
-        cases.push_back(Json{{"tissue", c.tissue}, {"wavelength_nm", c.wavelength_nm},
-                             {"measured_fractions", c.measured_fractions}, {"g_rms", c.rms_fit.g}, {"rms_at_g_rms", c.rms_fit.rms},
-                             {"nelder_mead_evaluations", c.rms_fit.evaluations}, {"g_van_gemert", c.g_van_gemert},
-                             {"rms_at_g_van_gemert", c.rms_van_gemert}, {"btdf_measured_per_sr", c.btdf_measured_per_sr},
-                             {"approaches", approaches}});
-    }
-    return Json{{"skinspec_version", version}, {"bin_edges_deg", s.bin_edges_deg}, {"cases", cases},
-                {"seconds_per_sample_hg_warping", s.seconds_per_sample_hg},
-                {"seconds_per_sample_table_lookup", s.seconds_per_sample_lookup},
-                {"cost_ratio_hg_over_lookup", s.seconds_per_sample_hg / s.seconds_per_sample_lookup}};
-}
-
 void print_tables(const PhaseStudy& s) {
     std::cout << "Table 2: HG asymmetry factors (Eq. 9 RMS over the 13 bins, Nelder-Mead over [-1, 1])\n";
     std::cout << fmt::format("{:<26}", "");
@@ -172,7 +150,7 @@ void run_phase_study_command(const PhaseStudyOptions& o) {
     PhaseStudySettings settings;
     settings.seed = o.seed;
     const auto study = run_phase_study(settings);
-    if (o.json) std::cout << study_json(study).dump(2) << '\n';
+    if (o.json) std::cout << phase_study_json(study).dump(2) << '\n';
     else print_tables(study);
     if (!o.output_dir.empty()) write_files(study, o);
 }

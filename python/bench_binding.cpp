@@ -1,5 +1,5 @@
 // skinspec.bench (docs/PYTHON.md "Benchmark"): run time against error for every solver, the report `skinspec bench
-// --json` prints (studies/benchmark/bench_report.hpp declares it once), as Python dicts and lists.
+// --json` prints (studies/benchmark/bench_report.hpp declares it once), as Python dicts, lists and numpy arrays.
 #include "python/bindings.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
@@ -24,7 +24,7 @@ py::object bench(bool quick, const py::object& seed, const py::object& tolerance
             report = run_benchmark(options);
         },
         py::none());
-    return py::module_::import("json").attr("loads")(bench_report_json(report, settings).dump());
+    return json_object(bench_report_json(report, settings));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <tbb/global_control.h>
@@ -27,6 +28,7 @@ void bind_fit(py::module_& m);
 void bind_phase(py::module_& m);
 void bind_bench(py::module_& m);
 void bind_mcml(py::module_& m);
+void bind_phase_study(py::module_& m);
 
 // A Python-side material: the resolved Material and the overrides set on it since it was loaded (recorded in
 // the provenance of every result computed from it).
@@ -52,6 +54,9 @@ std::uint64_t whole_number(const py::handle& value, double lo, double hi, std::s
 double one_number(const py::handle& value, std::string_view what);
 
 py::array_t<double> to_array(const std::vector<double>& values, const std::vector<py::ssize_t>& shape);
+// A JSON report (the one a command prints with --json, declared once in the library) as Python: objects as dicts,
+// arrays of numbers as float64 numpy arrays, other arrays as lists.
+py::object json_object(const nlohmann::ordered_json& json);
 // The result types of python/skinspec/results.py (Spectrum, Profiles, ...), built from keyword fields.
 py::object result_object(const char* type_name, const py::dict& fields);
 

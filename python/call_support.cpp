@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 
 #include "python/bindings.hpp"
+
+#include <algorithm>
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -120,6 +122,27 @@ py::array_t<double> to_array(const std::vector<double>& values, const std::vecto
     py::array_t<double> out(shape);
     std::copy(values.begin(), values.end(), out.mutable_data());
     return out;
+}
+
+py::object json_object(const nlohmann::ordered_json& json) {
+    if (json.is_object()) {
+        py::dict d;
+        for (const auto& [key, value] : json.items()) d[py::str(key)] = json_object(value);
+        return d;
+    }
+    if (json.is_array()) {
+        const bool numbers = !json.empty() && std::all_of(json.begin(), json.end(), [](const auto& v) { return v.is_number(); });
+        if (numbers) return to_array(json.get<std::vector<double>>(), {static_cast<py::ssize_t>(json.size())});
+        py::list l;
+        for (const auto& v : json) l.append(json_object(v));
+        return l;
+    }
+    if (json.is_boolean()) return py::bool_(json.get<bool>());
+    if (json.is_number_integer()) return py::int_(json.get<std::int64_t>());
+    if (json.is_number_unsigned()) return py::int_(json.get<std::uint64_t>());
+    if (json.is_number()) return py::float_(json.get<double>());
+    if (json.is_string()) return py::str(json.get<std::string>());
+    return py::none();
 }
 
 py::object result_object(const char* type_name, const py::dict& fields) {

@@ -10,18 +10,15 @@
 namespace skinspec::python {
 namespace {
 
-// The run's JSON as Python: numbers lists become numpy arrays, MCML's grids shaped [r][z] and [r][a].
+// The run's JSON as Python (numpy arrays), MCML's grids shaped [r][z] and [r][a].
 py::dict run_object(const McmlRun& run, const RteResult& result, double seconds) {
-    const py::dict d = py::module_::import("json").attr("loads")(mcml_run_json(run, result, seconds).dump());
-    const auto numpy = py::module_::import("numpy");
+    const py::dict d = json_object(mcml_run_json(run, result, seconds));
     const py::ssize_t nr = run.grid.nr, nz = run.grid.nz, na = run.grid.na;
     for (const auto& [key, value] : d) {
-        if (!py::isinstance<py::list>(value)) continue;
-        auto array = numpy.attr("asarray")(value, "float64");
         const auto name = py::str(key).cast<std::string>();
-        if (name.starts_with("A_rz") && py::len(value) > 0) array = array.attr("reshape")(nr, nz);
-        if ((name.starts_with("R_ra") || name.starts_with("T_ra")) && py::len(value) > 0) array = array.attr("reshape")(nr, na);
-        d[key] = array;
+        if (!py::isinstance<py::array>(value)) continue;
+        if (name.starts_with("A_rz")) d[key] = value.attr("reshape")(nr, nz);
+        if (name.starts_with("R_ra") || name.starts_with("T_ra")) d[key] = value.attr("reshape")(nr, na);
     }
     return d;
 }

@@ -16,4 +16,5 @@ PYBIND11_MODULE(_skinspec, m) {
     skinspec::python::bind_phase(m);
     skinspec::python::bind_bench(m);
     skinspec::python::bind_mcml(m);
+    skinspec::python::bind_phase_study(m);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "materials/measured_profile.hpp"
+#include "skinspec/version.hpp"
 #include "spectral/data_paths.hpp"
 #include "spectral/data_table.hpp"
 
@@ -91,6 +92,29 @@ ThinLayerAsymmetry thin_layer_asymmetry_rms() {
 ThinLayerAsymmetry thin_layer_asymmetry_van_gemert() {
     return ThinLayerAsymmetry{van_gemert_g("stratum_corneum", 436.0), van_gemert_g("stratum_corneum", 546.0),
                               van_gemert_g("epidermis", 436.0), van_gemert_g("epidermis", 546.0)};
+}
+
+nlohmann::ordered_json phase_study_json(const PhaseStudy& s) {
+    using Json = nlohmann::ordered_json;
+    Json cases = Json::array();
+    for (const auto& c : s.cases) {
+        Json approaches = Json::object();
+        for (std::size_t a = 0; a < c.samplers.size(); ++a) {
+            approaches[std::string(to_string(all_phase_approaches[a]))] =
+                Json{{"fractions", c.sampled[a].fractions}, {"kept", c.sampled[a].kept}, {"drawn", c.sampled[a].drawn},
+                     {"max_relative_error_percent", c.errors[a].max_percent},
+                     {"average_relative_error_percent", c.errors[a].average_percent}, {"btdf_per_sr", c.btdf_per_sr[a]}};
+        }
+        cases.push_back(Json{{"tissue", c.tissue}, {"wavelength_nm", c.wavelength_nm},
+                             {"measured_fractions", c.measured_fractions}, {"g_rms", c.rms_fit.g}, {"rms_at_g_rms", c.rms_fit.rms},
+                             {"nelder_mead_evaluations", c.rms_fit.evaluations}, {"g_van_gemert", c.g_van_gemert},
+                             {"rms_at_g_van_gemert", c.rms_van_gemert}, {"btdf_measured_per_sr", c.btdf_measured_per_sr},
+                             {"approaches", approaches}});
+    }
+    return Json{{"skinspec_version", version}, {"bin_edges_deg", s.bin_edges_deg}, {"cases", cases},
+                {"seconds_per_sample_hg_warping", s.seconds_per_sample_hg},
+                {"seconds_per_sample_table_lookup", s.seconds_per_sample_lookup},
+                {"cost_ratio_hg_over_lookup", s.seconds_per_sample_hg / s.seconds_per_sample_lookup}};
 }
 
 }  // namespace skinspec

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "studies/phase_study/hg_fit.hpp"
 #include "studies/phase_study/phase_sampling.hpp"
 
@@ -46,6 +48,8 @@ struct PhaseStudySettings {
 };
 
 PhaseStudy run_phase_study(const PhaseStudySettings& settings);
+// Every table's numbers, as `skinspec phase-study --json` prints them and skinspec.phase_study returns them.
+nlohmann::ordered_json phase_study_json(const PhaseStudy& study);
 // The study's cases in order, (tissue, wavelength nm), known before it runs (so that outputs are checked first).
 std::vector<std::pair<std::string, double>> phase_study_cases();
 

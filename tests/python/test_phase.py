@@ -30,3 +30,15 @@ def test_compare_phase_refuses_what_the_command_refuses():
         skinspec.compare_phase("jensen2001-skin1", [550])
     with pytest.raises(skinspec.InputError, match="stderr"):
         skinspec.compare_phase("biospec-lightly", [550], stderr=0.0)
+
+
+def test_phase_study_equals_the_command(cli):
+    ours = skinspec.phase_study(seed=2)
+    theirs = cli("phase-study", "--seed", "2")
+    np.testing.assert_array_equal(ours["bin_edges_deg"], theirs["bin_edges_deg"])
+    assert [(c["tissue"], c["wavelength_nm"]) for c in ours["cases"]] == [(c["tissue"], c["wavelength_nm"]) for c in theirs["cases"]]
+    for a, b in zip(ours["cases"], theirs["cases"]):
+        assert a["g_rms"] == b["g_rms"]
+        for approach in ("table_lookup", "hg_rms", "hg_van_gemert"):
+            assert isinstance(a["approaches"][approach]["btdf_per_sr"], np.ndarray)
+            np.testing.assert_array_equal(a["approaches"][approach]["btdf_per_sr"], b["approaches"][approach]["btdf_per_sr"])
