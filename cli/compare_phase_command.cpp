@@ -102,8 +102,8 @@ void run_compare_phase(const ComparePhaseOptions& o) {
     if (!o.plot.empty()) {
         // Top: the spectra, measured solid and HG dashed in one colour per material and quantity; bottom: their
         // difference, the quantity of interest, with its +-2 combined standard errors.
-        PlotPanel spectra{"Reflectance R, transmittance T (fraction)", {}, {}};
-        PlotPanel differences{"HG - measured (fraction)", {}, {}};
+        PlotPanel spectra{"Reflectance R, transmittance T (fraction)", {}, {}, {}};
+        PlotPanel differences{"HG - measured (fraction)", {}, {}, {}};
         for (std::size_t i = 0; i < comparisons.size(); ++i) {
             const auto& c = comparisons[i];
             const auto style = distinct_series_style(i);

@@ -496,7 +496,7 @@ PlotLayout write_figure(const std::filesystem::path& file, const std::string& ti
 
 PlotLayout write_line_plot(const std::filesystem::path& file, const std::string& title, const std::string& x_label,
                            const std::string& y_label, const std::vector<PlotCurve>& curves, PlotStyle style) {
-    return write_figure(file, title, x_label, {PlotPanel{y_label, curves, style}});
+    return write_figure(file, title, x_label, {PlotPanel{y_label, curves, style, {}}});
 }
 
 }  // namespace skinspec

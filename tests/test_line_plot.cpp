@@ -106,7 +106,7 @@ TEST_CASE("single-point curves and stacked panels are drawn inside the image", "
     const PlotCurve difference{"difference", {400, 500, 600}, {-0.02, 0.01, 0.005}, {0.002, 0.002, 0.002}, {0.8, 0.3, 0.1}, false, 2};
     const auto file = std::filesystem::temp_directory_path() / "skinspec_plot_panels.png";
     std::filesystem::remove(file);
-    const auto layout = write_figure(file, "t", "Wavelength (nm)", {PlotPanel{"R", {lone}, {}}, PlotPanel{"HG - measured", {difference}, {}}});
+    const auto layout = write_figure(file, "t", "Wavelength (nm)", {PlotPanel{"R", {lone}, {}, {}}, PlotPanel{"HG - measured", {difference}, {}, {}}});
     CHECK(layout.height_px > 1000);
     CHECK(layout.legend_entries == 2);
     CHECK(edges_blank(file));
