@@ -166,22 +166,7 @@ void run_fit_profile(const FitOptions& o) {
     }
     if (o.json) {
         Json channels = Json::array();
-        for (std::size_t c = 0; c < reports.size(); ++c) {
-            const auto& r = reports[c];
-            Json j{{"channel", names[c]},
-                   {"reduced_scattering_per_mm", r.fit.reduced_scattering_per_mm},
-                   {"absorption_per_mm", r.fit.absorption_per_mm},
-                   {"residual_per_mm4", r.fit.residual},
-                   {"grid", {{"reduced_scattering_per_mm", r.fit.grid_reduced_scattering_per_mm}, {"absorption_per_mm", r.fit.grid_absorption_per_mm}, {"residual_per_mm4", r.fit.grid_residual}}},
-                   {"bins", r.estimate.distances_mm.size()},
-                   {"rank", r.estimate.rank},
-                   {"least_squares_residual", r.estimate.residual_norm},
-                   {"distance_mm", r.estimate.distances_mm},
-                   {"profile_estimate_per_mm2", r.estimate.profile_per_mm2}};
-            if (r.psnr_db) j["psnr_db"] = std::isfinite(*r.psnr_db) ? Json(*r.psnr_db) : Json("identical");
-            j["at_bounds"] = r.fit.at_bounds;
-            channels.push_back(j);
-        }
+        for (std::size_t c = 0; c < reports.size(); ++c) channels.push_back(profile_fit_json(reports[c], names[c]));
         std::cout << Json{{"skinspec_version", version}, {"input", input}, {"eta", o.eta}, {"step_mm", o.step_mm}, {"channels", channels}}.dump(2) << '\n';
         return;
     }

@@ -17,4 +17,5 @@ PYBIND11_MODULE(_skinspec, m) {
     skinspec::python::bind_bench(m);
     skinspec::python::bind_mcml(m);
     skinspec::python::bind_phase_study(m);
+    skinspec::python::bind_profile_fit(m);
 }

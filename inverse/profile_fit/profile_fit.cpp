@@ -87,4 +87,21 @@ ProfileFitReport fit_radial(const std::vector<double>& radii_mm, const std::vect
     return report;
 }
 
+nlohmann::ordered_json profile_fit_json(const ProfileFitReport& r, const std::string& channel) {
+    using Json = nlohmann::ordered_json;
+    Json j{{"channel", channel},
+           {"reduced_scattering_per_mm", r.fit.reduced_scattering_per_mm},
+           {"absorption_per_mm", r.fit.absorption_per_mm},
+           {"residual_per_mm4", r.fit.residual},
+           {"grid", {{"reduced_scattering_per_mm", r.fit.grid_reduced_scattering_per_mm}, {"absorption_per_mm", r.fit.grid_absorption_per_mm}, {"residual_per_mm4", r.fit.grid_residual}}},
+           {"bins", r.estimate.distances_mm.size()},
+           {"rank", r.estimate.rank},
+           {"least_squares_residual", r.estimate.residual_norm},
+           {"distance_mm", r.estimate.distances_mm},
+           {"profile_estimate_per_mm2", r.estimate.profile_per_mm2}};
+    if (r.psnr_db) j["psnr_db"] = std::isfinite(*r.psnr_db) ? Json(*r.psnr_db) : Json("identical");
+    j["at_bounds"] = r.fit.at_bounds;
+    return j;
+}
+
 }  // namespace skinspec

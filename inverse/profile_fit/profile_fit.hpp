@@ -2,7 +2,10 @@
 // The whole estimation of seed 001 for one channel: quantised system, r = W^+ l, dipole fit, re-synthesis and
 // PSNR; or, for a measured radial profile, the dipole fit alone.
 #include <optional>
+#include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "inverse/profile_fit/dipole_fit.hpp"
 #include "inverse/profile_fit/profile_solve.hpp"
@@ -29,5 +32,8 @@ ProfileFitReport fit_planar(const PlanarScene& scene, const ProfileFitOptions& o
 ProfileFitReport fit_patches(const std::vector<SurfacePatch>& patches, const ProfileFitOptions& options);
 // InputError for radii that are negative, non-finite or not increasing, or values that are not finite.
 ProfileFitReport fit_radial(const std::vector<double>& radii_mm, const std::vector<double>& profile_per_mm2, const ProfileFitOptions& options);
+
+// One channel's fit as `skinspec fit-profile --json` reports it and skinspec.fit_profile returns it.
+nlohmann::ordered_json profile_fit_json(const ProfileFitReport& report, const std::string& channel);
 
 }  // namespace skinspec
