@@ -171,14 +171,20 @@ void run_fit_profile(const FitOptions& o) {
         return;
     }
     std::cout << "input: " << input << "\n";
-    std::cout << fmt::format("{:>8} {:>12} {:>12} {:>12} {:>12} {:>10} {:>6} {:>6}\n", "channel", "sigma_s'/mm", "sigma_a/mm", "grid s'",
+    std::cout << fmt::format("{:>8} {:>22} {:>24} {:>12} {:>12} {:>10} {:>6} {:>6}\n", "channel", "sigma_s'/mm", "sigma_a/mm", "grid s'",
                              "grid a", "PSNR dB", "bins", "rank");
+    const auto with_stderr = [](double value, double stderr, int digits) {
+        return fmt::format("{:.{}f} +- {}", value, digits, std::isfinite(stderr) ? fmt::format("{:.2g}", stderr) : std::string("n/a"));
+    };
     for (std::size_t c = 0; c < reports.size(); ++c) {
         const auto& r = reports[c];
-        std::cout << fmt::format("{:>8} {:>12.5f} {:>12.6f} {:>12.3f} {:>12.4f} {:>10} {:>6} {:>6}\n", names[c], r.fit.reduced_scattering_per_mm,
-                                 r.fit.absorption_per_mm, r.fit.grid_reduced_scattering_per_mm, r.fit.grid_absorption_per_mm,
+        std::cout << fmt::format("{:>8} {:>22} {:>24} {:>12.3f} {:>12.4f} {:>10} {:>6} {:>6}\n", names[c],
+                                 with_stderr(r.fit.reduced_scattering_per_mm, r.fit.reduced_scattering_stderr_per_mm, 5),
+                                 with_stderr(r.fit.absorption_per_mm, r.fit.absorption_stderr_per_mm, 6), r.fit.grid_reduced_scattering_per_mm, r.fit.grid_absorption_per_mm,
                                  r.psnr_db ? fmt::format("{:.2f}", *r.psnr_db) : std::string("-"), r.estimate.distances_mm.size(), r.estimate.rank);
     }
+    std::cout << "+-: standard errors from the residual scatter, for independent errors per bin; "
+              << (geometry || !o.patches.empty() ? "an image's bins share their errors, so these are lower bounds\n" : "correlated errors make them lower bounds\n");
     if (!o.output_dir.empty()) std::cerr << "wrote " << o.output_dir << "/profile_estimate.csv, profile_fit.png" << (geometry ? ", resynthesised.exr" : "") << '\n';
 }
 

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "transport/diffusion/dipole.hpp"
@@ -151,4 +152,46 @@ TEST_CASE("bad fit inputs give clear errors", "[profile-fit]") {
     bad.incident.assign(bad.incident.size(), 0.0);
     CHECK_THROWS_WITH(fit_planar(bad, {}), Catch::Contains("the irradiance is zero everywhere"));
     CHECK_THROWS_WITH(fit_radial({0.0, 0.5, 1.0}, {0.0, 0.0, 0.0}, {}), Catch::Contains("the radial profile is zero everywhere"));
+}
+
+TEST_CASE("the fit's standard errors match the scatter of fits to independently noisy profiles", "[profile-fit]") {
+    // A dipole profile with independent Gaussian noise of one size at every radius (what the Gauss-Newton errors
+    // assume); over many noise draws the fitted parameters scatter by what each fit states (Numerical Recipes 15.5).
+    const Dipole truth({1.5, 0.01, 1.3});
+    std::vector<double> d;
+    std::vector<char> use;
+    for (double x = 0.2; x < 4.05; x += 0.1) {
+        d.push_back(x);
+        use.push_back(1);
+    }
+    std::mt19937_64 random(7);
+    std::normal_distribution<double> noise(0.0, 2e-4);
+    DipoleFitOptions options;
+    options.absorption_per_mm = {0.0, 0.05, 0.001};
+    std::vector<double> s, a;
+    double stated_s = 0.0, stated_a = 0.0;
+    const int draws = 120;
+    for (int k = 0; k < draws; ++k) {
+        std::vector<double> r;
+        for (const double x : d) r.push_back(truth.radial_reflectance(x) + noise(random));
+        const auto fit = fit_dipole(d, r, use, options);
+        REQUIRE(std::isfinite(fit.reduced_scattering_stderr_per_mm));
+        s.push_back(fit.reduced_scattering_per_mm);
+        a.push_back(fit.absorption_per_mm);
+        stated_s += fit.reduced_scattering_stderr_per_mm / draws;
+        stated_a += fit.absorption_stderr_per_mm / draws;
+    }
+    const auto spread = [](const std::vector<double>& v) {
+        double mean = 0.0, square = 0.0;
+        for (const double x : v) mean += x / v.size();
+        for (const double x : v) square += (x - mean) * (x - mean) / (v.size() - 1);
+        return std::sqrt(square);
+    };
+    // 120 draws: the sample spread itself is uncertain by ~7 %.
+    CHECK(spread(s) == Approx(stated_s).epsilon(0.25));
+    CHECK(spread(a) == Approx(stated_a).epsilon(0.25));
+    // Fewer bins than parameters: no standard error.
+    const auto two = fit_dipole(std::vector<double>{0.5, 1.0}, std::vector<double>{truth.radial_reflectance(0.5), truth.radial_reflectance(1.0)},
+                                std::vector<char>{1, 1}, options);
+    CHECK(std::isnan(two.absorption_stderr_per_mm));
 }

@@ -1,7 +1,9 @@
 #include "inverse/profile_fit/dipole_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +49,36 @@ double absorption_ratio_for_total(double total, double eta) {
 }
 
 namespace {
+
+// Gauss-Newton standard errors of a least-squares fit (Press et al., Numerical Recipes, 3rd ed., Sec. 15.5):
+// Cov = s^2 (J^T J)^-1, s^2 = residual / (n - p), J by central differences of the dipole's R(d) at the result.
+void state_standard_errors(DipoleFitResult& result, const std::vector<double>& d, double eta, std::optional<double> ratio) {
+    const std::size_t p = ratio ? 1 : 2;
+    if (d.size() <= p) return;
+    const auto model = [&](double sigma_s, double sigma_a, double distance) { return Dipole({sigma_s, sigma_a, eta}).radial_reflectance(distance); };
+    const double s = result.reduced_scattering_per_mm, a = result.absorption_per_mm;
+    const double hs = 1e-4 * std::max(s, 1e-6), ha = 1e-4 * std::max(a, 1e-6);
+    double jss = 0.0, jsa = 0.0, jaa = 0.0;
+    for (const double distance : d) {
+        const double ds = ratio ? (model(s + hs, *ratio * (s + hs), distance) - model(s - hs, *ratio * (s - hs), distance)) / (2.0 * hs)
+                                : (model(s + hs, a, distance) - model(s - hs, a, distance)) / (2.0 * hs);
+        const double da = ratio ? 0.0 : (model(s, a + ha, distance) - model(s, std::max(0.0, a - ha), distance)) / (a >= ha ? 2.0 * ha : ha + a);
+        jss += ds * ds;
+        jsa += ds * da;
+        jaa += da * da;
+    }
+    const double scatter = result.residual / static_cast<double>(d.size() - p);
+    if (ratio) {
+        if (!(jss > 0.0)) return;
+        result.reduced_scattering_stderr_per_mm = std::sqrt(scatter / jss);
+        result.absorption_stderr_per_mm = *ratio * result.reduced_scattering_stderr_per_mm;
+        return;
+    }
+    const double det = jss * jaa - jsa * jsa;
+    if (!(det > 1e-12 * jss * jaa)) return;  // singular: the bins do not tell the two apart
+    result.reduced_scattering_stderr_per_mm = std::sqrt(scatter * jaa / det);
+    result.absorption_stderr_per_mm = std::sqrt(scatter * jss / det);
+}
 
 DipoleFitResult fit_on_grid_and_refine(std::span<const double> distances_mm, std::span<const double> profile, std::span<const char> use,
                            const DipoleFitOptions& options) {
@@ -95,7 +127,10 @@ DipoleFitResult fit_on_grid_and_refine(std::span<const double> distances_mm, std
     result.reduced_scattering_per_mm = result.grid_reduced_scattering_per_mm;
     result.absorption_per_mm = result.grid_absorption_per_mm;
     result.residual = best;
-    if (!options.refine) return result;
+    if (!options.refine) {
+        state_standard_errors(result, d, options.eta, ratio);
+        return result;
+    }
 
     // Local refinement in the grid's box, scaled so both parameters move on comparable steps.
     const auto& gs = options.reduced_scattering_per_mm;
@@ -109,8 +144,10 @@ DipoleFitResult fit_on_grid_and_refine(std::span<const double> distances_mm, std
         x.push_back(result.absorption_per_mm);
         step.push_back(ga.step);
     }
-    if (upper[0] <= lower[0]) return result;
-    if (!ratio && upper[1] <= lower[1]) return result;
+    if (upper[0] <= lower[0] || (!ratio && upper[1] <= lower[1])) {
+        state_standard_errors(result, d, options.eta, ratio);
+        return result;
+    }
     opt.set_lower_bounds(lower);
     opt.set_upper_bounds(upper);
     opt.set_initial_step(step);
@@ -138,6 +175,7 @@ DipoleFitResult fit_on_grid_and_refine(std::span<const double> distances_mm, std
         result.absorption_per_mm = absorption_of(x[0], x.size() > 1 ? x[1] : 0.0);
         result.residual = value;
     }
+    state_standard_errors(result, d, options.eta, ratio);
     return result;
 }
 

@@ -5,6 +5,7 @@
 // BOBYQA) from the grid's best within the grid's box. With a measured total diffuse reflectance (seed 004
 // Sec. 3), sigma_a follows from sigma_s' through the closed-form R_d(alpha'), leaving a 1-D search.
 #include <optional>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,6 +34,11 @@ struct DipoleFitResult {
     double grid_absorption_per_mm = 0.0;
     double grid_residual = 0.0;
     int evaluations = 0;
+    // Standard errors from the residual scatter: s^2 (J^T J)^-1 with s^2 = residual / (n - p) and J the dipole's
+    // derivatives at the result (Gauss-Newton; independent, equal errors assumed). NaN where the bins do not
+    // determine them (no more bins than parameters, or J^T J singular).
+    double reduced_scattering_stderr_per_mm = std::numeric_limits<double>::quiet_NaN();
+    double absorption_stderr_per_mm = std::numeric_limits<double>::quiet_NaN();
     // The parameters that ended on an edge of the search box, e.g. "sigma_s' = 3 /mm, the search's upper bound": the
     // minimum may lie outside it (widen the grid), or the data do not constrain the parameter.
     std::vector<std::string> at_bounds;

@@ -92,6 +92,8 @@ nlohmann::ordered_json profile_fit_json(const ProfileFitReport& r, const std::st
     Json j{{"channel", channel},
            {"reduced_scattering_per_mm", r.fit.reduced_scattering_per_mm},
            {"absorption_per_mm", r.fit.absorption_per_mm},
+           {"reduced_scattering_stderr_per_mm", std::isfinite(r.fit.reduced_scattering_stderr_per_mm) ? Json(r.fit.reduced_scattering_stderr_per_mm) : Json(nullptr)},
+           {"absorption_stderr_per_mm", std::isfinite(r.fit.absorption_stderr_per_mm) ? Json(r.fit.absorption_stderr_per_mm) : Json(nullptr)},
            {"residual_per_mm4", r.fit.residual},
            {"grid", {{"reduced_scattering_per_mm", r.fit.grid_reduced_scattering_per_mm}, {"absorption_per_mm", r.fit.grid_absorption_per_mm}, {"residual_per_mm4", r.fit.grid_residual}}},
            {"bins", r.estimate.distances_mm.size()},
