@@ -311,10 +311,20 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
     const auto& first = spectra.front().result;
     out += fmt::format("{:<22}", "material");
     for (const auto& [field, value] : first.provenance.varied) out += fmt::format("  {:>30}", field.substr(0, 30));
+    // A sweep at one wavelength (or band) has no colours to show: its R is the column that tells the members apart.
+    const bool one_row = first.quantities.reflectance &&
+                         std::all_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.wavelengths.size() == 1; });
+    if (one_row) {
+        out += fmt::format("  {:>20}", first.bands.empty() ? fmt::format("R at {:g} nm", first.wavelengths.front().wavelength_nm) : "R, band " + first.bands.front());
+    }
     out += fmt::format("  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", "sRGB", "Lab", "ITA deg (category)", "dE00 +-", "worst stderr", "rays");
     for (const auto& s : spectra) {
         out += fmt::format("{:<22}", s.result.material.substr(0, 22));
         for (const auto& [field, value] : s.result.provenance.varied) out += fmt::format("  {:>30.6g}", value);
+        if (one_row) {
+            const auto& r = s.result.wavelengths.front().reflectance;
+            out += fmt::format("  {:>20}", s.result.has_uncertainty ? fmt::format("{:.4f} +- {:.4f}", r.value, r.stderr) : fmt::format("{:.4f}", r.value));
+        }
         double worst = 0.0;
         std::uint64_t rays = 0;
         for (const auto& w : s.result.wavelengths) {

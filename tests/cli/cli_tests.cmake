@@ -94,3 +94,4 @@ skinspec_cli_test("compare-phase plot with a difference panel" 0 "wrote .*compar
 skinspec_cli_test("spectrum rte on a band material, as bench runs it" 0 "jensen2001-skin1: 3 bands, [0-9]+ rays" spectrum --mode rte --preset jensen2001-skin1 --stderr 0.005)
 skinspec_cli_test("fit-spectrum reads a sweep's result" 0 "biospec-lightly\\[epidermis.melanosome_fraction=0.1\\] +0.0" fit-spectrum sweep_two_members.json --threads 1)
 skinspec_cli_test("geometry 0-45 says what it costs" 0 "note: --geometry 0-45 counts only the rays leaving at 40-50 deg: the same standard error takes about 8x" spectrum --preset biospec-lightly --geometry 0-45 --wavelengths 550 --rays 2000)
+skinspec_cli_test("a sweep at one wavelength shows its R" 0 "R at 550 nm.*\n[^\n]* 0.01 +0\\.[0-9]+ \\+- 0\\.[0-9]+" spectrum --preset biospec-lightly --vary epidermis.melanosome_fraction=0.01:0.1:3 --wavelengths 550 --rays 2000)
