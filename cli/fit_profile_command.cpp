@@ -152,6 +152,10 @@ void run_fit_profile(const FitOptions& o) {
         input = fmt::format("{} ({} patches)", o.patches, patches.size());
     } else {
         const auto samples = read_radial_profile(o.profile, o.column);
+        if (samples.entry_transmittance != 1.0) {
+            std::cerr << fmt::format("skinspec: note: {}: R divided by the entry transmittance {:.6g} the file records (the dipole's R_d(r) is per "
+                                     "unit power entering the skin)\n", o.profile, samples.entry_transmittance);
+        }
         reports.push_back(fit_radial(samples.radii_mm, samples.profile_per_mm2, options));
         names.push_back(o.column.empty() ? "R" : o.column);
         input = fmt::format("{} ({} radii)", o.profile, samples.radii_mm.size());

@@ -16,6 +16,7 @@
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
+#include "formats/profile_inputs.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -48,6 +49,13 @@ std::string to_csv(const SpectralProfiles& p) {
         out += fmt::format("# {}: diffuse R total {:.6g}, T total {:.6g}, specular {:.6g}\n", c.label, c.total_reflectance,
                            c.total_transmittance, c.specular_reflectance);
     }
+    // For readers that want R per unit power entering (fit-profile, formats/profile_inputs.hpp): one figure per column.
+    out += std::string(radial_entry_transmittance_comment);
+    for (std::size_t k = 0; k < p.channels.size(); ++k) {
+        const auto& c = p.channels[k];
+        out += fmt::format("{}R_{}_per_mm2={:.9g}", k == 0 ? " " : ", ", column_tag(c), 1.0 - c.specular_reflectance);
+    }
+    out += '\n';
     // The diffusion sums' own figures, only where a diffusion model made the profiles (the walk has neither).
     if (p.max_pairs > 0 || p.frequencies > 0) {
         out += fmt::format("# dipole pairs (largest): {}, inverse-transform samples: {}, converged: {}\n", p.max_pairs, p.frequencies,

@@ -69,10 +69,25 @@ RadialSamples read_radial_profile(const std::string& file, const std::string& co
     }
     if (rows[0].size() < 2 || k == 0) throw InputError(file + ": expected r_mm and a profile column (1/mm^2)");
     RadialSamples samples;
+    // The entry transmittance the file records for the column, if any.
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) {
+        if (!line.starts_with(radial_entry_transmittance_comment)) continue;
+        const auto key = " " + rows[0][k] + "=";
+        const auto at = line.find(key);
+        if (at == std::string::npos) continue;
+        const auto end = line.find(',', at);
+        const auto text = line.substr(at + key.size(), end == std::string::npos ? std::string::npos : end - at - key.size());
+        const auto value = parse_double(trim(text));
+        if (!value || !(*value > 0.0 && *value <= 1.0)) {
+            throw InputError(file + ": entry transmittance of " + rows[0][k] + " = '" + text + "' is outside (0, 1]");
+        }
+        samples.entry_transmittance = *value;
+    }
     for (std::size_t i = 1; i < rows.size(); ++i) {
         if (rows[i].size() != rows[0].size()) throw InputError(fmt::format("{}: data line {} has {} fields, expected {}", file, i, rows[i].size(), rows[0].size()));
         samples.radii_mm.push_back(number(file, i, rows[0][0], rows[i][0]));
-        samples.profile_per_mm2.push_back(number(file, i, rows[0][k], rows[i][k]));
+        samples.profile_per_mm2.push_back(number(file, i, rows[0][k], rows[i][k]) / samples.entry_transmittance);
     }
     return samples;
 }

@@ -3,6 +3,7 @@
 // a planar image pair (irradiance and exitance per mm^2, optional mask). Every problem is an InputError
 // naming the file, the line or pixel, the field and what is allowed.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "inverse/profile_fit/profile_system.hpp"
@@ -14,9 +15,15 @@ std::vector<SurfacePatch> read_patch_list(const std::string& file);
 
 struct RadialSamples {
     std::vector<double> radii_mm;
-    std::vector<double> profile_per_mm2;
+    std::vector<double> profile_per_mm2;  // per unit power entering the surface
+    double entry_transmittance = 1.0;     // what the file's values were divided by (1: given per power entering)
 };
-// r_mm and one profile column (the second, or `column` by name).
+// `skinspec profile` writes R per unit incident power, the entry Fresnel transmittance included, and records that
+// transmittance per column in a comment line starting with this (" R_550nm_per_mm2=0.97, ...").
+inline constexpr std::string_view radial_entry_transmittance_comment = "# entry transmittance per column (1 - specular):";
+// r_mm and one profile column (the second, or `column` by name), as R per unit power entering: a column that the
+// file records an entry transmittance for is divided by it (the dipole's R_d(r), Jensen et al. 2001 Eq. 4, is per
+// unit power entering; fitting R per incident power to it biased marble's sigma_a fourfold).
 RadialSamples read_radial_profile(const std::string& file, const std::string& column = {});
 
 struct PlanarInputs {

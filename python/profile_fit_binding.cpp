@@ -37,7 +37,8 @@ py::object fit_profile(const py::object& radii_mm, const py::object& profile_per
 void bind_profile_fit(py::module_& m) {
     m.def("fit_profile", &fit_profile, R"doc(Dipole sigma_s' and sigma_a (1/mm) of a radial profile, as `skinspec fit-profile --profile` fits it.
 
-    radii_mm, profile_per_mm2: R(r) (e.g. skinspec.profiles(...)); eta: relative refractive index; grid_scattering,
+    radii_mm, profile_per_mm2: R(r) per unit power entering the skin (a skinspec.profiles result is per unit
+    incident power: divide it by 1 - R_specular); eta: relative refractive index; grid_scattering,
     grid_absorption: the search grids (first, last, step) in 1/mm (default 0.01-3 by 0.01 and 0-0.01 by 0.001);
     refine: a local optimiser after the grid; total_reflectance: a measured total diffuse reflectance that
     constrains sigma_a (Jensen et al. 2001 Sec. 3); fit_from_mm: radii left out below it. Returns the dict

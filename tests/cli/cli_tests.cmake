@@ -82,7 +82,7 @@ skinspec_cli_test("a changed copy says what changed" 0 "changed from biospec-lig
 skinspec_cli_test("materials in command-line order" 0 "wavelength_nm +biospec-heavily +biospec-lightly\n" spectrum --mode dipole --wavelengths 550 --preset biospec-heavily --preset biospec-lightly)
 # A colour left out says why (issue 33).
 skinspec_cli_test("no colour says why" 0 "no colour: a colour needs wavelengths covering 400-700 nm at steps of at most 20 nm \\(these cover 500-600 nm\\)" spectrum --mode dipole --preset biospec-lightly --wavelengths 500:600:10)
-skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [^\n]*model rte\n# units[^\n]*\n(# [0-9]+ nm[^\n]*\n)+r_mm" profile --mode rte --rays 1000 --radii 0:1:0.5)
+skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [^\n]*model rte\n# units[^\n]*\n(# [0-9]+ nm[^\n]*\n)+# entry transmittance per column[^\n]*\nr_mm" profile --mode rte --rays 1000 --radii 0:1:0.5)
 # Outputs that read each other (issue 33): color takes a member of a spectrum --vary CSV by position or by value.
 skinspec_cli_test("color of a sweep member by position" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --member 2)
 skinspec_cli_test("color of a sweep member by value" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --where epidermis.melanosome_fraction=0.1)
@@ -95,3 +95,8 @@ skinspec_cli_test("spectrum rte on a band material, as bench runs it" 0 "jensen2
 skinspec_cli_test("fit-spectrum reads a sweep's result" 0 "biospec-lightly\\[epidermis.melanosome_fraction=0.1\\] +0.0" fit-spectrum sweep_two_members.json --threads 1)
 skinspec_cli_test("geometry 0-45 says what it costs" 0 "note: --geometry 0-45 counts only the rays leaving at 40-50 deg: the same standard error takes about 8x" spectrum --preset biospec-lightly --geometry 0-45 --wavelengths 550 --rays 2000)
 skinspec_cli_test("a sweep at one wavelength shows its R" 0 "R at 550 nm.*\n[^\n]* 0.01 +0\\.[0-9]+ \\+- 0\\.[0-9]+" spectrum --preset biospec-lightly --vary epidermis.melanosome_fraction=0.01:0.1:3 --wavelengths 550 --rays 2000)
+skinspec_cli_test("profile of marble written for fit-profile" 0 "wrote .*marble_profile.csv" profile --preset jensen2001-marble --mode dipole --radii 0.1:8:0.1 --output ${CMAKE_CURRENT_BINARY_DIR}/marble_profile.csv --overwrite)
+set_tests_properties("cli: profile of marble written for fit-profile" PROPERTIES FIXTURES_SETUP marble_profile)
+# Jensen et al. 2001's marble, R band: sigma_s' 2.19, sigma_a 0.0021 /mm; the profile is per incident power, the fit per power entering.
+skinspec_cli_test("fit-profile recovers marble from a skinspec profile" 0 "R +2\\.19000 \\+- [0-9.e-]+ +0\\.002100 \\+-" fit-profile --profile ${CMAKE_CURRENT_BINARY_DIR}/marble_profile.csv --eta 1.5)
+set_tests_properties("cli: fit-profile recovers marble from a skinspec profile" PROPERTIES FIXTURES_REQUIRED marble_profile)

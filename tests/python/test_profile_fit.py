@@ -16,7 +16,11 @@ def test_fit_profile_equals_the_command(cli, tmp_path):
     lines = [l for l in open(csv) if not l.startswith("#")]
     column = lines[0].strip().split(",")[1]
     table = np.array([[float(v) for v in l.split(",")] for l in lines[1:]])
-    ours = skinspec.fit_profile(table[:, 0], table[:, 1])
+    # The file's R is per incident power; the fit takes it per power entering (the command divides by the entry
+    # transmittance the file records).
+    entry = [l for l in open(csv) if l.startswith("# entry transmittance per column")][0]
+    transmittance = float(entry.split(column + "=")[1].split(",")[0])
+    ours = skinspec.fit_profile(table[:, 0], table[:, 1] / transmittance)
     theirs = cli("fit-profile", "--profile", str(csv))["channels"][0]
     for key in ("reduced_scattering_per_mm", "absorption_per_mm", "residual_per_mm4"):
         assert ours[key] == theirs[key]
