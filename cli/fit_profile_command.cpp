@@ -202,7 +202,7 @@ void add_fit_profile_command(CLI::App& app) {
     cmd->add_option("--pitch", o->pitch_mm, "Planar input: pixel pitch in mm");
     cmd->add_option("--mask", o->mask, "Planar input: image whose non-zero pixels are valid observations");
     cmd->add_option("--patches", o->patches, "Patch list CSV: x_mm,y_mm,z_mm,nx,ny,nz,c,l,visible");
-    cmd->add_option("--profile", o->profile, "Radial profile CSV: r_mm and R (1/mm^2) columns (e.g. skinspec profile output)");
+    cmd->add_option("--profile", o->profile, "Radial profile CSV: r_mm and R (1/mm^2 per unit power entering) columns; a skinspec profile CSV (per incident power) is divided by the entry transmittance it records");
     cmd->add_option("--column", o->column, "With --profile: the column to fit (default the second)");
     cmd->add_flag("--synthetic", o->synthetic, "Fit the built-in synthetic scene of Mukaigawa et al. 2009 Sec. 4.1 (a demonstration)");
     cmd->add_option("--step", o->step_mm, "Distance quantisation step in mm (Mukaigawa et al. 2009 Eq. 15-16)")->capture_default_str();
