@@ -131,7 +131,7 @@ std::vector<LegendEntry> legend_entries(const std::vector<PlotPanel>& panels, st
     if (every <= 1) return all;
     std::vector<LegendEntry> some;
     for (std::size_t i = 0; i < all.size(); i += every) some.push_back(all[i]);
-    if ((all.size() - 1) % every != 0) some.push_back(all.back());
+    if (!all.empty() && (all.size() - 1) % every != 0) some.push_back(all.back());
     some.push_back({nullptr, fmt::format("(1 in {} of {} listed)", every, all.size())});
     return some;
 }
@@ -366,7 +366,7 @@ Rendering render(const std::filesystem::path& target, const std::string& device,
     }
     const auto rows = static_cast<PLINT>((entries.size() + choice.columns - 1) / choice.columns);
     PLFLT legend_width = 0.0, legend_height = 0.0;
-    pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX | PL_LEGEND_ROW_MAJOR,
+    if (!entries.empty()) pls->legend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX | PL_LEGEND_ROW_MAJOR,
                 PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, 0.0, 0.0, 44.0 / region_w_px, 0, 1, 1, rows,
                 choice.columns, static_cast<PLINT>(entries.size()), opts.data(), 1.0, type * choice.text_scale, 1.5, 0.0, text_colours.data(),
                 labels.data(), nullptr, nullptr, nullptr, nullptr, colours.data(), styles.data(), widths.data(), colours.data(),

@@ -111,3 +111,12 @@ TEST_CASE("single-point curves and stacked panels are drawn inside the image", "
     CHECK(layout.legend_entries == 2);
     CHECK(edges_blank(file));
 }
+
+TEST_CASE("a figure whose curves have no labels has no legend", "[line_plot]") {
+    const PlotCurve unlabelled{"", {400, 500, 600}, {0.1, 0.3, 0.5}, {}, {0.2, 0.4, 0.7}, false};
+    const auto file = std::filesystem::temp_directory_path() / "skinspec_plot_unlabelled.png";
+    std::filesystem::remove(file);
+    const auto layout = write_line_plot(file, "t", "x", "y", {unlabelled});
+    CHECK(layout.legend_entries == 0);
+    CHECK(edges_blank(file));
+}
