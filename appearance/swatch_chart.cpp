@@ -1,5 +1,7 @@
 #include "appearance/swatch_chart.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <memory>
 
@@ -144,6 +146,15 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     chart.settings["wavelengths"] = "380-780 nm every " + format_number(chart.wavelengths[1] - chart.wavelengths[0]) + " nm";
     chart.settings.erase("stderr_target");
     return chart;
+}
+
+std::vector<ParameterSweep> default_swatch_sweeps(const Material& material) {
+    const auto* stack = std::get_if<LayerStack>(&material);
+    const auto has = [&](auto&& predicate) { return stack && std::any_of(stack->layers.begin(), stack->layers.end(), predicate); };
+    const bool skin_like = has([](const TissueLayer& l) { return l.name == "epidermis"; }) &&
+                           has([](const TissueLayer& l) { return l.name.ends_with("_dermis"); });
+    if (!skin_like) return {};
+    return {parse_sweep("epidermis.melanosome_fraction=0.01:0.42:8:log"), parse_sweep("dermis.blood_fraction=0.002:0.05:5")};
 }
 
 }  // namespace skinspec

@@ -67,4 +67,8 @@ struct SwatchChart {
 // InputError for bad sweeps or materials before any ray is traced.
 SwatchChart compute_swatch(const SwatchRequest& request);
 
+// The sweeps a swatch of `material` makes when none are given: melanosome fraction (8, log) by dermal blood (5) for
+// a skin with an epidermis and dermal layers, none (one patch) for anything else.
+std::vector<ParameterSweep> default_swatch_sweeps(const Material& material);
+
 }  // namespace skinspec

@@ -57,7 +57,6 @@ struct SwatchOptions {
 };
 
 // Melanin on a log axis: evenly spaced fractions put five of eight columns in near-identical dark browns.
-const std::vector<std::string> default_sweeps{"epidermis.melanosome_fraction=0.01:0.42:8:log", "dermis.blood_fraction=0.002:0.05:5"};
 
 // "epidermis.melanosome_fraction: volume fraction of melanosomes (v_m), unit 1, log spacing".
 std::string axis_title(const ParameterSweep& sweep) {
@@ -164,15 +163,8 @@ void run_swatch(const SwatchOptions& o) {
     SwatchRequest request;
     request.material = chosen_material(o.preset, o.material_file);
     request.overrides = parsed_overrides(o.overrides);
-    // The default grid needs an epidermis and dermal layers; other materials default to one patch.
-    const auto base = load_material(request.material, request.overrides);
-    const auto* stack = std::get_if<LayerStack>(&base);
-    const auto has = [&](auto&& predicate) {
-        return stack && std::any_of(stack->layers.begin(), stack->layers.end(), predicate);
-    };
-    const bool skin_like = has([](const TissueLayer& l) { return l.name == "epidermis"; }) &&
-                           has([](const TissueLayer& l) { return l.name.ends_with("_dermis"); });
-    for (const auto& v : o.vary.empty() && skin_like ? default_sweeps : o.vary) request.sweeps.push_back(parse_sweep(v));
+    if (o.vary.empty()) request.sweeps = default_swatch_sweeps(load_material(request.material, request.overrides));
+    for (const auto& v : o.vary) request.sweeps.push_back(parse_sweep(v));
     request.illuminant = parse_illuminant(o.illuminant, "--illuminant");
     request.observer = parse_observer(o.observer, "--observer");
     request.delta_e = o.delta_e;

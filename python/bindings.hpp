@@ -30,6 +30,7 @@ void bind_bench(py::module_& m);
 void bind_mcml(py::module_& m);
 void bind_phase_study(py::module_& m);
 void bind_profile_fit(py::module_& m);
+void bind_swatch(py::module_& m);
 
 // A Python-side material: the resolved Material and the overrides set on it since it was loaded (recorded in
 // the provenance of every result computed from it).

@@ -18,4 +18,5 @@ PYBIND11_MODULE(_skinspec, m) {
     skinspec::python::bind_mcml(m);
     skinspec::python::bind_phase_study(m);
     skinspec::python::bind_profile_fit(m);
+    skinspec::python::bind_swatch(m);
 }
