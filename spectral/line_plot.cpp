@@ -5,6 +5,8 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <unordered_map>
+#include <unordered_set>
 
 #include <fmt/format.h>
 #include <plplot/plstream.h>
@@ -122,10 +124,10 @@ struct LegendEntry {
 
 std::vector<LegendEntry> legend_entries(const std::vector<PlotPanel>& panels, std::size_t every) {
     std::vector<LegendEntry> all;
+    std::unordered_set<std::string> listed;
     for (const auto& panel : panels) {
         for (const auto& c : panel.curves) {
-            const bool listed = std::any_of(all.begin(), all.end(), [&](const LegendEntry& e) { return e.text == c.label; });
-            if (!listed && !c.label.empty()) all.push_back({&c, c.label});
+            if (!c.label.empty() && listed.insert(c.label).second) all.push_back({&c, c.label});
         }
     }
     if (every <= 1) return all;
@@ -243,7 +245,7 @@ Rendering render(const std::filesystem::path& target, const std::string& device,
     const double mm_per_px = (page_x1 - page_x0) / W;
     constexpr double axes_left = 0.11;  // room for the tick labels and two lines of a y label
 
-    std::vector<PLINT> line_colours;
+    std::unordered_map<const PlotCurve*, PLINT> line_colours;  // each curve's line colour, for its legend entry
     int colour_index = 2;
     for (std::size_t p = 0; p < panels.size(); ++p) {
         const auto& panel = panels[p];
@@ -278,7 +280,7 @@ Rendering render(const std::filesystem::path& target, const std::string& device,
             const int r = channel(c.colour[0] * scale), g = channel(c.colour[1] * scale), b = channel(c.colour[2] * scale);
             pls->scol0a(band_colour, r, g, b, 0.25);
             pls->scol0a(line_colour, r, g, b, 1.0);
-            line_colours.push_back(line_colour);
+            line_colours[&c] = line_colour;
             std::vector<double> xs, ys, ss;
             for (std::size_t i = 0; i < c.value.size(); ++i) {
                 if (log_x && !(c.x[i] > 0.0)) continue;
@@ -350,13 +352,7 @@ Rendering render(const std::filesystem::path& target, const std::string& device,
             continue;
         }
         const auto& c = *e.curve;
-        std::size_t index = 0;
-        for (const auto& p : panels) {
-            for (const auto& other : p.curves) {
-                if (&other == e.curve) colours.push_back(line_colours[index]);
-                ++index;
-            }
-        }
+        colours.push_back(line_colours.at(e.curve));
         const int marker = drawn_marker(c);
         opts.push_back((c.value.size() > 1 ? PL_LEGEND_LINE : 0) | (marker > 0 ? PL_LEGEND_SYMBOL : 0));
         styles.push_back(c.dashed ? 2 : 1);
