@@ -1,7 +1,5 @@
-// `skinspec export pbrt|mitsuba`: the layered skin as a renderer's media in a minimal lit-slab scene
-
-// (formats/renderer_media.hpp, formats/pbrt_scene.hpp, formats/mitsuba_scene.hpp), read back after writing to
-// check that the renderer's files hold the coefficients they were given.
+// `skinspec export pbrt|mitsuba`: the layered skin as a renderer's media in a minimal lit-slab scene, written and
+// read back by formats/scene_export.hpp.
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -11,19 +9,14 @@
 #include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
-#include "formats/mitsuba_scene.hpp"
-#include "formats/pbrt_scene.hpp"
+#include "formats/scene_export.hpp"
 #include "materials/material_file.hpp"
-#include "spectral/chart_image.hpp"
-#include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/named_choice.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec::cli {
 namespace {
-
-enum class Renderer { pbrt, mitsuba };
 
 struct SceneOptions {
     std::string preset;
@@ -35,40 +28,13 @@ struct SceneOptions {
     double phase_wavelength_nm = 550.0;
     std::string output;
     bool overwrite = false;
+    bool json = false;
 };
 
-// The largest relative difference between what was written and what reading the files back gives.
-double largest_difference(const RendererMedia& a, const RendererMedia& b) {
-    if (a.layers.size() != b.layers.size()) return INFINITY;
-    double worst = 0.0;
-    const auto compare = [&](double x, double y) {
-        const double scale = std::max(std::abs(x), std::abs(y));
-        if (scale > 0.0) worst = std::max(worst, std::abs(x - y) / scale);
-    };
-    for (std::size_t k = 0; k < a.layers.size(); ++k) {
-        const auto& x = a.layers[k];
-        const auto& y = b.layers[k];
-        if (x.name != y.name || x.sigma_a_per_mm.size() != y.sigma_a_per_mm.size() || x.phase.kind != y.phase.kind ||
-            x.phase.values.size() != y.phase.values.size()) {
-            return INFINITY;
-        }
-        compare(x.thickness_mm, y.thickness_mm);
-        compare(x.refractive_index, y.refractive_index);
-        for (std::size_t i = 0; i < x.sigma_a_per_mm.size(); ++i) {
-            compare(x.sigma_a_per_mm[i], y.sigma_a_per_mm[i]);
-            compare(x.sigma_s_per_mm[i], y.sigma_s_per_mm[i]);
-        }
-        if (x.phase.kind == RendererPhase::Kind::henyey_greenstein) compare(x.phase.g, y.phase.g);
-        for (std::size_t i = 0; i < x.phase.values.size(); ++i) compare(x.phase.values[i], y.phase.values[i]);
-    }
-    if (a.bottom_reflector != b.bottom_reflector) return INFINITY;
-    return worst;
-}
-
-void run_export_scene(const SceneOptions& o, Renderer renderer) {
-    const char* command = renderer == Renderer::pbrt ? "export pbrt" : "export mitsuba";
+void run_export_scene(const SceneOptions& o, SceneRenderer renderer) {
+    const std::string command = "export " + std::string(to_string(renderer));
     const std::string name = chosen_material(o.preset, o.material_file);
-    if (o.output.empty()) throw InputError(std::string(command) + ": give -o FILE (" + (renderer == Renderer::pbrt ? ".pbrt" : ".xml") + ")");
+    if (o.output.empty()) throw InputError(command + ": give -o FILE (" + std::string(scene_extension(renderer)) + ")");
     const auto material = load_material(name, parsed_overrides(o.overrides));
     const auto* stack = std::get_if<LayerStack>(&material);
     if (!stack) {
@@ -88,30 +54,19 @@ void run_export_scene(const SceneOptions& o, Renderer renderer) {
         request.wavelengths_nm.assign(grid.nm().begin(), grid.nm().end());
     }
     request.phase_wavelength_nm = o.phase_wavelength_nm;
-    // pbrt-v4's media are Henyey-Greenstein only, so HG is its default; Mitsuba 3 takes each layer's own.
-    const std::string phase = o.phase.empty() ? (renderer == Renderer::pbrt ? "hg" : "own") : o.phase;
-    request.phase = parse_named_choice(phase, "--phase", std::array{PhaseExport::own, PhaseExport::hg}, "a phase export");
-    const auto media = renderer_media(*stack, request);
-    const std::filesystem::path scene = o.output;
-    const auto files = renderer == Renderer::pbrt ? pbrt_scene_files(media, scene) : mitsuba_scene_files(media, scene);
-    check_output_path(scene, o.overwrite, {renderer == Renderer::pbrt ? ".pbrt" : ".xml"});
-    for (std::size_t i = 1; i < files.size(); ++i) {
-        if (std::filesystem::exists(files[i]) && !o.overwrite) {
-            throw InputError(files[i].string() + " exists (use --overwrite to replace it)");
-        }
-        OutputClaims::claim(files[i], o.overwrite);
+    request.phase = o.phase.empty() ? default_phase_export(renderer)
+                                    : parse_named_choice(o.phase, "--phase", std::array{PhaseExport::own, PhaseExport::hg}, "a phase export");
+    const auto exported = export_scene(*stack, request, renderer, o.output, o.overwrite);
+    const auto& media = exported.media;
+    const auto& files = exported.files;
+    std::cerr << "wrote " << files.front().string()
+              << (files.size() > 1 ? fmt::format(" and {} spectrum files in {}", files.size() - 1, files[1].parent_path().string()) : "") << '\n';
+    if (o.json) {
+        std::cout << scene_export_json(exported, renderer).dump(2) << '\n';
+        return;
     }
-    if (renderer == Renderer::pbrt) write_pbrt_scene(media, scene);
-    else write_mitsuba_scene(media, scene);
-    const auto back = renderer == Renderer::pbrt ? read_pbrt_scene(scene, media.above_refractive_index) : read_mitsuba_scene(scene);
-    const double difference = largest_difference(media, back);
-    std::cerr << "wrote " << scene.string() << (files.size() > 1 ? fmt::format(" and {} spectrum files in {}", files.size() - 1, files[1].parent_path().string()) : "")
-              << '\n';
-
-    const auto spread = mean_cosine_spread(*stack, request.wavelengths_nm);
-    std::cout << fmt::format("{} as {} media: {} layers, {} {}; phase functions at {} nm\n", name, renderer == Renderer::pbrt ? "pbrt-v4" : "Mitsuba 3",
-                             media.layers.size(), request.wavelengths_nm.size(), media.rgb ? "wavelengths as R, G, B" : "wavelengths",
-                             format_number(media.phase_wavelength_nm));
+    std::cout << fmt::format("{} as {} media: {} layers, {} {}; phase functions at {} nm\n", name, renderer_title(renderer), media.layers.size(),
+                             request.wavelengths_nm.size(), media.rgb ? "wavelengths as R, G, B" : "wavelengths", format_number(media.phase_wavelength_nm));
     std::cout << fmt::format("{:<20}{:>12}{:>8}{:>16}{:>16}  {}\n", "layer", "thickness mm", "index", "sigma_a 1/mm", "sigma_s 1/mm", "phase");
     for (std::size_t k = 0; k < media.layers.size(); ++k) {
         const auto& l = media.layers[k];
@@ -120,18 +75,19 @@ void run_export_scene(const SceneOptions& o, Renderer renderer) {
         const std::string kind = l.phase.kind == RendererPhase::Kind::tabulated ? fmt::format("tabulated ({} points, mean cos {:.4f})", l.phase.values.size(), l.phase.g)
                                  : l.phase.kind == RendererPhase::Kind::isotropic ? std::string("isotropic")
                                                                                    : fmt::format("HG g {:.4f}", l.phase.g);
-        const std::string g_range = spread[k].second - spread[k].first > 1e-9 ? fmt::format("; g {:.4f}-{:.4f} over the wavelengths", spread[k].first, spread[k].second) : "";
+        const auto& spread = exported.mean_cosine_spread[k];
+        const std::string g_range = spread.second - spread.first > 1e-9 ? fmt::format("; g {:.4f}-{:.4f} over the wavelengths", spread.first, spread.second) : "";
         std::cout << fmt::format("{:<20}{:>12.5g}{:>8.4g}{:>16}{:>16}  {}{}\n", l.name, l.thickness_mm, l.refractive_index,
                                  fmt::format("{:.3g}-{:.3g}", *lo_a, *hi_a), fmt::format("{:.3g}-{:.3g}", *lo_s, *hi_s), kind, g_range);
     }
     std::cout << fmt::format("bottom: {}; read back: largest relative difference {:.3g}\n",
-                             media.bottom_reflector ? "Lambertian reflector (R = 1)" : "exit into index " + format_number(media.below_refractive_index), difference);
-    if (!(difference <= 1e-12)) throw std::runtime_error("the written scene does not read back as the media given (difference " + format_number(difference) + ")");
+                             media.bottom_reflector ? "Lambertian reflector (R = 1)" : "exit into index " + format_number(media.below_refractive_index),
+                             exported.read_back_difference);
 }
 
-void add_scene_command(CLI::App& exporter, Renderer renderer) {
+void add_scene_command(CLI::App& exporter, SceneRenderer renderer) {
     auto o = std::make_shared<SceneOptions>();
-    const bool pbrt = renderer == Renderer::pbrt;
+    const bool pbrt = renderer == SceneRenderer::pbrt;
     auto* cmd = exporter.add_subcommand(pbrt ? "pbrt" : "mitsuba", pbrt ? "The layered skin as pbrt-v4 media in a lit-slab scene (.pbrt and .spd files)"
                                                                         : "The layered skin as Mitsuba 3 media in a lit-slab scene (.xml and .spd files)");
     add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
@@ -142,14 +98,15 @@ void add_scene_command(CLI::App& exporter, Renderer renderer) {
     cmd->add_option("--phase-wavelength", o->phase_wavelength_nm, "Wavelength (nm) of the phase functions (neither renderer's are spectral)")->capture_default_str();
     cmd->add_option("-o,--output", o->output, pbrt ? "Scene file .pbrt" : "Scene file .xml")->required();
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
+    cmd->add_flag("--json", o->json, "Print the media written as JSON (per layer sigma_a, sigma_s per wavelength, phase)");
     cmd->callback([o, renderer] { run_export_scene(*o, renderer); });
 }
 
 }  // namespace
 
 void add_export_scene_commands(CLI::App& exporter) {
-    add_scene_command(exporter, Renderer::pbrt);
-    add_scene_command(exporter, Renderer::mitsuba);
+    add_scene_command(exporter, SceneRenderer::pbrt);
+    add_scene_command(exporter, SceneRenderer::mitsuba);
 }
 
 }  // namespace skinspec::cli

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "appearance/lit_patch.hpp"
+#include "appearance/lit_swatch.hpp"
 #include "appearance/swatch_chart.hpp"
 #include "cli/color_output.hpp"
 #include "cli/common_options.hpp"
@@ -20,7 +20,6 @@
 #include "skinspec/version.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
-#include "spectral/spectral_image.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec::cli {
@@ -84,12 +83,8 @@ void run_lit_swatch(const SwatchOptions& o) {
     }
     if (kind == "pattern" && o.lit.size() != 2) throw InputError("--lit pattern: give the image file, e.g. --lit pattern stripes.png");
     if (kind != "pattern" && o.lit.size() != 1) throw InputError("--lit " + kind + ": takes no file (only pattern does)");
-    if (!(o.field_mm > 0.0 && o.field_mm <= 1000.0)) throw InputError("--field " + format_number(o.field_mm) + " mm is outside (0, 1000]");
-    const auto& cm = ColorManagement::builtin();
-    const std::string space = cm.canonical_space(o.space, "--space");
-    space_chromaticities(space);
-    cm.check_display_view(o.display, o.view);
-    for (const auto& out : o.outputs) check_output_path(out, o.overwrite, {".exr", ".png", ".tif", ".tiff"});
+    auto view = lit_view(o.field_mm, o.pixels);
+    const auto files = check_lit_swatch_files(LitSwatchFiles{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.overwrite});
 
     const auto material = load_material(name, parsed_overrides(o.overrides));
     // A lit patch needs radial profiles: the multipole unless --mode names another solver.
@@ -102,55 +97,28 @@ void run_lit_swatch(const SwatchOptions& o) {
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
-
-    PatchGeometry view{o.pixels, o.pixels, o.field_mm / o.pixels};
-    std::optional<Illumination> light;
-    if (kind == "spot") light = Illumination::spot(o.spot_radius_mm);
-    else if (kind == "edge") light = Illumination::edge();
-    else {
-        // The pattern sets the image's aspect: its luminance (linear Rec.709 Y) is the relative irradiance.
-        const auto image = read_linear_image(o.lit[1], "Linear Rec.709", cm);
-        std::vector<float> irradiance;
-        for (std::size_t p = 0; p < image.rgb.size(); p += 3) {
-            irradiance.push_back(0.2126f * image.rgb[p] + 0.7152f * image.rgb[p + 1] + 0.0722f * image.rgb[p + 2]);
-        }
-        view.height_px = std::max(8, static_cast<int>(std::lround(o.pixels * static_cast<double>(image.height) / image.width)));
-        light = Illumination::pattern(std::move(irradiance), image.width, image.height);
-    }
+    const auto light = kind == "spot" ? Illumination::spot(o.spot_radius_mm)
+                       : kind == "edge" ? Illumination::edge()
+                                        : pattern_lighting(read_linear_image(o.lit[1], "Linear Rec.709", ColorManagement::builtin()), view);
 
     const InterruptGuard interrupt;
     ProgressBar bar("lit swatch");
     const auto start = std::chrono::steady_clock::now();
-    const auto patch = render_lit_patch(material, grid, *light, view, solver, switches,
-                                        [&bar](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); },
-                                        &InterruptGuard::cancel_flag());
+    const auto swatch = render_lit_swatch(material, grid, light, view, solver, switches, illuminant, observer, files.space,
+                                          [&bar](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); },
+                                          &InterruptGuard::cancel_flag());
     bar.clear();
-    if (patch.partial) {
+    if (swatch.patch.partial) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (a lit swatch needs every wavelength)\n";
         std::exit(InterruptGuard::exit_code());
     }
-    const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
-    if (bands && patch.exitance.size() != 3) throw InputError(name + ": a lit swatch of a band material needs exactly three bands (R, G, B)");
-    const auto image = bands ? rgb_planes_to_image(patch.exitance, view.width_px, view.height_px, "Linear Rec.709", space, cm)
-                             : spectral_planes_to_image(patch.exitance, view.width_px, view.height_px, grid.nm(), illuminant, observer, space, cm);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto& patch = swatch.patch;
     print_warning_summary(name, patch.profiles.warnings);
-
-    const auto lighting = light->description();
-    const ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
-                                 {"skinspec:model", patch.profiles.model},
-                                 {"skinspec:material", name},
-                                 {"skinspec:lighting", lighting},
-                                 {"skinspec:field_mm", fmt::format("{:g}", o.field_mm)},
-                                 {"skinspec:pixel_mm", fmt::format("{:g}", view.pixel_mm)},
-                                 {"skinspec:wavelengths", bands ? std::string("bands R, G, B") : o.wavelengths},
-                                 {"ImageDescription", fmt::format("skinspec lit swatch: {} under {} ({} mode; diffuse exitance, "
-                                                                  "no specular)", name, lighting, patch.profiles.model)}};
-    for (const auto& out : o.outputs) {
-        if (out.ends_with(".exr")) write_linear_image(out, image, space, o.half, metadata, cm);
-        else write_image_grid(out, {image}, 1, {fmt::format("{}\n{}, {:g} mm", name, lighting, o.field_mm)}, space, o.display, o.view, metadata, cm);
-        std::cerr << "wrote " << out << '\n';
-    }
+    write_lit_swatch(swatch, name, light, o.field_mm, o.wavelengths, files);
+    for (const auto& out : o.outputs) std::cerr << "wrote " << out << '\n';
+    const auto lighting = light.description();
+    const bool bands = swatch.bands;
     std::cout << fmt::format("{} under {}: {}x{} px at {:g} mm, {} {} in {:.2f} s ({} mode); kernel reach {:g} mm, "
                              "largest kernel energy correction {:.2g} %\n",
                              name, lighting, view.width_px, view.height_px, view.pixel_mm, patch.exitance.size(),

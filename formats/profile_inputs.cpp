@@ -40,6 +40,14 @@ double number(const std::string& file, std::size_t row, const std::string& field
 
 }  // namespace
 
+SurfacePatch surface_patch(const std::array<double, 9>& v, const std::string& where) {
+    const double normal = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+    if (!(std::abs(normal - 1.0) <= 1e-3)) throw InputError(fmt::format("{}: the normal has length {:.4g}, expected 1", where, normal));
+    if (v[6] < 0.0 || v[7] < 0.0) throw InputError(where + ": c and l must be in [0, inf)");
+    if (v[8] != 0.0 && v[8] != 1.0) throw InputError(fmt::format("{}: field 'visible' = {} is not 0 or 1", where, format_number(v[8])));
+    return {{v[0], v[1], v[2]}, v[6], v[7], v[8] == 1.0};
+}
+
 std::vector<SurfacePatch> read_patch_list(const std::string& file) {
     const auto rows = read_csv(file);
     const std::vector<std::string> header{"x_mm", "y_mm", "z_mm", "nx", "ny", "nz", "c", "l", "visible"};
@@ -50,11 +58,7 @@ std::vector<SurfacePatch> read_patch_list(const std::string& file) {
         if (r.size() != header.size()) throw InputError(fmt::format("{}: data line {} has {} fields, expected 9", file, i, r.size()));
         std::array<double, 9> v{};
         for (std::size_t k = 0; k < 9; ++k) v[k] = number(file, i, header[k], r[k]);
-        const double normal = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
-        if (!(std::abs(normal - 1.0) <= 1e-3)) throw InputError(fmt::format("{}: data line {}: the normal has length {:.4g}, expected 1", file, i, normal));
-        if (v[6] < 0.0 || v[7] < 0.0) throw InputError(fmt::format("{}: data line {}: c and l must be in [0, inf)", file, i));
-        if (v[8] != 0.0 && v[8] != 1.0) throw InputError(fmt::format("{}: data line {}: field 'visible' = {} is not 0 or 1", file, i, r[8]));
-        patches.push_back({{v[0], v[1], v[2]}, v[6], v[7], v[8] == 1.0});
+        patches.push_back(surface_patch(v, fmt::format("{}: data line {}", file, i)));
     }
     return patches;
 }
@@ -92,8 +96,19 @@ RadialSamples read_radial_profile(const std::string& file, const std::string& co
     return samples;
 }
 
+void check_pitch(double pitch_mm) {
+    if (!(pitch_mm > 0.0) || !std::isfinite(pitch_mm)) throw InputError("--pitch = " + format_number(pitch_mm) + " mm is outside (0, inf)");
+}
+
+PlanarScene planar_scene(int width, int height, double pitch_mm, std::vector<double> irradiance_per_mm2, std::vector<double> exitance_per_mm2,
+                         std::vector<char> valid) {
+    check_pitch(pitch_mm);
+    for (auto& e : irradiance_per_mm2) e *= pitch_mm * pitch_mm;  // power entering the pixel
+    return {width, height, pitch_mm, std::move(irradiance_per_mm2), std::move(exitance_per_mm2), std::move(valid)};
+}
+
 std::vector<PlanarScene> read_planar_scenes(const PlanarInputs& inputs, std::vector<std::string>& channel_names) {
-    if (!(inputs.pitch_mm > 0.0) || !std::isfinite(inputs.pitch_mm)) throw InputError("--pitch = " + format_number(inputs.pitch_mm) + " mm is outside (0, inf)");
+    check_pitch(inputs.pitch_mm);
     const auto e = read_data_image(inputs.irradiance);
     const auto l = read_data_image(inputs.exitance);
     if (e.width != l.width || e.height != l.height) {
@@ -110,12 +125,12 @@ std::vector<PlanarScene> read_planar_scenes(const PlanarInputs& inputs, std::vec
     const int channels = std::min(e.channels, 3);  // colour channels; alpha is ignored
     std::vector<PlanarScene> scenes;
     for (int c = 0; c < channels; ++c) {
-        PlanarScene s{e.width, e.height, inputs.pitch_mm, {}, {}, valid};
+        std::vector<double> irradiance, exitance;
         for (std::size_t p = 0; p < valid.size(); ++p) {
-            s.incident.push_back(e.values[p * e.channels + c] * inputs.pitch_mm * inputs.pitch_mm);
-            s.observed.push_back(l.values[p * l.channels + c]);
+            irradiance.push_back(e.values[p * e.channels + c]);
+            exitance.push_back(l.values[p * l.channels + c]);
         }
-        scenes.push_back(std::move(s));
+        scenes.push_back(planar_scene(e.width, e.height, inputs.pitch_mm, std::move(irradiance), std::move(exitance), valid));
         channel_names.push_back(c < static_cast<int>(e.channel_names.size()) ? e.channel_names[c] : fmt::format("channel{}", c));
     }
     return scenes;

@@ -2,6 +2,7 @@
 // The files `skinspec fit-profile` reads (docs/PROFILE_FIT.md): a patch list CSV, a radial profile CSV, and
 // a planar image pair (irradiance and exitance per mm^2, optional mask). Every problem is an InputError
 // naming the file, the line or pixel, the field and what is allowed.
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -10,6 +11,9 @@
 
 namespace skinspec {
 
+// One patch from x_mm, y_mm, z_mm, nx, ny, nz, c, l, visible (a unit normal, c and l >= 0, visible 0 or 1);
+// InputError starting with `where` otherwise.
+SurfacePatch surface_patch(const std::array<double, 9>& values, const std::string& where);
 // x_mm,y_mm,z_mm,nx,ny,nz,c,l,visible (unit normals, c and l >= 0, visible 0 or 1).
 std::vector<SurfacePatch> read_patch_list(const std::string& file);
 
@@ -30,6 +34,12 @@ struct PlanarInputs {
     std::string irradiance, exitance, mask;  // file names; mask optional
     double pitch_mm = 0.0;
 };
+// InputError unless 0 < pitch_mm < inf.
+void check_pitch(double pitch_mm);
+// One channel of a planar image pair: irradiance per mm^2 becomes power per pixel (x pitch^2); row-major values,
+// `valid` 1 where the exitance is used. fit_planar checks the values (validate(PlanarScene)).
+PlanarScene planar_scene(int width, int height, double pitch_mm, std::vector<double> irradiance_per_mm2, std::vector<double> exitance_per_mm2,
+                         std::vector<char> valid);
 // One planar scene per colour channel of the image pair (alpha ignored): irradiance per mm^2 becomes power
 // per pixel; `channel_names` gets the images' channel names. fit_planar checks the values (validate(PlanarScene)).
 std::vector<PlanarScene> read_planar_scenes(const PlanarInputs& inputs, std::vector<std::string>& channel_names);

@@ -14,7 +14,10 @@
 #include <pybind11/pybind11.h>
 #include <tbb/global_control.h>
 
+#include "appearance/swatch_chart.hpp"
 #include "materials/material_file.hpp"
+#include "spectral/wavelength_grid.hpp"
+#include "solvers/spectral_solver.hpp"
 #include "transport/spectral_request.hpp"
 
 namespace skinspec::python {
@@ -31,6 +34,7 @@ void bind_mcml(py::module_& m);
 void bind_phase_study(py::module_& m);
 void bind_profile_fit(py::module_& m);
 void bind_swatch(py::module_& m);
+void bind_exports(py::module_& m);
 
 // A Python-side material: the resolved Material and the overrides set on it since it was loaded (recorded in
 // the provenance of every result computed from it).
@@ -46,6 +50,16 @@ PyMaterial material_argument(const py::handle& value, std::string_view what);
 std::vector<double> finite_vector(const py::handle& value, std::string_view what);
 // Any array-like of finite numbers, as float64 (C order).
 py::array_t<double, py::array::c_style> finite_array(const py::handle& value, std::string_view what);
+// Wavelengths in nm (an array-like; None: 400-700 nm every 10 nm, the CLI's default).
+WavelengthGrid wavelength_argument(const py::object& wavelengths);
+// Switch keywords (solvers/solver_switches.hpp: NAME with '_' for '-'), read by the same descriptors as the
+// program's options; InputError for a keyword that is no switch.
+SolverSwitches solver_switches(const py::kwargs& keywords);
+// A profile request as skinspec.profiles takes its keywords (rays, seed: None for the solver's defaults).
+ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const py::object& rays,
+                                        const py::object& seed, const py::kwargs& switches);
+// solve_profiles under run_interruptible (Ctrl-C stops it).
+SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 // A string of comma-separated names or a sequence of strings ("R,T" or ["R", "T"]).
 std::vector<std::string> name_list(const py::handle& value, std::string_view what);
 // InputError "WHAT = V is outside [LO, HI]" unless lo <= v <= hi.
@@ -68,6 +82,15 @@ py::object result_object(const char* type_name, const py::dict& fields);
 // computed and raises. Exceptions of `work` are re-raised in the caller (InputError as skinspec.InputError).
 using Work = std::function<void(const CancelFlag& cancel, const std::function<void(const Progress&)>& report)>;
 void run_interruptible(const Work& work, const py::object& on_progress);
+
+// A swatch request from skinspec.swatch's keywords (set: a dict of overrides; seed, max_rays: None for the defaults).
+SwatchRequest swatch_request_argument(const std::string& material, const py::object& set, double delta_e, const std::string& illuminant,
+                                      const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays,
+                                      const std::string& geometry);
+// compute_swatch under run_interruptible, with `threads` and `progress` as the functions take them.
+SwatchChart compute_swatch_interruptible(const SwatchRequest& request, const py::object& threads, const py::object& progress);
+// The chart as skinspec.swatch returns it: (rows, columns, ...) numpy arrays; colours in the linear `space`.
+py::dict swatch_dict(const SwatchChart& chart, const SwatchRequest& request, const std::string& space);
 
 // Scoped `threads` (None: all cores): TBB's global parallelism limit while a call runs.
 class ThreadLimit {

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "python/bindings.hpp"
+#include "solvers/spectral_solver.hpp"
 
 #include <algorithm>
 #include "spectral/input_error.hpp"
@@ -22,6 +23,60 @@ PyMaterial material_argument(const py::handle& value, std::string_view what) {
     if (py::hasattr(value, "__fspath__")) return {load_material(py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>()), {}};
     throw InputError(std::string(what) + ": expected a skinspec.Material, a preset name or a .toml path, got " +
                      py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+}
+
+// Switch keywords (solvers/solver_switches.hpp: NAME with '_' for '-'), read by the same descriptors as the program's options.
+SolverSwitches solver_switches(const py::kwargs& keywords) {
+    SolverSwitches s;
+    for (const auto& [key, value] : keywords) {
+        const auto name = py::str(key).cast<std::string>();
+        const auto* d = find_switch(name);
+        if (!d) {
+            std::string allowed;
+            for (const auto& sd : switch_descriptors()) {
+                std::string keyword(sd.name);
+                std::replace(keyword.begin(), keyword.end(), '-', '_');
+                if (sd.parse) allowed += (allowed.empty() ? "" : ", ") + keyword;
+            }
+            throw InputError("'" + name + "' is not a keyword (solver switches: " + allowed + ")");
+        }
+        if (value.is_none()) continue;
+        if (py::isinstance<py::bool_>(value)) throw InputError(name + " = " + py::str(value).cast<std::string>() + " is not allowed (" + std::string(d->values) + ")");
+        d->parse(s, py::str(value).cast<std::string>(), name);
+    }
+    return s;
+}
+
+ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const py::object& rays,
+                                        const py::object& seed, const py::kwargs& switches) {
+    ProfileRequest request;
+    request.wavelengths = wavelengths;
+    request.radii_mm = finite_vector(radii_mm, "radii_mm");
+    request.transmittance = transmittance;
+    request.switches = solver_switches(switches);
+    if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
+    if (!seed.is_none()) {
+        request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
+        request.sampling_options.push_back("seed");
+    }
+    return request;
+}
+
+SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
+    SpectralProfiles p;
+    run_interruptible(
+        [&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) {
+            auto r = request;
+            r.cancel = &cancel;
+            p = solve_profiles(solver, material, r);
+        },
+        py::none());
+    return p;
+}
+
+WavelengthGrid wavelength_argument(const py::object& wavelengths) {
+    if (wavelengths.is_none()) return WavelengthGrid::range(400.0, 700.0, 10.0);
+    return WavelengthGrid::list(finite_vector(wavelengths, "wavelengths"), "wavelengths");
 }
 
 namespace {

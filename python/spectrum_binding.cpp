@@ -47,33 +47,6 @@ py::dict provenance_dict(const SpectralResult& r) {
                     py::arg("version") = r.provenance.version);
 }
 
-// Switch keywords (solvers/solver_switches.hpp: NAME with '_' for '-'), read by the same descriptors as the program's options.
-SolverSwitches solver_switches(const py::kwargs& keywords) {
-    SolverSwitches s;
-    for (const auto& [key, value] : keywords) {
-        const auto name = py::str(key).cast<std::string>();
-        const auto* d = find_switch(name);
-        if (!d) {
-            std::string allowed;
-            for (const auto& sd : switch_descriptors()) {
-                std::string keyword(sd.name);
-                std::replace(keyword.begin(), keyword.end(), '-', '_');
-                if (sd.parse) allowed += (allowed.empty() ? "" : ", ") + keyword;
-            }
-            throw InputError("'" + name + "' is not a keyword (solver switches: " + allowed + ")");
-        }
-        if (value.is_none()) continue;
-        if (py::isinstance<py::bool_>(value)) throw InputError(name + " = " + py::str(value).cast<std::string>() + " is not allowed (" + std::string(d->values) + ")");
-        d->parse(s, py::str(value).cast<std::string>(), name);
-    }
-    return s;
-}
-
-WavelengthGrid wavelength_argument(const py::object& wavelengths) {
-    if (wavelengths.is_none()) return WavelengthGrid::range(400.0, 700.0, 10.0);
-    return WavelengthGrid::list(finite_vector(wavelengths, "wavelengths"), "wavelengths");
-}
-
 // The overrides of variant= and reflector=, in the order `spectrum --variant ... --reflector` applies them.
 std::vector<MaterialOverride> option_overrides(const py::object& variant, const py::object& reflector) {
     std::vector<MaterialOverride> out;
@@ -275,24 +248,9 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
                     bool transmittance, const py::object& rays, const py::object& seed, const py::kwargs& switches) {
     const auto& solver = find_solver(mode, "mode");
     const auto base = material_argument(material, "material");
-    ProfileRequest request;
-    request.wavelengths = wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths);
-    request.radii_mm = finite_vector(radii_mm, "radii_mm");
-    request.transmittance = transmittance;
-    request.switches = solver_switches(switches);
-    if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
-    if (!seed.is_none()) {
-        request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
-        request.sampling_options.push_back("seed");
-    }
-    SpectralProfiles p;
-    run_interruptible(
-        [&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) {
-            auto r = request;
-            r.cancel = &cancel;
-            p = solve_profiles(solver, base.material, r);
-        },
-        py::none());
+    const auto request = profile_request_argument(wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths),
+                                                  radii_mm, transmittance, rays, seed, switches);
+    const auto p = solve_profiles_interruptible(solver, base.material, request);
     const auto rows = static_cast<py::ssize_t>(p.channels.size());
     const auto radii = static_cast<py::ssize_t>(p.radii_mm.size());
     std::vector<double> nm, r, t, r_se, t_se, total_r, total_t, specular;

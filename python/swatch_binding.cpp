@@ -4,11 +4,13 @@
 
 #include <pybind11/stl.h>
 
+#include "appearance/lit_swatch.hpp"
 #include "appearance/swatch_chart.hpp"
 #include "python/bindings.hpp"
 #include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/skin_tone.hpp"
+#include "spectral/text_fields.hpp"
 
 namespace skinspec::python {
 namespace {
@@ -16,6 +18,99 @@ namespace {
 py::dict swatch(const std::string& material, const py::object& vary, const py::object& set, double delta_e, const std::string& illuminant,
                 const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays, const std::string& geometry,
                 const std::string& space, const py::object& threads, const py::object& progress) {
+    auto request = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry);
+    if (vary.is_none()) request.sweeps = default_swatch_sweeps(load_material(request.material, request.overrides));
+    else {
+        for (const auto& text : name_list(vary, "vary")) request.sweeps.push_back(parse_sweep(text));
+    }
+    const std::string chosen_space = ColorManagement::builtin().canonical_space(space, "space");
+    return swatch_dict(compute_swatch_interruptible(request, threads, progress), request, chosen_space);
+}
+
+// The lighting of a lit swatch: "spot", "edge", or "pattern" with `pattern` an array (height, width) of relative
+// irradiance, (height, width, 3) linear Rec.709, or an image file.
+Illumination lighting_argument(const std::string& lighting, const py::object& pattern, double spot_radius_mm, PatchGeometry& view) {
+    if (lighting != "spot" && lighting != "edge" && lighting != "pattern") {
+        throw InputError("lighting: '" + lighting + "' is not a lighting (allowed: spot, edge, pattern)");
+    }
+    if ((lighting == "pattern") == pattern.is_none()) throw InputError("pattern: give it with lighting=\"pattern\" (and only then)");
+    if (lighting == "spot") return Illumination::spot(spot_radius_mm);
+    if (lighting == "edge") return Illumination::edge();
+    const auto& cm = ColorManagement::builtin();
+    if (py::isinstance<py::str>(pattern) || py::hasattr(pattern, "__fspath__")) {
+        const auto file = py::str(py::module_::import("os").attr("fspath")(pattern)).cast<std::string>();
+        return pattern_lighting(read_linear_image(file, "Linear Rec.709", cm), view);
+    }
+    const auto a = finite_array(pattern, "pattern");
+    if (!(a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) == 3))) throw InputError("pattern: expected an array (height, width) or (height, width, 3)");
+    LinearImage image{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)), {}};
+    for (py::ssize_t p = 0; p < a.shape(0) * a.shape(1); ++p) {
+        for (int c = 0; c < 3; ++c) image.rgb.push_back(static_cast<float>(a.data()[a.ndim() == 2 ? p : 3 * p + c]));
+    }
+    return pattern_lighting(image, view);
+}
+
+py::dict lit_swatch(const py::object& material, const std::string& lighting, const py::object& pattern, double field_mm, int pixels,
+                    double spot_radius_mm, const py::object& wavelengths, const std::string& mode, const std::string& illuminant,
+                    const std::string& observer, const std::string& space, const py::object& output, bool half, const std::string& display,
+                    const std::string& view_name, bool overwrite, const py::object& progress, const py::kwargs& switches) {
+    const auto skin = material_argument(material, "material");
+    auto view = lit_view(field_mm, pixels);
+    LitSwatchFiles files{{}, space, half, display, view_name, overwrite};
+    if (!output.is_none()) {
+        const auto fspath = py::module_::import("os").attr("fspath");
+        const bool one = py::isinstance<py::str>(output) || py::hasattr(output, "__fspath__");
+        for (const auto& f : one ? py::list(py::make_tuple(output)) : py::list(output)) files.outputs.emplace_back(py::str(fspath(f)).cast<std::string>());
+    }
+    files = check_lit_swatch_files(files);
+    const auto& solver = find_solver(mode, "mode");
+    const auto light = lighting_argument(lighting, pattern, spot_radius_mm, view);
+    const auto grid = wavelength_argument(wavelengths);
+    const auto solver_settings = solver_switches(switches);
+    LitSwatch swatch;
+    run_interruptible(
+        [&](const CancelFlag& cancel, const std::function<void(const Progress&)>& report) {
+            swatch = render_lit_swatch(skin.material, grid, light, view, solver, solver_settings, parse_illuminant(illuminant, "illuminant"),
+                                       parse_observer(observer, "observer"), files.space,
+                                       [&report](std::size_t done, std::size_t total) { report(Progress{0, 0, done, total}); }, &cancel);
+        },
+        progress);
+    std::string wavelengths_text;
+    for (const double nm : grid.nm()) wavelengths_text += (wavelengths_text.empty() ? "" : ",") + format_number(nm);
+    write_lit_swatch(swatch, material_name(skin.material), light, field_mm, wavelengths.is_none() ? "400:700:10" : wavelengths_text, files);
+    const auto& patch = swatch.patch;
+    const auto h = static_cast<py::ssize_t>(view.height_px), w = static_cast<py::ssize_t>(view.width_px);
+    std::vector<double> exitance;
+    std::vector<std::string> labels;
+    for (std::size_t c = 0; c < patch.exitance.size(); ++c) {
+        exitance.insert(exitance.end(), patch.exitance[c].begin(), patch.exitance[c].end());
+        labels.push_back(patch.profiles.channels[c].label);
+    }
+    std::vector<std::string> written;
+    for (const auto& f : files.outputs) written.push_back(f.string());
+    py::dict d;
+    d["material"] = material_name(skin.material);
+    d["model"] = patch.profiles.model;
+    d["lighting"] = light.description();
+    d["rgb"] = to_array(std::vector<double>(swatch.image.rgb.begin(), swatch.image.rgb.end()), {h, w, 3});
+    d["space"] = files.space;
+    d["exitance"] = to_array(exitance, {static_cast<py::ssize_t>(labels.size()), h, w});
+    d["labels"] = labels;
+    d["wavelength_nm"] = swatch.bands ? py::object(py::none())
+                                      : py::object(to_array(std::vector<double>(grid.nm().begin(), grid.nm().end()), {static_cast<py::ssize_t>(grid.size())}));
+    d["pixel_mm"] = view.pixel_mm;
+    d["kernel_reach_mm"] = patch.kernel_radius_px * view.pixel_mm;
+    d["largest_kernel_correction"] = patch.largest_kernel_correction;
+    d["files"] = written;
+    d["warnings"] = summarise_warnings(patch.profiles.warnings);
+    return d;
+}
+
+}  // namespace
+
+SwatchRequest swatch_request_argument(const std::string& material, const py::object& set, double delta_e, const std::string& illuminant,
+                                      const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays,
+                                      const std::string& geometry) {
     SwatchRequest request;
     request.material = material;
     if (!set.is_none()) {
@@ -23,10 +118,6 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
         for (const auto& [key, value] : set.cast<py::dict>()) {
             request.overrides.push_back(parse_override(py::str(key).cast<std::string>() + "=" + py::str(value).cast<std::string>()));
         }
-    }
-    if (vary.is_none()) request.sweeps = default_swatch_sweeps(load_material(request.material, request.overrides));
-    else {
-        for (const auto& text : name_list(vary, "vary")) request.sweeps.push_back(parse_sweep(text));
     }
     request.illuminant = parse_illuminant(illuminant, "illuminant");
     request.observer = parse_observer(observer, "observer");
@@ -41,8 +132,10 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
         request.max_rays_per_wavelength = whole_number(max_rays, 1, 1.125899906842624e15, "max_rays");
         request.sampling_options.push_back("max_rays");
     }
-    const auto& cm = ColorManagement::builtin();
-    const std::string chosen_space = cm.canonical_space(space, "space");
+    return request;
+}
+
+SwatchChart compute_swatch_interruptible(const SwatchRequest& request, const py::object& threads, const py::object& progress) {
     const ThreadLimit limit(threads);
     SwatchChart chart;
     run_interruptible(
@@ -53,6 +146,11 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
             chart = compute_swatch(r);
         },
         progress);
+    return chart;
+}
+
+py::dict swatch_dict(const SwatchChart& chart, const SwatchRequest& request, const std::string& space) {
+    const auto& cm = ColorManagement::builtin();
     const auto rows = static_cast<py::ssize_t>(chart.rows), columns = static_cast<py::ssize_t>(chart.columns);
     const auto n = static_cast<py::ssize_t>(chart.wavelengths.size());
     std::vector<double> xyz, lab, rgb, reflectance, reflectance_se, uncertainty, ita, rays, parameters;
@@ -60,7 +158,7 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
     for (const auto& p : chart.patches) {
         xyz.insert(xyz.end(), {p.xyz.X, p.xyz.Y, p.xyz.Z});
         lab.insert(lab.end(), {p.lab.L, p.lab.a, p.lab.b});
-        const auto c = cm.from_xyz(p.xyz, chart.white, chosen_space);
+        const auto c = cm.from_xyz(p.xyz, chart.white, space);
         rgb.insert(rgb.end(), c.begin(), c.end());
         reflectance.insert(reflectance.end(), p.reflectance.begin(), p.reflectance.end());
         reflectance_se.insert(reflectance_se.end(), p.reflectance_stderr.begin(), p.reflectance_stderr.end());
@@ -74,7 +172,7 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
     py::dict d;
     std::vector<std::string> fields;
     for (const auto& s : request.sweeps) fields.push_back(s.field);
-    d["material"] = material;
+    d["material"] = request.material;
     d["solver"] = request.solver;
     d["fields"] = fields;
     d["shape"] = py::make_tuple(rows, columns);
@@ -93,14 +191,27 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
         d["category"] = category;
         d["rays"] = to_array(rays, {rows, columns});
     }
-    d["space"] = chosen_space;
+    d["space"] = space;
     d["white_XYZ"] = to_array({chart.white.X, chart.white.Y, chart.white.Z}, {3});
     return d;
 }
 
-}  // namespace
-
 void bind_swatch(py::module_& m) {
+    m.def("lit_swatch", &lit_swatch, R"doc(One flat patch of a material under structured light, as `skinspec swatch --lit` renders it (a diffusion mode's radial profiles convolved with the light).
+
+    material: a skinspec.Material, preset name or .toml path; lighting: "spot" (a lit disc of spot_radius_mm),
+    "edge" (lit for x > 0) or "pattern" with pattern= an array (height, width) of relative irradiance, (height,
+    width, 3) linear Rec.709, or an image file (the view takes its aspect); field_mm: the view's width; pixels: its
+    width in pixels, [8, 4096]; wavelengths: nm (default 400-700 every 10); mode: a solver that computes profiles
+    (default "multipole") with its switches as keywords; space: the working space of "rgb"; output: a file or a list
+    (.exr linear; .png, .tif display-referred through display / view), checked before any work. Returns rgb
+    (height, width, 3), exitance per channel (channels, height, width; diffuse exitance per unit irradiance, no
+    specular), labels, wavelength_nm, pixel_mm, kernel_reach_mm, largest_kernel_correction, files and warnings.)doc",
+          py::arg("material"), py::arg("lighting") = "spot", py::kw_only(), py::arg("pattern") = py::none(), py::arg("field_mm") = 20.0,
+          py::arg("pixels") = 256, py::arg("spot_radius_mm") = 2.0, py::arg("wavelengths") = py::none(), py::arg("mode") = "multipole",
+          py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("space") = "ACEScg", py::arg("output") = py::none(),
+          py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("overwrite") = false,
+          py::arg("progress") = py::none());
     m.def("swatch", &swatch, R"doc(The colours of a material over one or two swept fields, as `skinspec swatch` computes them (no image is written).
 
     material: a preset name or .toml path; vary: "FIELD=FIRST:LAST:STEPS[:log]" strings (first: columns, second:

@@ -1,0 +1,55 @@
+#pragma once
+// A material's radial profile R(r) as renderers take it: fitted as a sum of Gaussians with shared variances
+// (inverse/gaussian_sum/gaussian_sum_fit.hpp; d'Eon, Luebke & Enderton 2007) per colour band (the profile's colour
+// at each radius, in a linear RGB space) or per wavelength. `skinspec export profile` and skinspec.export_profile
+// write the same JSON and table from here.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "inverse/gaussian_sum/gaussian_sum_fit.hpp"
+#include "spectral/colorimetry.hpp"
+#include "transport/diffusion/diffusion_profiles.hpp"
+
+namespace skinspec {
+
+enum class ProfileChannels { rgb, wavelength };
+// "rgb" or "wavelength"; InputError naming `option` for anything else.
+ProfileChannels parse_profile_channels(const std::string& text, std::string_view option);
+
+struct ProfileExportRequest {
+    ProfileChannels per = ProfileChannels::rgb;
+    std::string space = "ACEScg";  // the linear RGB space of the bands (an OCIO colour space)
+    IlluminantKind illuminant = IlluminantKind::d65;
+    ObserverKind observer = ObserverKind::cie1931_2deg;
+    std::size_t gaussians = 6;  // [1, 12]
+};
+
+struct ProfileExport {
+    std::string material;
+    std::string model;
+    std::string channels_text;  // "bands", "RGB in ACEScg (D65, 2 deg)", "wavelengths"
+    std::vector<std::string> names;
+    std::vector<double> radii_mm;
+    std::vector<double> total_reflectance;  // per channel: the solver's total diffuse R (the whole plane)
+    GaussianSumFit fit;
+};
+
+// The wavelengths an RGB fit needs: CIE 015:2018 Sec. 7.1's 380-780 nm, every 10 nm.
+WavelengthGrid rgb_profile_wavelengths();
+// InputError, before any solve, for a band material fitted per wavelength or a Gaussian count outside [1, 12].
+void check_profile_export(const std::string& material, bool bands, const ProfileExportRequest& request);
+// `profiles`: per wavelength (an RGB fit integrates them against the observer) or per band (`bands`). InputError as
+// check_profile_export and fit_gaussian_sum.
+ProfileExport fit_profile_export(const SpectralProfiles& profiles, bool bands, const ProfileExportRequest& request);
+
+// The fit as `skinspec export profile -o F.json` writes it: variances, per channel weights and the fit's errors.
+nlohmann::ordered_json profile_export_json(const ProfileExport& exported);
+// "# skinspec ... sum-of-N-Gaussians fit of R(r): material ..., model ..., channels ..., r A-B mm" (one line).
+std::string profile_export_header(const ProfileExport& exported);
+// The CSV table (--table): header, units, then one row per Gaussian: variance_mm2, weight per channel.
+std::string profile_export_table_csv(const ProfileExport& exported);
+
+}  // namespace skinspec

@@ -1,0 +1,120 @@
+#include "formats/scene_export.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "formats/mitsuba_scene.hpp"
+#include "formats/pbrt_scene.hpp"
+#include "skinspec/version.hpp"
+#include "spectral/atomic_file.hpp"
+#include "spectral/chart_image.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec {
+namespace {
+
+// The largest relative difference between what was written and what reading the files back gives.
+double largest_difference(const RendererMedia& a, const RendererMedia& b) {
+    if (a.layers.size() != b.layers.size()) return INFINITY;
+    double worst = 0.0;
+    const auto compare = [&](double x, double y) {
+        const double scale = std::max(std::abs(x), std::abs(y));
+        if (scale > 0.0) worst = std::max(worst, std::abs(x - y) / scale);
+    };
+    for (std::size_t k = 0; k < a.layers.size(); ++k) {
+        const auto& x = a.layers[k];
+        const auto& y = b.layers[k];
+        if (x.name != y.name || x.sigma_a_per_mm.size() != y.sigma_a_per_mm.size() || x.phase.kind != y.phase.kind ||
+            x.phase.values.size() != y.phase.values.size()) {
+            return INFINITY;
+        }
+        compare(x.thickness_mm, y.thickness_mm);
+        compare(x.refractive_index, y.refractive_index);
+        for (std::size_t i = 0; i < x.sigma_a_per_mm.size(); ++i) {
+            compare(x.sigma_a_per_mm[i], y.sigma_a_per_mm[i]);
+            compare(x.sigma_s_per_mm[i], y.sigma_s_per_mm[i]);
+        }
+        if (x.phase.kind == RendererPhase::Kind::henyey_greenstein) compare(x.phase.g, y.phase.g);
+        for (std::size_t i = 0; i < x.phase.values.size(); ++i) compare(x.phase.values[i], y.phase.values[i]);
+    }
+    if (a.bottom_reflector != b.bottom_reflector) return INFINITY;
+    return worst;
+}
+
+std::string_view phase_kind(RendererPhase::Kind kind) {
+    switch (kind) {
+        case RendererPhase::Kind::henyey_greenstein: return "henyey-greenstein";
+        case RendererPhase::Kind::isotropic: return "isotropic";
+        case RendererPhase::Kind::tabulated: return "tabulated";
+    }
+    return "henyey-greenstein";
+}
+
+}  // namespace
+
+std::string_view to_string(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? "pbrt" : "mitsuba"; }
+
+std::string_view renderer_title(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? "pbrt-v4" : "Mitsuba 3"; }
+
+std::string_view scene_extension(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? ".pbrt" : ".xml"; }
+
+PhaseExport default_phase_export(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? PhaseExport::hg : PhaseExport::own; }
+
+SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, SceneRenderer renderer, const std::filesystem::path& scene,
+                         bool overwrite) {
+    SceneExport out;
+    out.media = renderer_media(stack, request);
+    const bool pbrt = renderer == SceneRenderer::pbrt;
+    out.files = pbrt ? pbrt_scene_files(out.media, scene) : mitsuba_scene_files(out.media, scene);
+    check_output_path(scene, overwrite, {std::string(scene_extension(renderer))});
+    for (std::size_t i = 1; i < out.files.size(); ++i) {
+        if (std::filesystem::exists(out.files[i]) && !overwrite) throw InputError(out.files[i].string() + " exists (use --overwrite to replace it)");
+        OutputClaims::claim(out.files[i], overwrite);
+    }
+    if (pbrt) write_pbrt_scene(out.media, scene);
+    else write_mitsuba_scene(out.media, scene);
+    const auto back = pbrt ? read_pbrt_scene(scene, out.media.above_refractive_index) : read_mitsuba_scene(scene);
+    out.read_back_difference = largest_difference(out.media, back);
+    if (!(out.read_back_difference <= 1e-12)) {
+        throw std::runtime_error("the written scene does not read back as the media given (difference " + format_number(out.read_back_difference) + ")");
+    }
+    out.mean_cosine_spread = mean_cosine_spread(stack, request.wavelengths_nm);
+    return out;
+}
+
+nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRenderer renderer) {
+    const auto& media = exported.media;
+    nlohmann::ordered_json layers = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < media.layers.size(); ++k) {
+        const auto& l = media.layers[k];
+        nlohmann::ordered_json layer{{"name", l.name},
+                                     {"thickness_mm", l.thickness_mm},
+                                     {"refractive_index", l.refractive_index},
+                                     {"sigma_a_per_mm", l.sigma_a_per_mm},
+                                     {"sigma_s_per_mm", l.sigma_s_per_mm},
+                                     {"phase", phase_kind(l.phase.kind)},
+                                     {"mean_cosine", l.phase.g},
+                                     {"mean_cosine_over_wavelengths", {exported.mean_cosine_spread[k].first, exported.mean_cosine_spread[k].second}}};
+        if (l.phase.kind == RendererPhase::Kind::tabulated) layer["phase_per_sr_over_cos_theta"] = l.phase.values;
+        layers.push_back(std::move(layer));
+    }
+    std::vector<std::string> files;
+    for (const auto& f : exported.files) files.push_back(f.string());
+    return {{"skinspec_version", version},
+            {"renderer", renderer_title(renderer)},
+            {"material", media.material},
+            {"files", files},
+            {"wavelengths_nm", media.wavelengths_nm},
+            {"rgb", media.rgb},
+            {"phase_wavelength_nm", media.phase_wavelength_nm},
+            {"above_refractive_index", media.above_refractive_index},
+            {"below_refractive_index", media.below_refractive_index},
+            {"bottom_reflector", media.bottom_reflector},
+            {"units", {{"thickness", "mm"}, {"sigma_a, sigma_s", "1/mm"}, {"phase", "1/sr"}}},
+            {"layers", layers},
+            {"read_back_largest_relative_difference", exported.read_back_difference}};
+}
+
+}  // namespace skinspec

@@ -1,0 +1,190 @@
+// skinspec.export_pbrt / export_mitsuba (docs/PYTHON.md "Exports"): the files `skinspec export ...` writes, written
+// by the same library calls, with the command's --json report returned as a dict of numpy arrays.
+#include <filesystem>
+
+#include <pybind11/stl.h>
+
+#include <chrono>
+
+#include "appearance/lut_export.hpp"
+#include "appearance/profile_export.hpp"
+#include "formats/scene_export.hpp"
+#include "python/bindings.hpp"
+#include "spectral/atomic_file.hpp"
+#include "spectral/chart_image.hpp"
+#include "spectral/color_management.hpp"
+#include "spectral/input_error.hpp"
+#include "spectral/named_choice.hpp"
+#include "spectral/text_fields.hpp"
+
+namespace skinspec::python {
+namespace {
+
+std::filesystem::path path_argument(const py::handle& value, std::string_view what) {
+    if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__")) {
+        return py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>();
+    }
+    throw InputError(std::string(what) + ": expected a file path (str or os.PathLike), got " +
+                     py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+}
+
+const LayerStack& layered(const PyMaterial& material, std::string_view command) {
+    const auto* stack = std::get_if<LayerStack>(&material.material);
+    if (!stack) {
+        throw InputError("material '" + material_name(material.material) + "' is given per band (a homogeneous half-space without layers); " +
+                         std::string(command) + " writes the layers of a layered material");
+    }
+    return *stack;
+}
+
+py::object export_scene_files(SceneRenderer renderer, const py::object& material, const py::object& output, const py::object& wavelengths,
+                              const py::object& rgb, const py::object& phase, double phase_wavelength_nm, bool overwrite) {
+    const auto skin = material_argument(material, "material");
+    const auto& stack = layered(skin, "export_" + std::string(to_string(renderer)));
+    const auto scene = path_argument(output, "output");
+    MediaRequest request;
+    request.rgb = !rgb.is_none();
+    if (request.rgb) {
+        if (!wavelengths.is_none()) throw InputError("rgb: give either wavelengths (spectral media) or rgb (three wavelengths as R, G, B), not both");
+        request.wavelengths_nm = finite_vector(rgb, "--rgb");
+    } else {
+        const auto grid = wavelength_argument(wavelengths);
+        request.wavelengths_nm.assign(grid.nm().begin(), grid.nm().end());
+    }
+    request.phase_wavelength_nm = phase_wavelength_nm;
+    request.phase = phase.is_none() ? default_phase_export(renderer)
+                                    : parse_named_choice(phase.cast<std::string>(), "phase", std::array{PhaseExport::own, PhaseExport::hg}, "a phase export");
+    return json_object(scene_export_json(export_scene(stack, request, renderer, scene, overwrite), renderer));
+}
+
+std::optional<std::filesystem::path> optional_path(const py::object& value, std::string_view what) {
+    if (value.is_none()) return std::nullopt;
+    return path_argument(value, what);
+}
+
+py::object export_profile(const py::object& material, const py::object& output, const py::object& table, const std::string& per,
+                          const py::object& wavelengths, const std::string& space, const std::string& illuminant, const std::string& observer,
+                          std::size_t gaussians, const py::object& radii_mm, const std::string& mode, const py::object& rays, const py::object& seed,
+                          bool overwrite, const py::kwargs& switches) {
+    const auto skin = material_argument(material, "material");
+    ProfileExportRequest fit_request;
+    fit_request.per = parse_profile_channels(per, "per");
+    const auto& solver = find_solver(mode, "mode");
+    const auto& cm = ColorManagement::builtin();
+    fit_request.space = cm.canonical_space(space, "space");
+    space_chromaticities(fit_request.space);
+    fit_request.illuminant = parse_illuminant(illuminant, "illuminant");
+    fit_request.observer = parse_observer(observer, "observer");
+    fit_request.gaussians = gaussians;
+    const auto json_file = optional_path(output, "output"), table_file = optional_path(table, "table");
+    if (json_file) check_output_path(*json_file, overwrite, {".json"});
+    if (table_file) check_output_path(*table_file, overwrite, {".csv"});
+    const bool bands = std::holds_alternative<HomogeneousMaterial>(skin.material);
+    check_profile_export(material_name(skin.material), bands, fit_request);
+    const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths()
+                                                              : (wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths));
+    const auto radii = radii_mm.is_none() ? py::object(to_array(parse_radii_mm("0:10:0.01", "radii_mm"), {1001})) : radii_mm;
+    const auto profiles = solve_profiles_interruptible(solver, skin.material, profile_request_argument(grid, radii, false, rays, seed, switches));
+    const auto exported = fit_profile_export(profiles, bands, fit_request);
+    const auto document = profile_export_json(exported);
+    if (json_file) write_text_file(*json_file, document.dump(2) + "\n", overwrite);
+    if (table_file) write_text_file(*table_file, profile_export_table_csv(exported), overwrite);
+    py::dict out = json_object(document);
+    out["warnings"] = summarise_warnings(profiles.warnings);
+    return out;
+}
+
+py::object export_lut(const std::string& material, const py::object& output, const std::string& melanin, const std::string& blood,
+                      const py::object& set, double delta_e, const std::string& illuminant, const std::string& observer, const std::string& solver,
+                      const py::object& seed, const py::object& max_rays, const std::string& geometry, const std::string& space, bool half,
+                      const py::object& spectra, const py::object& preview, const std::string& display, const std::string& view,
+                      const py::object& threads, const py::object& progress, bool overwrite) {
+    auto request = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry);
+    const auto u = lut_axis(lut_melanin_field, melanin, "melanin");
+    const auto v = lut_axis(lut_blood_field, blood, "blood");
+    request.sweeps = {u, v};
+    const auto files = check_lut_files(LutFiles{path_argument(output, "output"), optional_path(spectra, "spectra").value_or(""),
+                                                optional_path(preview, "preview").value_or(""), space, half, display, view, overwrite},
+                                       u, v);
+    const auto start = std::chrono::steady_clock::now();
+    const auto chart = compute_swatch_interruptible(request, threads, progress);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto summary = write_lut_files(chart, request, files);
+    auto out = swatch_dict(chart, request, files.space);
+    for (const auto& [key, value] : json_object(lut_summary_json(chart, request, files, summary, seconds, 1)).cast<py::dict>()) out[key] = value;
+    std::vector<std::string> written{files.texture.string()};
+    for (const auto& f : {files.spectra, files.preview}) {
+        if (!f.empty()) written.push_back(f.string());
+    }
+    out["files"] = written;
+    out["warnings"] = summarise_warnings(chart.warnings);
+    return out;
+}
+
+constexpr const char* scene_doc = R"doc(
+
+    material: a skinspec.Material, preset name or .toml path (layered); output: the scene file; wavelengths: spectral
+    media at these wavelengths in nm (default 400-700 every 10, one .spd file per layer and coefficient beside the
+    scene) or rgb: three wavelengths whose coefficients are taken as R, G, B (e.g. [650, 550, 450]); phase: "hg" or
+    "own"; phase_wavelength: the wavelength (nm) of the phase functions; overwrite: replace existing files. The
+    files are read back after writing (read_back_largest_relative_difference). Returns the dict `--json` prints:
+    files, wavelengths_nm and per layer thickness_mm, refractive_index, sigma_a_per_mm and sigma_s_per_mm (numpy, one
+    value per wavelength), phase and mean_cosine.)doc";
+
+}  // namespace
+
+void bind_exports(py::module_& m) {
+    m.def("export_lut", &export_lut, R"doc(A melanosome x blood look-up texture of diffuse skin albedo, as `skinspec export lut` writes it.
+
+    material: a preset name or .toml path; output: the linear OpenEXR texture (one texel per melanin column and blood
+    row); melanin, blood: "FIRST:LAST:STEPS[:log]" of epidermis.melanosome_fraction and dermis.blood_fraction; set:
+    {field: value} overrides; delta_e: each texel's CIEDE2000 uncertainty target; solver, seed, max_rays, geometry
+    (default "sce"): as skinspec.swatch; space: the texture's linear working space; half: half float; spectra: also
+    the reflectance spectra (.exr, one channel per wavelength, or .csv); preview: also a display-referred image with
+    labelled axes (.png, .tif) in `display` / `view`; overwrite: replace existing files. Returns skinspec.swatch's
+    arrays (rows = blood, columns = melanin) with the command's --json summary (rays, worst_delta_e_uncertainty,
+    seconds) and the files written.)doc",
+          py::arg("material"), py::arg("output"), py::kw_only(), py::arg("melanin") = "0.01:0.42:64:log",
+          py::arg("blood") = "0.002:0.05:64:log", py::arg("set") = py::none(), py::arg("delta_e") = 0.5, py::arg("illuminant") = "D65",
+          py::arg("observer") = "2", py::arg("solver") = "biospec", py::arg("seed") = py::none(), py::arg("max_rays") = py::none(),
+          py::arg("geometry") = "sce", py::arg("space") = "ACEScg", py::arg("half") = false, py::arg("spectra") = py::none(),
+          py::arg("preview") = py::none(), py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("threads") = py::none(),
+          py::arg("progress") = py::none(), py::arg("overwrite") = false);
+    m.def("export_profile", &export_profile, R"doc(R(r) fitted as a sum of Gaussians with shared variances (d'Eon et al. 2007), as `skinspec export profile` fits it.
+
+    material: a skinspec.Material, preset name or .toml path; output: also write the fit as JSON (.json); table: also
+    write the variances and weights as CSV (.csv); per: "rgb" (one fit per colour band: the profile's colour at each
+    radius in the linear `space` under `illuminant` and `observer`, from 380-780 nm every 10) or "wavelength" (one per
+    `wavelengths`, default 450, 550, 650 nm); gaussians: [1, 12]; radii_mm: where R(r) is fitted (default 0-10 mm by
+    0.01); mode: a solver that computes profiles (default "multipole"); rays, seed and solver switches as
+    skinspec.profiles takes them; overwrite: replace existing files. Returns the JSON the command writes
+    (variances_mm2 and per channel its weights and the fit's errors) and the solver's warnings.)doc",
+          py::arg("material"), py::kw_only(), py::arg("output") = py::none(), py::arg("table") = py::none(), py::arg("per") = "rgb",
+          py::arg("wavelengths") = py::none(), py::arg("space") = "ACEScg", py::arg("illuminant") = "D65", py::arg("observer") = "2",
+          py::arg("gaussians") = ProfileExportRequest{}.gaussians, py::arg("radii_mm") = py::none(), py::arg("mode") = "multipole",
+          py::arg("rays") = py::none(), py::arg("seed") = py::none(), py::arg("overwrite") = false);
+    static const std::string pbrt_doc = std::string("The layered skin as pbrt-v4 media in a lit-slab scene, as `skinspec export pbrt` writes it (phase "
+                                                    "default \"hg\": pbrt-v4 media take Henyey-Greenstein only).") + scene_doc;
+    static const std::string mitsuba_doc = std::string("The layered skin as Mitsuba 3 media in a lit-slab scene, as `skinspec export mitsuba` writes it "
+                                                       "(phase default \"own\": HG, isotropic, measured phases as tabphase).") + scene_doc;
+    m.def(
+        "export_pbrt",
+        [](const py::object& material, const py::object& output, const py::object& wavelengths, const py::object& rgb, const py::object& phase,
+           double phase_wavelength, bool overwrite) {
+            return export_scene_files(SceneRenderer::pbrt, material, output, wavelengths, rgb, phase, phase_wavelength, overwrite);
+        },
+        pbrt_doc.c_str(),
+        py::arg("material"), py::arg("output"), py::kw_only(), py::arg("wavelengths") = py::none(), py::arg("rgb") = py::none(),
+        py::arg("phase") = py::none(), py::arg("phase_wavelength") = MediaRequest{}.phase_wavelength_nm, py::arg("overwrite") = false);
+    m.def(
+        "export_mitsuba",
+        [](const py::object& material, const py::object& output, const py::object& wavelengths, const py::object& rgb, const py::object& phase,
+           double phase_wavelength, bool overwrite) {
+            return export_scene_files(SceneRenderer::mitsuba, material, output, wavelengths, rgb, phase, phase_wavelength, overwrite);
+        },
+        mitsuba_doc.c_str(),
+        py::arg("material"), py::arg("output"), py::kw_only(), py::arg("wavelengths") = py::none(), py::arg("rgb") = py::none(),
+        py::arg("phase") = py::none(), py::arg("phase_wavelength") = MediaRequest{}.phase_wavelength_nm, py::arg("overwrite") = false);
+}
+
+}  // namespace skinspec::python
