@@ -77,7 +77,8 @@ void ProgressBar::operator()(const Progress& p) {
     const auto rays = p.rays_done ? fmt::format(", {:.3g} rays", static_cast<double>(p.rays_done)) : std::string();
     std::fputs(fmt::format("\r\033[K{} [{}{}] {}/{} {}{}{}{}", label_, std::string(filled, '#'), std::string(width - filled, '.'),
                            p.wavelengths_done, p.wavelengths_total, unit_, rays,
-                           estimable ? ", " + duration_text(left) + " left" : std::string(), cancel_requested ? " (stopping)" : "")
+                           estimable ? ", " + duration_text(left) + " left" : std::string(share < 1.0 ? ", time left: measuring" : ""),
+                           cancel_requested ? " (stopping)" : "")
                    .c_str(),
                stderr);
 }

@@ -161,7 +161,8 @@ SpectralRequest PartProgress::part(const SpectralRequest& request, std::size_t p
         rays_of_part_ = p.rays_done;
         const std::size_t to_come = parts_ - part;  // this part included
         const std::uint64_t expected = p.rays_expected > 0 ? rays_before_ + p.rays_expected * to_come : 0;
-        whole_(Progress{rays_before_ + p.rays_done, expected, part * p.wavelengths_total + p.wavelengths_done, parts_ * p.wavelengths_total});
+        whole_(Progress{rays_before_ + p.rays_done, expected, part * p.wavelengths_total + p.wavelengths_done, parts_ * p.wavelengths_total,
+                        p.wavelengths_in_progress});
     };
     return out;
 }

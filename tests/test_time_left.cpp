@@ -37,10 +37,25 @@ TEST_CASE("a share that jumps back and forth between wavelengths moves the estim
     CHECK(largest_step < 5.0);  // seconds, at 4 reports a second
 }
 
-TEST_CASE("the share of work done stays between the units finished and those plus the current one", "[time_left]") {
+TEST_CASE("the share of work done stays between the units finished and those plus the ones in progress", "[time_left]") {
     CHECK(work_share({0, 0, 3, 10}) == Approx(0.3));
     CHECK(work_share({500, 1000, 3, 10}) == Approx(0.4));  // rays say half the work: not past the current unit
     CHECK(work_share({10, 1000, 3, 10}) == Approx(0.3));   // nor before the units finished
     CHECK(work_share({350, 1000, 3, 10}) == Approx(0.35));
     CHECK(work_share({0, 0, 0, 0}) == 1.0);
+    // Eleven wavelengths traced at once (a walk's round): the rays are the measure, none finished until the end.
+    CHECK(work_share({26'000'000, 55'000'000, 0, 11, 11}) == Approx(26.0 / 55.0));
+}
+
+TEST_CASE("a walk's progress through run_batches gives an estimate near the truth", "[time_left]") {
+    // Eleven wavelengths of 5e6 rays each, traced at once at a steady rate over 10 s, reported as run_batches
+    // reports them: before, the share stopped at 1/11 and the estimate rose to 8 min 30 s for a 6 s run.
+    TimeLeft t;
+    std::optional<double> left;
+    for (double s = 0.1; s < 5.0; s += 0.1) {
+        const auto rays = static_cast<std::uint64_t>(55e6 * s / 10.0);
+        left = t.update(s, work_share({rays, 55'000'000, 0, 11, 11}));
+    }
+    REQUIRE(left.has_value());
+    CHECK(*left == Approx(5.0).epsilon(0.1));
 }

@@ -25,6 +25,7 @@ RayPlanner::RayPlanner(const SpectralRequest& request, std::size_t channels, std
     planned_.assign(n, adaptive_ ? std::min<std::uint64_t>(budget, std::max<std::uint64_t>(1, request.initial_batches) * rays_per_batch_)
                                  : budget);
     expected_ = planned_;
+    estimated_ = !adaptive_;
     update_totals();
 }
 
@@ -113,10 +114,11 @@ void RayPlanner::end_round(const std::vector<BatchTask>& tasks) {
         planned_[w] = std::clamp<std::uint64_t>(more, rays_per_batch_, budget - used);
         expected_[w] = static_cast<std::uint64_t>(std::min(std::ceil(needed), static_cast<double>(budget)));
     }
+    estimated_ = true;
     update_totals();
 }
 
-std::uint64_t RayPlanner::rays_expected() const { return rays_expected_; }
+std::uint64_t RayPlanner::rays_expected() const { return estimated_ ? rays_expected_ : 0; }
 
 std::size_t RayPlanner::wavelengths_finished() const { return wavelengths_finished_; }
 
@@ -141,7 +143,8 @@ DriverOutcome run_batches(const SpectralRequest& request, std::size_t channels, 
     const auto report = [&] {
         if (!request.on_progress) return;
         std::lock_guard lock(progress_mutex);
-        request.on_progress(Progress{rays_done.load(), planner.rays_expected(), planner.wavelengths_finished(), n});
+        const auto finished = planner.wavelengths_finished();
+        request.on_progress(Progress{rays_done.load(), planner.rays_expected(), finished, n, n - finished});
     };
     const auto cancelled = [&] { return request.cancel && request.cancel->load(); };
     // A round runs in parts of at most this many batches: memory for their tallies stays bounded (a billion photons

@@ -31,8 +31,9 @@ public:
     void absorb_part(const std::vector<BatchTask>& part, const RoundOutput& output);
     // After every part of the round: re-plans each wavelength of `tasks` whose batches all ran.
     void end_round(const std::vector<BatchTask>& tasks);
-    // Rays the whole request is expected to need, from the estimates so far (the budget without a target), and
-    // the wavelengths finished: both as of the last round (cheap to ask after every batch).
+    // Rays the whole request is expected to need, from the estimates so far (the budget without a target; 0,
+    // unknown, with a target until the first round has been measured: its few batches are no estimate of the
+    // whole), and the wavelengths finished: both as of the last round (cheap to ask after every batch).
     std::uint64_t rays_expected() const;
     std::size_t wavelengths_finished() const;
     DriverOutcome outcome(bool cancelled) const;
@@ -54,6 +55,7 @@ private:
     std::vector<std::uint64_t> planned_;   // rays of the next round, per wavelength
     std::vector<std::uint64_t> expected_;  // rays each wavelength is expected to need in all
     std::uint64_t rays_expected_ = 0;
+    bool estimated_ = false;  // rays_expected_ is an estimate of the whole (no target, or a round measured)
     std::size_t wavelengths_finished_ = 0;
 };
 

@@ -46,6 +46,7 @@ struct Progress {
     std::uint64_t rays_expected = 0;  // estimate of the rays the whole request needs (0: unknown)
     std::size_t wavelengths_done = 0;
     std::size_t wavelengths_total = 0;
+    std::size_t wavelengths_in_progress = 1;  // units worked on at once beside those done (all of them in a round of the walks)
 };
 
 struct Estimate {

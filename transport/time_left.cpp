@@ -11,7 +11,8 @@ double work_share(const Progress& p) {
     const double finished = static_cast<double>(p.wavelengths_done) / total;
     if (p.rays_expected == 0 || p.rays_done == 0) return finished;
     const double by_rays = static_cast<double>(p.rays_done) / static_cast<double>(p.rays_expected);
-    return std::clamp(by_rays, finished, std::min(1.0, finished + 1.0 / total));
+    const double in_progress = static_cast<double>(std::max<std::size_t>(1, p.wavelengths_in_progress)) / total;
+    return std::clamp(by_rays, finished, std::min(1.0, finished + in_progress));
 }
 
 std::optional<double> TimeLeft::update(double elapsed_s, double share) {

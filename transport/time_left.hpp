@@ -12,9 +12,11 @@
 
 namespace skinspec {
 
-// The share of a request's work done: its finished units (wavelengths, patches), and within the current one the
-// rays against the planner's estimate, kept between the units finished and those plus the current one (an
-// estimate from a unit's first batch, applied to the units to come, put the share near 1 at the second of 31).
+// The share of a request's work done: its finished units (wavelengths, patches), and within the units in progress
+// the rays against the planner's estimate, kept between the units finished and those plus the ones in progress (an
+// estimate from a unit's first batch, applied to the units to come, put the share near 1 at the second of 31; the
+// walks trace every wavelength of a round at once, and a cap of one unit held their share at 1/11 to the end, the
+// estimate rising to 8 min for a 6 s run).
 double work_share(const Progress& progress);
 
 class TimeLeft {

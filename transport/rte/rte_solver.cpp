@@ -501,9 +501,9 @@ std::vector<SpectralResult> walk_rows(std::vector<SpectralResult> out, const Spe
     std::size_t index = 0;
     const auto progress = [&](const Progress& p) {
         if (!request.on_progress) return;
-        const std::uint64_t expected_rest = (total - index - 1) * std::max<std::uint64_t>(p.rays_expected, 1);
-        request.on_progress(Progress{rays_before + p.rays_done, rays_before + p.rays_expected + expected_rest,
-                                     index + p.wavelengths_done, total});
+        // The rows to come are expected to take as many rays as this one (unknown while this one's is).
+        const std::uint64_t expected = p.rays_expected > 0 ? rays_before + p.rays_expected * (total - index) : 0;
+        request.on_progress(Progress{rays_before + p.rays_done, expected, index + p.wavelengths_done, total});
     };
     for (; index < total;) {
         RteRequest r;
