@@ -107,22 +107,44 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
     const double dr = h / samples_per_pixel_side;
     std::vector<double> radii;
     for (int j = 0; j * dr <= (margin + 2) * h * std::sqrt(2.0); ++j) radii.push_back(j * dr);
-    out.profiles = solve_profiles(solver, material, ProfileRequest{wavelengths, radii, false, switches, std::nullopt, 1, cancel, {}});
-    if (out.profiles.partial) {
-        out.partial = true;
-        return out;
-    }
-
+    // The set-up steps are not interruptible inside (the light's raster, the FFT of the lit image: ~0.2 s each at
+    // 1024 px, ~1 s at 2048): a stop is checked between them.
+    const auto stopped = [&] { return cancel && cancel->load(); };
+    out.partial = stopped();
+    if (out.partial) return out;
     const auto widened = light.rasterize(view, margin);
+    out.partial = stopped();
+    if (out.partial) return out;
     const int we = view.width_px + 2 * margin, he = view.height_px + 2 * margin;
     const ImageConvolver convolver(widened, we, he, margin, margin);
     const int side = 2 * margin + 1;
 
-    const std::size_t channels = out.profiles.channels.size();
+    // A layered material's profile per wavelength, each convolved as it comes (progress in even steps: a profile
+    // and its convolution per wavelength; solved all first, the estimate took the profiles' rate for the cheaper
+    // convolutions); a band material's bands in one solve.
+    const auto* stack = std::get_if<LayerStack>(&material);
+    const std::size_t channels = stack ? wavelengths.size() : std::get<HomogeneousMaterial>(material).bands.size();
+    const std::size_t per_solve = stack ? 1 : channels;
+    out.profiles.material = material_name(material);
     for (std::size_t c = 0; c < channels; ++c) {
-        if (cancel && cancel->load()) {
+        if (stopped()) {
             out.partial = true;
             break;
+        }
+        if (c % per_solve == 0) {
+            const auto grid = stack ? WavelengthGrid::list({wavelengths.nm()[c]}) : wavelengths;
+            auto part = solve_profiles(solver, material, ProfileRequest{grid, radii, false, switches, std::nullopt, 1, cancel, {}, {}});
+            out.profiles.model = part.model;
+            out.profiles.radii_mm = part.radii_mm;
+            out.profiles.max_pairs = std::max(out.profiles.max_pairs, part.max_pairs);
+            out.profiles.frequencies = std::max(out.profiles.frequencies, part.frequencies);
+            out.profiles.converged = out.profiles.converged && part.converged;
+            out.profiles.warnings.insert(out.profiles.warnings.end(), part.warnings.begin(), part.warnings.end());
+            out.profiles.channels.insert(out.profiles.channels.end(), part.channels.begin(), part.channels.end());
+            if (part.partial) {
+                out.profiles.partial = out.partial = true;
+                break;
+            }
         }
         const auto& profile = out.profiles.channels[c];
         // Kernel: R(r) integrated over each pixel (8 x 8 samples near the centre, the centre value further out).

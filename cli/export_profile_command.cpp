@@ -9,6 +9,7 @@
 #include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
+#include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
 #include "appearance/profile_export.hpp"
@@ -61,7 +62,17 @@ void run_export_profile(const ProfileExportOptions& o) {
     check_profile_export(name, bands, fit_request);
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths() : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
 
-    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given));
+    auto request = profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given);
+    const InterruptGuard interrupt;
+    ProgressBar bar("export profile");
+    request.cancel = &InterruptGuard::cancel_flag();
+    request.on_progress = [&bar](const Progress& p) { bar(p); };
+    const auto profiles = solve_profiles(solver, material, request);
+    bar.clear();
+    if (profiles.partial) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (the fit needs every channel's profile)\n";
+        std::exit(InterruptGuard::exit_code());
+    }
     print_warning_summary(profiles.material, profiles.warnings);
     const auto exported = fit_profile_export(profiles, bands, fit_request);
     const auto document = profile_export_json(exported);

@@ -9,6 +9,7 @@
 
 #include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
+#include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
 #include "materials/material_file.hpp"
@@ -43,7 +44,7 @@ std::string column_tag(const ChannelProfile& c) {
 }
 
 std::string to_csv(const SpectralProfiles& p) {
-    std::string out = fmt::format("# skinspec {} radial profiles: material {}, model {}\n", version, p.material, p.model);
+    std::string out = fmt::format("# skinspec {} radial profiles: material {}, model {}, partial {}\n", version, p.material, p.model, p.partial);
     out += "# units: r_mm [mm]; R_*, T_* [1/mm^2 per unit incident power, entry Fresnel transmittance included]\n";
     for (const auto& c : p.channels) {
         out += fmt::format("# {}: diffuse R total {:.6g}, T total {:.6g}, specular {:.6g}\n", c.label, c.total_reflectance,
@@ -111,7 +112,13 @@ void run_profile(const ProfileOptions& o) {
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
-    const auto profiles = solve_profiles(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given));
+    auto request = profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given);
+    const InterruptGuard interrupt;
+    ProgressBar bar("profile");
+    request.cancel = &InterruptGuard::cancel_flag();
+    request.on_progress = [&bar](const Progress& p) { bar(p); };
+    const auto profiles = solve_profiles(solver, material, request);
+    bar.clear();
     print_warning_summary(profiles.material, profiles.warnings);
     const auto csv = to_csv(profiles);
     if (o.output.empty()) {
@@ -123,6 +130,11 @@ void run_profile(const ProfileOptions& o) {
     if (!o.plot.empty()) {
         write_profile_plot(o.plot, profiles);
         std::cerr << "wrote " << o.plot << '\n';
+    }
+    if (profiles.partial) {
+        std::cerr << fmt::format("skinspec: {}: the {} of {} channels finished were written, marked partial\n", InterruptGuard::reason(),
+                                 profiles.channels.size(), std::holds_alternative<LayerStack>(material) ? grid.size() : std::get<HomogeneousMaterial>(material).bands.size());
+        std::exit(InterruptGuard::exit_code());
     }
 }
 

@@ -196,7 +196,8 @@ public:
         }
     }
     SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
-        return diffusion_profiles(material, request.wavelengths, request.radii_mm, diffusion_options(request.switches), request.transmittance, request.cancel);
+        return diffusion_profiles(material, request.wavelengths, request.radii_mm, diffusion_options(request.switches), request.transmittance, request.cancel,
+                                  request.on_progress);
     }
 
 private:

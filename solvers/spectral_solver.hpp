@@ -57,6 +57,7 @@ struct ProfileRequest {
     std::uint64_t seed = 1;
     const CancelFlag* cancel = nullptr;  // a stop leaves the channels finished so far (SpectralProfiles::partial)
     std::vector<std::string> sampling_options;  // as SolverRequest's
+    std::function<void(const Progress&)> on_progress;  // channels (wavelengths or bands) done, and rays for the walks
 };
 
 class SpectralSolver {

@@ -47,7 +47,8 @@ public:
         }
         return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance,
                                   RteProfileOptions{request.rays_per_wavelength.value_or(1'000'000), request.seed,
-                                                    request.switches.boundaries.value_or(BoundaryMode::random), request.cancel});
+                                                    request.switches.boundaries.value_or(BoundaryMode::random), request.cancel,
+                                                    request.on_progress});
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         if (any_bands(materials)) return SpectralSolver::solve_groups(materials, request);

@@ -44,11 +44,13 @@ run() {
 }
 run "spectrum" INT spectrum.json '"partial": true' spectrum --preset biospec-lightly --wavelengths 400:700:1 --stderr 0.0002 --output spectrum.json
 run "swatch" TERM swatch.png - swatch --delta-e 0.05 -o swatch.png
-run "swatch --lit" HUP - - swatch --lit spot --pixels 2048 --wavelengths 400:700:2 -o lit.png
+run "swatch --lit" HUP - - swatch --lit spot --pixels 1024 --wavelengths 400:700:2 -o lit.png
 run "export lut" INT lut.exr - export lut --delta-e 0.05 -o lut.exr
 run "fit-spectrum" TERM fit.json '"partial": true' fit-spectrum "$inputs/fit_two.csv" --rays 400000 --output fit.json
 run "mcml" HUP stopped.mco 'INTERRUPTED' mcml long.mci --photons 1000000000
 run "bench" INT bench.json '"partial": true' bench --quick --output bench.json
 run "adding-doubling 256 channels" TERM ad.json '"partial": true' spectrum --mode adding-doubling --channels 256 --wavelengths 500:560:10 --output ad.json
+run "profile" TERM profile.csv 'partial true' profile --mode rte --rays 3000000 --radii 0:5:0.05 --output profile.csv
+run "export profile" INT - - export profile --mode rte --rays 3000000 --per wavelength --radii 0:5:0.05 -o profile.json
 rm -rf "$work"
 [ "$failures" -eq 0 ]

@@ -10,7 +10,8 @@
 namespace skinspec {
 
 SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGrid& wavelengths, std::span<const double> radii_mm,
-                                    const DiffusionOptions& options, bool transmittance, const std::atomic<bool>* cancel) {
+                                    const DiffusionOptions& options, bool transmittance, const std::atomic<bool>* cancel,
+                                    const std::function<void(const Progress&)>& on_progress) {
     for (std::size_t i = 0; i < radii_mm.size(); ++i) {
         if (!std::isfinite(radii_mm[i]) || radii_mm[i] < 0.0) {
             throw InputError("radius = " + format_number(radii_mm[i]) + " mm is outside [0, inf)");
@@ -21,6 +22,8 @@ SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGr
     out.material = material_name(material);
     out.model = std::string(to_string(options.mode));
     out.radii_mm.assign(radii_mm.begin(), radii_mm.end());
+    const std::size_t channels =
+        std::holds_alternative<LayerStack>(material) ? wavelengths.size() : std::get<HomogeneousMaterial>(material).bands.size();
     const auto add = [&](const DiffusionMaterial& m, std::string label, double nm) {
         if (out.partial || (cancel && cancel->load())) {
             out.partial = true;
@@ -48,6 +51,7 @@ SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGr
         }
         for (const auto& w : m.warnings) out.warnings.push_back(result_warning(w, c.label));
         out.channels.push_back(std::move(c));
+        if (on_progress) on_progress(Progress{0, 0, out.channels.size(), channels});
     };
     if (const auto* stack = std::get_if<LayerStack>(&material)) {
         for (const double nm : wavelengths.nm()) {

@@ -39,7 +39,9 @@ struct SpectralProfiles {
 // `wavelengths` is used for layered materials and ignored for homogeneous ones (all their bands).
 // InputError for radii that are negative, non-finite or not increasing.
 // `cancel`: checked between channels and within a transform; a stop leaves the channels finished so far, partial.
+// `on_progress`: after each channel.
 SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGrid& wavelengths, std::span<const double> radii_mm,
-                                    const DiffusionOptions& options, bool transmittance, const std::atomic<bool>* cancel = nullptr);
+                                    const DiffusionOptions& options, bool transmittance, const std::atomic<bool>* cancel = nullptr,
+                                    const std::function<void(const Progress&)>& on_progress = {});
 
 }  // namespace skinspec

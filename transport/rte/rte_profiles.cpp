@@ -55,6 +55,12 @@ SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGri
         // 2n half-step rings: the last one also collects everything beyond (as MCML's last bin) and is not used.
         request.grid = RteGrid{0.01, 0.05 * step_mm, 0, static_cast<int>(2 * n), 0};
         request.cancel = options.cancel;
+        const std::size_t index = out.channels.size(), total = wavelengths.size();
+        if (options.on_progress) {
+            request.on_progress = [&options, index, total, photons = options.photons_per_wavelength](const Progress& p) {
+                options.on_progress(Progress{index * photons + p.rays_done, total * photons, index, total});
+            };
+        }
         const auto result = solve_rte(request);
         if (result.partial) {
             out.partial = true;

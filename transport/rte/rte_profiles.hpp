@@ -18,6 +18,7 @@ struct RteProfileOptions {
     std::uint64_t seed = 1;
     BoundaryMode boundaries = BoundaryMode::random;
     const CancelFlag* cancel = nullptr;  // a stop leaves the wavelengths finished so far (SpectralProfiles::partial)
+    std::function<void(const Progress&)> on_progress;  // rays and wavelengths of the whole profile request
 };
 
 // InputError for radii that do not start at 0 with equal steps (what rings can give), fewer than two radii, or a
