@@ -84,7 +84,7 @@ skinspec_cli_test("a changed copy says what changed" 0 "changed from biospec-lig
 skinspec_cli_test("materials in command-line order" 0 "wavelength_nm +biospec-heavily +biospec-lightly\n" spectrum --mode dipole --wavelengths 550 --preset biospec-heavily --preset biospec-lightly)
 # A colour left out says why (issue 33).
 skinspec_cli_test("no colour says why" 0 "no colour: a colour needs wavelengths covering 400-700 nm at steps of at most 20 nm \\(these cover 500-600 nm\\)" spectrum --mode dipole --preset biospec-lightly --wavelengths 500:600:10)
-skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [^\n]*model rte\n# units[^\n]*\n(# [0-9]+ nm[^\n]*\n)+# entry transmittance per column[^\n]*\nr_mm" profile --mode rte --rays 1000 --radii 0:1:0.5)
+skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [^\n]*model rte, partial false\n# units[^\n]*\n(# [0-9]+ nm[^\n]*\n)+# entry transmittance per column[^\n]*\nr_mm" profile --mode rte --rays 1000 --radii 0:1:0.5)
 # Outputs that read each other (issue 33): color takes a member of a spectrum --vary CSV by position or by value.
 skinspec_cli_test("color of a sweep member by position" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --member 2)
 skinspec_cli_test("color of a sweep member by value" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --where epidermis.melanosome_fraction=0.1)
