@@ -62,13 +62,8 @@ void run_export_profile(const ProfileExportOptions& o) {
     check_profile_export(name, bands, fit_request);
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths() : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
 
-    auto request = profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given);
-    const InterruptGuard interrupt;
-    ProgressBar bar("export profile");
-    request.cancel = &InterruptGuard::cancel_flag();
-    request.on_progress = [&bar](const Progress& p) { bar(p); };
-    const auto profiles = solve_profiles(solver, material, request);
-    bar.clear();
+    const auto profiles =
+        solve_profiles_stoppable(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given), "export profile");
     if (profiles.partial) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (the fit needs every channel's profile)\n";
         std::exit(InterruptGuard::exit_code());

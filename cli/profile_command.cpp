@@ -112,13 +112,7 @@ void run_profile(const ProfileOptions& o) {
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
-    auto request = profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given);
-    const InterruptGuard interrupt;
-    ProgressBar bar("profile");
-    request.cancel = &InterruptGuard::cancel_flag();
-    request.on_progress = [&bar](const Progress& p) { bar(p); };
-    const auto profiles = solve_profiles(solver, material, request);
-    bar.clear();
+    const auto profiles = solve_profiles_stoppable(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given), "profile");
     print_warning_summary(profiles.material, profiles.warnings);
     const auto csv = to_csv(profiles);
     if (o.output.empty()) {

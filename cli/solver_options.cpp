@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "cli/common_options.hpp"
+#include "cli/progress.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -62,6 +63,16 @@ void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64
     command.add_option("--rays", rays, "rte: photons per wavelength for R(r) (default 1000000); refused by deterministic solvers")
         ->check(CLI::PositiveNumber);
     add_seed_option(command, seed, "rte: random seed");
+}
+
+SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Material& material, ProfileRequest request, const std::string& label) {
+    const InterruptGuard interrupt;
+    ProgressBar bar(label);
+    request.cancel = &InterruptGuard::cancel_flag();
+    request.on_progress = [&bar](const Progress& p) { bar(p); };
+    auto profiles = solve_profiles(solver, material, request);
+    bar.clear();
+    return profiles;
 }
 
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,

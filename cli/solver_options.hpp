@@ -30,6 +30,9 @@ void add_geometry_option(CLI::App& command, SolverOptions& options);
 MeasurementGeometry measurement_geometry(const SolverOptions& options);
 // --rays and --seed of the commands that ask for radial profiles (a Monte Carlo solver's R(r)); rays 0: unset.
 void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64_t& seed);
+// solve_profiles with a progress bar labelled `label` on a terminal, stopped by SIGINT, SIGTERM or SIGHUP (the
+// channels finished so far come back, partial; InterruptGuard says why).
+SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Material& material, ProfileRequest request, const std::string& label);
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,
                                std::uint64_t rays, std::uint64_t seed, std::vector<std::string> sampling_options);
 
