@@ -97,7 +97,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
                 chart.warnings.push_back(std::move(w));
             }
             chart.patches.push_back(std::move(patch));
-            if (i == 0) chart.settings = result.settings;
+            if (i == 0) chart.settings = all_settings(result);
         }
         return chart.patches.size() == std::min(parameters.size(), (c + 1) * chunk);
     };

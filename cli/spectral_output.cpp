@@ -67,7 +67,7 @@ Json result_json(const ReportedSpectrum& s, std::optional<std::size_t> same_mate
     const auto& r = s.result;
     Json j{{"model", r.model}, {"material", r.material}, {"partial", r.partial}};
     Json settings = Json::object();
-    for (const auto& [k, v] : r.settings) settings[k] = setting_json(v);
+    for (const auto& [k, v] : all_settings(r)) settings[k] = setting_json(v);
     j["settings"] = settings;
     j["layers"] = r.layer_names;
     std::vector<double> nm, truncated;
@@ -170,10 +170,14 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
     std::vector<std::pair<std::string, const std::string*>> written_materials;  // (name, material TOML) already written
     for (const auto& s : spectra) {
         const auto& r = s.result;
+        const auto same_model_settings = [&] {
+            return previous->model_settings == r.model_settings ||
+                   (previous->model_settings && r.model_settings && *previous->model_settings == *r.model_settings);
+        };
         if (!previous || previous->material != r.material || previous->model != r.model || previous->partial != r.partial ||
-            previous->settings != r.settings) {
+            previous->settings != r.settings || !same_model_settings()) {
             out += fmt::format("# material {}: model {}, partial {}", r.material, r.model, r.partial);
-            for (const auto& [k, v] : r.settings) out += ", " + k + " " + std::visit([](const auto& x) { return fmt::format("{}", x); }, v);
+            for (const auto& [k, v] : all_settings(r)) out += ", " + k + " " + std::visit([](const auto& x) { return fmt::format("{}", x); }, v);
             out += '\n';
         }
         previous = &r;

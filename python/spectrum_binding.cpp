@@ -42,7 +42,7 @@ py::dict provenance_dict(const SpectralResult& r) {
     for (const auto& [field, value] : r.provenance.varied) varied[py::str(field)] = value;
     return py::dict(py::arg("solver") = r.provenance.solver, py::arg("material") = r.material, py::arg("model") = r.model,
                     py::arg("material_toml") = *r.provenance.material_toml, py::arg("overrides") = r.provenance.overrides,
-                    py::arg("varied") = varied, py::arg("settings") = settings_dict(r.settings), py::arg("warnings") = warnings_list(r.warnings),
+                    py::arg("varied") = varied, py::arg("settings") = settings_dict(all_settings(r)), py::arg("warnings") = warnings_list(r.warnings),
                     py::arg("stated_error") = stated_error_object(r.stated_error),
                     py::arg("version") = r.provenance.version);
 }
@@ -160,7 +160,7 @@ py::object spectrum_result(const std::vector<SpectralResult>& results, const std
     d["solver"] = first.provenance.solver;
     d["model"] = first.model;
     d["material"] = first.material;
-    d["settings"] = settings_dict(first.settings);
+    d["settings"] = settings_dict(all_settings(first));
     py::dict vary;
     for (const auto& a : axes) vary[py::str(a.field)] = to_array(a.values, {static_cast<py::ssize_t>(a.values.size())});
     d["vary"] = vary;

@@ -13,7 +13,7 @@ namespace {
 // Writer appending it, the Reader filling it.
 template <class Archive, class Result>
 void transfer(Archive& a, Result& r) {
-    a(r.model), a(r.material), a(r.settings), a(r.layer_names), a(r.angular_bin_edges_deg);
+    a(r.model), a(r.material), a(r.settings), a(r.model_settings), a(r.layer_names), a(r.angular_bin_edges_deg);
     a(r.quantities.reflectance), a(r.quantities.transmittance), a(r.quantities.absorptance), a(r.quantities.angular);
     a(r.wavelengths), a(r.partial), a(r.has_uncertainty), a(r.bands), a(r.warnings), a(r.stated_error);
     a(r.provenance.solver), a(r.provenance.material_toml), a(r.provenance.overrides), a(r.provenance.varied), a(r.provenance.version);
@@ -66,6 +66,11 @@ public:
         return *this;
     }
     Writer& operator()(const std::shared_ptr<const std::string>& s) { return (*this)(s ? *s : std::string()); }
+    Writer& operator()(const std::shared_ptr<const ResultSettings>& s) {
+        (*this)(static_cast<std::uint8_t>(s != nullptr));
+        if (s) (*this)(*s);
+        return *this;
+    }
     template <class A, class B>
     Writer& operator()(const std::pair<A, B>& p) {
         return (*this)(p.first)(p.second);
@@ -149,6 +154,12 @@ public:
         std::string text;
         (*this)(text);
         s = text.empty() ? nullptr : std::make_shared<const std::string>(std::move(text));
+        return *this;
+    }
+    Reader& operator()(std::shared_ptr<const ResultSettings>& s) {
+        std::optional<ResultSettings> settings;
+        (*this)(settings);
+        s = settings ? std::make_shared<const ResultSettings>(std::move(*settings)) : nullptr;
         return *this;
     }
     template <class A, class B>

@@ -101,7 +101,9 @@ std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const M
     if (materials.size() == 1) return {solve(*materials.front(), request)};
     // The materials in parallel (each result depends on its material alone, so on no thread count); progress counts
     // the members finished, reported one at a time.
-    std::vector<std::optional<SpectralResult>> by_index(materials.size());
+    // Solved in place (moving 4096 results out of optionals was 7 % of a dipole sweep).
+    std::vector<SpectralResult> results(materials.size());
+    std::vector<char> solved(materials.size(), 0);
     auto member = request;
     member.spectral.on_progress = nullptr;
     std::mutex progress;
@@ -109,16 +111,18 @@ std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const M
     const std::size_t wavelengths = request.spectral.wavelengths.size();
     tbb::parallel_for(std::size_t{0}, materials.size(), [&](std::size_t i) {
         if (request.spectral.cancel && request.spectral.cancel->load()) return;
-        by_index[i] = solve(*materials[i], member);
-        if (by_index[i]->partial || !request.spectral.on_progress) return;
+        results[i] = solve(*materials[i], member);
+        solved[i] = 1;
+        if (results[i].partial || !request.spectral.on_progress) return;
         const std::lock_guard lock(progress);
         ++done;
         request.spectral.on_progress(Progress{0, 0, done * wavelengths, materials.size() * wavelengths});
     });
     // Up to the first member not solved, the first partial one included.
-    auto results = solved_prefix(by_index);
-    const auto partial = std::find_if(results.begin(), results.end(), [](const SpectralResult& r) { return r.partial; });
-    if (partial != results.end()) results.erase(partial + 1, results.end());
+    std::size_t kept = 0;
+    while (kept < results.size() && solved[kept] && !results[kept].partial) ++kept;
+    if (kept < results.size() && solved[kept]) ++kept;  // the first partial one
+    results.resize(kept);
     return results;
 }
 
@@ -319,10 +323,27 @@ void keep_requested(SpectralResult& result, const SolverRequest& request) {
     q = Quantities{q.reflectance && asked.reflectance, q.transmittance && asked.transmittance, q.absorptance && asked.absorptance, q.angular && asked.angular};
 }
 
-void record_provenance(SpectralResult& result, const SpectralSolver& solver, const Material& material, std::shared_ptr<const std::string> material_toml,
-                       const std::vector<MaterialOverride>& overrides, std::vector<std::pair<std::string, double>> varied) {
+// One shared copy of the settings of each distinct material model among a request's results.
+class ModelSettingsCache {
+public:
+    std::shared_ptr<const ResultSettings> operator()(const Material& material) {
+        const auto* stack = std::get_if<LayerStack>(&material);
+        if (!stack) return nullptr;
+        for (const auto& [model, settings] : seen_) {
+            if (model == stack->model) return settings;
+        }
+        return seen_.emplace_back(stack->model, std::make_shared<const ResultSettings>(model_result_settings(stack->model))).second;
+    }
+
+private:
+    std::vector<std::pair<ModelOptions, std::shared_ptr<const ResultSettings>>> seen_;
+};
+
+void record_provenance(SpectralResult& result, const SpectralSolver& solver, std::shared_ptr<const ResultSettings> model_settings,
+                       std::shared_ptr<const std::string> material_toml, const std::vector<MaterialOverride>& overrides,
+                       std::vector<std::pair<std::string, double>> varied) {
     result.provenance.solver = std::string(solver.name());
-    if (const auto* stack = std::get_if<LayerStack>(&material)) add_model_settings(result.settings, stack->model);
+    result.model_settings = std::move(model_settings);
     result.provenance.material_toml = std::move(material_toml);
     for (const auto& o : overrides) result.provenance.overrides.emplace_back(o.key, o.value);
     result.provenance.varied = std::move(varied);
@@ -339,7 +360,7 @@ SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& mate
     check_result_values(solver, one.front(), request.overrides);
     solver.state_errors({&material}, {{}}, effective, one);
     auto result = std::move(one.front());
-    record_provenance(result, solver, material, std::make_shared<const std::string>(to_toml(material)), request.overrides, {});
+    record_provenance(result, solver, ModelSettingsCache()(material), std::make_shared<const std::string>(to_toml(material)), request.overrides, {});
     return result;
 }
 
@@ -422,9 +443,10 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
         for (const auto& m : members) positions.push_back(m.position);
         solver.state_errors(materials, positions, effective, results);
     }
+    ModelSettingsCache model_settings;
     for (std::size_t i = 0; i < results.size(); ++i) {
         const auto& overrides = overrides_of[i];
-        record_provenance(results[i], solver, members[i].material, members[i].base_toml ? members[i].base_toml : std::make_shared<const std::string>(to_toml(members[i].material)), overrides,
+        record_provenance(results[i], solver, model_settings(members[i].material), members[i].base_toml ? members[i].base_toml : std::make_shared<const std::string>(to_toml(members[i].material)), overrides,
                           members[i].varied);
     }
     return results;

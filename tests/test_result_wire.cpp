@@ -34,6 +34,8 @@ TEST_CASE("results read back from bytes equal the results written, bit for bit",
     const auto& r = back[1];
     CHECK(r.model == original.model);
     CHECK(r.settings == original.settings);
+    REQUIRE(r.model_settings);
+    CHECK(*r.model_settings == *original.model_settings);
     CHECK(r.layer_names == original.layer_names);
     CHECK(r.angular_bin_edges_deg == original.angular_bin_edges_deg);
     CHECK(r.quantities.angular);

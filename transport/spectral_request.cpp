@@ -61,10 +61,20 @@ void check_incidence_deg(double incidence_deg) {
     }
 }
 
-void add_model_settings(std::map<std::string, SettingValue>& settings, const ModelOptions& model) {
+ResultSettings model_result_settings(const ModelOptions& model) {
+    ResultSettings settings;
     for (auto& [key, value] : model_settings(model)) {
         settings[key] = std::visit([](auto&& v) -> SettingValue { return std::move(v); }, std::move(value));
     }
+    return settings;
+}
+
+ResultSettings all_settings(const SpectralResult& result) {
+    auto out = result.settings;
+    if (result.model_settings) {
+        for (const auto& [key, value] : *result.model_settings) out.insert_or_assign(key, value);
+    }
+    return out;
 }
 
 std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings) {
