@@ -109,6 +109,9 @@ void run_spectrum(const SpectrumOptions& o) {
     }
 
     std::vector<ReportedSpectrum> spectra;
+    std::size_t results_expected = 0;
+    for (const auto& members : members_per_name) results_expected += members.size();
+    spectra.reserve(results_expected);
     for (std::size_t m = 0; m < names.size(); ++m) {
         if (InterruptGuard::interrupted() && !process_work_share()) break;  // every rank takes part in every gather
         ProgressBar bar(material_name(members_per_name[m].front().material));
