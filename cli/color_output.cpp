@@ -17,12 +17,6 @@ nlohmann::ordered_json rgb_json(const RGB& rgb) {
     return out;
 }
 
-std::string hex(const RGB& encoded) {
-    std::string out = "#";
-    for (const double c : encoded) out += fmt::format("{:02X}", static_cast<int>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0)));
-    return out;
-}
-
 }  // namespace
 
 ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, IlluminantKind illuminant,
@@ -40,7 +34,7 @@ ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, 
                                      s.xyz.X, s.xyz.Y, s.xyz.Z));
     }
     s.srgb_in_gamut = std::all_of(s.srgb.begin(), s.srgb.end(), [](double c) { return c >= 0.0 && c <= 1.0; });
-    s.srgb_hex = hex(s.srgb);
+    s.srgb_hex = hex_rgb8(s.srgb);
     for (const auto& space : extra_spaces) {
         const auto name = cm.canonical_space(space, "--space");
         s.extra_spaces[name] = cm.from_xyz(xyz, weights.white(), name);

@@ -9,7 +9,7 @@
 #include <tbb/global_control.h>
 
 #include "appearance/lit_swatch.hpp"
-#include "appearance/swatch_chart.hpp"
+#include "appearance/swatch_files.hpp"
 #include "cli/color_output.hpp"
 #include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
@@ -54,23 +54,6 @@ struct SwatchOptions {
     int pixels = 256;
     double spot_radius_mm = 2.0;
 };
-
-// Melanin on a log axis: evenly spaced fractions put five of eight columns in near-identical dark browns.
-
-// "epidermis.melanosome_fraction: volume fraction of melanosomes (v_m), unit 1, log spacing".
-std::string axis_title(const ParameterSweep& sweep) {
-    const auto row = describe_field(sweep.field);
-    std::string title = sweep.field;
-    if (row) title += ": " + row->doc + (row->unit.empty() || row->unit == "1" ? std::string(" (unitless)") : " (" + row->unit + ")");
-    return title + (sweep.log ? ", log spacing" : "");
-}
-
-std::vector<std::string> axis_values(const ParameterSweep& sweep) {
-    std::vector<std::string> out;
-    for (const double v : sweep.values()) out.push_back(fmt::format("{:.3g}", v));
-    return out;
-}
-
 
 // `swatch --lit spot|edge|pattern FILE`: one planar patch under structured light in a diffusion mode.
 void run_lit_swatch(const SwatchOptions& o) {
@@ -142,17 +125,11 @@ void run_swatch(const SwatchOptions& o) {
     request.solver = std::string(chosen_solver(o.solver).name());
     request.switches = solver_switches(o.solver);
     request.geometry = measurement_geometry(o.solver);
-    if (o.patch_px < 32 || o.patch_px > 2048) throw InputError("--patch-size " + std::to_string(o.patch_px) + " is outside [32, 2048]");
-    if (!o.outputs.empty()) {
-        check_chart_size({request.sweeps.empty() ? 1 : request.sweeps[0].steps, request.sweeps.size() < 2 ? 1 : request.sweeps[1].steps, o.patch_px, 8});
-    }
-
     // Every output is checked before any work: nothing is written for a bad request.
+    const auto files =
+        check_swatch_files(SwatchFiles{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.patch_px, o.overwrite}, request);
+    const auto& space = files.space;
     const auto& cm = ColorManagement::builtin();
-    const std::string space = cm.canonical_space(o.space, "--space");
-    space_chromaticities(space);
-    cm.check_display_view(o.display, o.view);
-    for (const auto& out : o.outputs) check_output_path(out, o.overwrite, {".exr", ".png", ".tif", ".tiff"});
 
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
@@ -168,53 +145,16 @@ void run_swatch(const SwatchOptions& o) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::vector<RGB> working;
-    std::vector<std::string> labels;
     std::vector<ColorSummary> colours;
+    double worst = 0.0;
     const TristimulusWeights weights(chart.wavelengths.nm(), request.illuminant, request.observer, OutOfRangePolicy::hold);
     for (const auto& p : chart.patches) {
         working.push_back(cm.from_xyz(p.xyz, chart.white, space));
         colours.push_back(summarize_color(p.xyz, weights, request.illuminant, request.observer, {}, p.uncertainty));
-        labels.push_back(colours.back().srgb_hex);  // the parameters are on the chart's axes
-    }
-
-    ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
-                           {"skinspec:model", request.solver},
-                           {"skinspec:material", request.material},
-                           {"skinspec:seed", std::to_string(request.seed)},
-                           {"skinspec:partial", chart.partial ? "true" : "false"}};
-    std::string parameters;
-    for (const auto& s : request.sweeps) parameters += (parameters.empty() ? "" : "; ") + s.text();
-    for (const auto& ov : request.overrides) parameters += "; set " + ov.key + "=" + ov.value;
-    metadata.push_back({"skinspec:parameters", parameters});
-    // Each patch's standard uncertainty (from R's standard errors and the solver's stated error), in patch order.
-    std::string lab_uncertainty, worst_text;
-    double worst = 0.0;
-    for (const auto& p : chart.patches) {
-        lab_uncertainty += fmt::format("{}{:.3g} {:.3g} {:.3g}", lab_uncertainty.empty() ? "" : "; ", p.uncertainty.lab.L, p.uncertainty.lab.a, p.uncertainty.lab.b);
         worst = std::max(worst, p.uncertainty.delta_e2000);
     }
-    metadata.push_back({"skinspec:lab_uncertainty", lab_uncertainty});
-    metadata.push_back({"skinspec:worst_delta_e2000_uncertainty", fmt::format("{:.4g}", worst)});
-    for (const auto& [k, v] : chart.settings) {
-        metadata.push_back({"skinspec:" + k, std::visit([](const auto& x) { return fmt::format("{}", x); }, v)});
-    }
-    metadata.push_back({"ImageDescription", "skinspec swatch: " + request.material + ", " + parameters});
-
-    const ChartLayout layout{chart.columns, chart.rows, o.patch_px, 8};
-    ChartAxes axes;
-    if (!request.sweeps.empty()) {
-        axes.column_title = axis_title(request.sweeps[0]);
-        axes.column_values = axis_values(request.sweeps[0]);
-    }
-    if (request.sweeps.size() > 1) {
-        axes.row_title = axis_title(request.sweeps[1]);
-        axes.row_values = axis_values(request.sweeps[1]);
-    }
-    for (const auto& out : o.outputs) {
-        if (out.ends_with(".exr")) write_linear_chart(out, layout, working, space, o.half, metadata, cm);
-        else write_display_chart(out, layout, working, labels, space, o.display, o.view, metadata, cm, axes);
-        std::cerr << "wrote " << out << '\n';
-    }
+    write_swatch_files(chart, request, files);
+    for (const auto& out : o.outputs) std::cerr << "wrote " << out << '\n';
 
     std::uint64_t rays = 0;
     for (const auto& p : chart.patches) rays += p.rays;

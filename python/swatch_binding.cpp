@@ -5,7 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "appearance/lit_swatch.hpp"
-#include "appearance/swatch_chart.hpp"
+#include "appearance/swatch_files.hpp"
 #include "python/bindings.hpp"
 #include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
@@ -15,16 +15,33 @@
 namespace skinspec::python {
 namespace {
 
+// One path or a list of them (None: none).
+std::vector<std::filesystem::path> output_paths(const py::object& output) {
+    std::vector<std::filesystem::path> out;
+    if (output.is_none()) return out;
+    const auto fspath = py::module_::import("os").attr("fspath");
+    const bool one = py::isinstance<py::str>(output) || py::hasattr(output, "__fspath__");
+    for (const auto& f : one ? py::list(py::make_tuple(output)) : py::list(output)) out.emplace_back(py::str(fspath(f)).cast<std::string>());
+    return out;
+}
+
 py::dict swatch(const std::string& material, const py::object& vary, const py::object& set, double delta_e, const std::string& illuminant,
                 const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays, const std::string& geometry,
-                const std::string& space, const py::object& threads, const py::object& progress) {
+                const std::string& space, const py::object& output, bool half, const std::string& display, const std::string& view, int patch_size,
+                bool overwrite, const py::object& threads, const py::object& progress) {
     auto request = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry);
     if (vary.is_none()) request.sweeps = default_swatch_sweeps(load_material(request.material, request.overrides));
     else {
         for (const auto& text : name_list(vary, "vary")) request.sweeps.push_back(parse_sweep(text));
     }
-    const std::string chosen_space = ColorManagement::builtin().canonical_space(space, "space");
-    return swatch_dict(compute_swatch_interruptible(request, threads, progress), request, chosen_space);
+    const auto files = check_swatch_files(SwatchFiles{output_paths(output), space, half, display, view, patch_size, overwrite}, request);
+    const auto chart = compute_swatch_interruptible(request, threads, progress);
+    write_swatch_files(chart, request, files);
+    auto d = swatch_dict(chart, request, files.space);
+    std::vector<std::string> written;
+    for (const auto& f : files.outputs) written.push_back(f.string());
+    d["files"] = written;
+    return d;
 }
 
 // The lighting of a lit swatch: "spot", "edge", or "pattern" with `pattern` an array (height, width) of relative
@@ -56,13 +73,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
                     const std::string& view_name, bool overwrite, const py::object& progress, const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     auto view = lit_view(field_mm, pixels);
-    LitSwatchFiles files{{}, space, half, display, view_name, overwrite};
-    if (!output.is_none()) {
-        const auto fspath = py::module_::import("os").attr("fspath");
-        const bool one = py::isinstance<py::str>(output) || py::hasattr(output, "__fspath__");
-        for (const auto& f : one ? py::list(py::make_tuple(output)) : py::list(output)) files.outputs.emplace_back(py::str(fspath(f)).cast<std::string>());
-    }
-    files = check_lit_swatch_files(files);
+    const auto files = check_lit_swatch_files(LitSwatchFiles{output_paths(output), space, half, display, view_name, overwrite});
     const auto& solver = find_solver(mode, "mode");
     const auto light = lighting_argument(lighting, pattern, spot_radius_mm, view);
     const auto grid = wavelength_argument(wavelengths);
@@ -217,12 +228,15 @@ void bind_swatch(py::module_& m) {
     material: a preset name or .toml path; vary: "FIELD=FIRST:LAST:STEPS[:log]" strings (first: columns, second:
     rows; default for a skin: melanosome fraction 0.01-0.42 in 8 log steps by dermal blood 0.002-0.05 in 5); set:
     {field: value} overrides; delta_e: each patch's CIEDE2000 uncertainty target; space: the colour space of the
-    "rgb" array (linear working-space values, white = 1). Returns a dict of (rows, columns, ...) numpy arrays:
-    parameters, XYZ, Lab, rgb, reflectance and its stderr per wavelength, delta_e2000_uncertainty, ita_deg, category.)doc",
+    "rgb" array (linear working-space values, white = 1); output: also the chart image, one path or a list (.exr
+    linear in `space`; .png, .tif display-referred through display / view, with labelled axes), patch_size in pixels,
+    checked before any work. Returns a dict of (rows, columns, ...) numpy arrays: parameters, XYZ, Lab, rgb,
+    reflectance and its stderr per wavelength, delta_e2000_uncertainty, ita_deg, category; and the files written.)doc",
           py::arg("material") = "biospec-moderately", py::arg("vary") = py::none(), py::kw_only(), py::arg("set") = py::none(),
           py::arg("delta_e") = SwatchRequest{}.delta_e, py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("solver") = "biospec",
           py::arg("seed") = py::none(), py::arg("max_rays") = py::none(), py::arg("geometry") = "sci", py::arg("space") = "ACEScg",
-          py::arg("threads") = py::none(), py::arg("progress") = py::none());
+          py::arg("output") = py::none(), py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard",
+          py::arg("patch_size") = SwatchFiles{}.patch_px, py::arg("overwrite") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());
 }
 
 }  // namespace skinspec::python

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <cmath>
+
+#include <fmt/format.h>
 #include <OpenColorIO/OpenColorIO.h>
 
 #include "spectral/chromatic_adaptation.hpp"
@@ -157,6 +160,12 @@ RGB ColorManagement::display_view(const RGB& rgb, std::string_view from_space, s
 void ColorManagement::display_view_pixels(std::vector<float>& rgb, std::string_view from_space, std::string_view display,
                                           std::string_view view) const {
     apply_packed(display_processor(*this, *impl_, from_space, display, view), rgb);
+}
+
+std::string hex_rgb8(const RGB& encoded) {
+    std::string out = "#";
+    for (const double c : encoded) out += fmt::format("{:02X}", static_cast<int>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0)));
+    return out;
 }
 
 }  // namespace skinspec

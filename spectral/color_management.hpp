@@ -20,6 +20,9 @@ namespace skinspec {
 
 using RGB = std::array<double, 3>;
 
+// "#RRGGBB" of an encoded (display) RGB, each component clipped to [0, 1] and rounded to 8 bits.
+std::string hex_rgb8(const RGB& encoded);
+
 class ColorManagement {
 public:
     explicit ColorManagement(const std::filesystem::path& config_file);

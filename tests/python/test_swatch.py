@@ -53,3 +53,14 @@ def test_lit_swatch_conserves_energy_and_writes_its_files(tmp_path):
         skinspec.lit_swatch("biospec-moderately", "spot", pattern=np.ones((4, 4)))
     with pytest.raises(skinspec.InputError, match="--field 0 mm is outside"):
         skinspec.lit_swatch("biospec-moderately", field_mm=0)
+
+
+def test_swatch_writes_the_chart_files(tmp_path):
+    charts = [tmp_path / "chart.png", tmp_path / "chart.exr"]
+    ours = skinspec.swatch("biospec-lightly", ["epidermis.melanosome_fraction=0.02:0.2:3"], delta_e=2, seed=3, output=charts)
+    assert ours["files"] == [str(f) for f in charts] and all(os.path.getsize(f) > 0 for f in charts)
+    with pytest.raises(skinspec.InputError, match="exists already"):
+        skinspec.swatch("biospec-lightly", ["epidermis.melanosome_fraction=0.02:0.2:3"], output=charts[0])
+    with pytest.raises(skinspec.InputError, match="--patch-size 8 is outside"):
+        skinspec.swatch("biospec-lightly", ["epidermis.melanosome_fraction=0.02:0.2:3"], output=tmp_path / "small.png", patch_size=8)
+    assert not os.path.exists(tmp_path / "small.png")
