@@ -3,6 +3,7 @@
 // the interruptible call they share. Nothing here computes physics: every call goes to the library (solver
 // registry, replay, fit, colorimetry) exactly as the command-line program's does.
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -42,6 +43,11 @@ struct PyMaterial {
     Material material;
     std::vector<MaterialOverride> overrides;
 };
+// Whether `value` names a file (a str or an os.PathLike), and that file's path; InputError naming `what` otherwise.
+bool is_path(const py::handle& value);
+std::filesystem::path path_argument(const py::handle& value, std::string_view what);
+// One path or a list of them (None: none), as the functions' output= takes them.
+std::vector<std::filesystem::path> output_paths(const py::handle& value, std::string_view what);
 // A Material object, or a preset name / .toml path (loaded).
 PyMaterial material_argument(const py::handle& value, std::string_view what);
 

@@ -17,10 +17,27 @@
 
 namespace skinspec::python {
 
+bool is_path(const py::handle& value) { return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"); }
+
+std::filesystem::path path_argument(const py::handle& value, std::string_view what) {
+    if (!is_path(value)) {
+        throw InputError(std::string(what) + ": expected a file path (str or os.PathLike), got " +
+                         py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+    }
+    return py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>();
+}
+
+std::vector<std::filesystem::path> output_paths(const py::handle& value, std::string_view what) {
+    std::vector<std::filesystem::path> out;
+    if (value.is_none()) return out;
+    if (is_path(value) || !py::isinstance<py::iterable>(value)) return {path_argument(value, what)};
+    for (const auto& f : py::iter(value)) out.push_back(path_argument(f, what));
+    return out;
+}
+
 PyMaterial material_argument(const py::handle& value, std::string_view what) {
     if (py::isinstance<PyMaterial>(value)) return value.cast<PyMaterial>();
-    if (py::isinstance<py::str>(value)) return {load_material(value.cast<std::string>()), {}};
-    if (py::hasattr(value, "__fspath__")) return {load_material(py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>()), {}};
+    if (is_path(value)) return {load_material(path_argument(value, what).string()), {}};
     throw InputError(std::string(what) + ": expected a skinspec.Material, a preset name or a .toml path, got " +
                      py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
 }

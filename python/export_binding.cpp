@@ -1,10 +1,10 @@
-// skinspec.export_pbrt / export_mitsuba (docs/PYTHON.md "Exports"): the files `skinspec export ...` writes, written
-// by the same library calls, with the command's --json report returned as a dict of numpy arrays.
+// skinspec.export_lut / export_profile / export_pbrt / export_mitsuba (docs/PYTHON.md "Exports"): the files
+// `skinspec export ...` writes, written by the same library calls, with the command's --json report returned as a
+// dict of numpy arrays.
+#include <chrono>
 #include <filesystem>
 
 #include <pybind11/stl.h>
-
-#include <chrono>
 
 #include "appearance/lut_export.hpp"
 #include "appearance/profile_export.hpp"
@@ -19,14 +19,6 @@
 
 namespace skinspec::python {
 namespace {
-
-std::filesystem::path path_argument(const py::handle& value, std::string_view what) {
-    if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__")) {
-        return py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>();
-    }
-    throw InputError(std::string(what) + ": expected a file path (str or os.PathLike), got " +
-                     py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
-}
 
 const LayerStack& layered(const PyMaterial& material, std::string_view command) {
     const auto* stack = std::get_if<LayerStack>(&material.material);
@@ -57,11 +49,6 @@ py::object export_scene_files(SceneRenderer renderer, const py::object& material
     return json_object(scene_export_json(export_scene(stack, request, renderer, scene, overwrite), renderer));
 }
 
-std::optional<std::filesystem::path> optional_path(const py::object& value, std::string_view what) {
-    if (value.is_none()) return std::nullopt;
-    return path_argument(value, what);
-}
-
 py::object export_profile(const py::object& material, const py::object& output, const py::object& table, const std::string& per,
                           const py::object& wavelengths, const std::string& space, const std::string& illuminant, const std::string& observer,
                           std::size_t gaussians, const py::object& radii_mm, const std::string& mode, const py::object& rays, const py::object& seed,
@@ -76,9 +63,10 @@ py::object export_profile(const py::object& material, const py::object& output, 
     fit_request.illuminant = parse_illuminant(illuminant, "illuminant");
     fit_request.observer = parse_observer(observer, "observer");
     fit_request.gaussians = gaussians;
-    const auto json_file = optional_path(output, "output"), table_file = optional_path(table, "table");
-    if (json_file) check_output_path(*json_file, overwrite, {".json"});
-    if (table_file) check_output_path(*table_file, overwrite, {".csv"});
+    const auto json_file = output.is_none() ? std::filesystem::path() : path_argument(output, "output");
+    const auto table_file = table.is_none() ? std::filesystem::path() : path_argument(table, "table");
+    if (!json_file.empty()) check_output_path(json_file, overwrite, {".json"});
+    if (!table_file.empty()) check_output_path(table_file, overwrite, {".csv"});
     const bool bands = std::holds_alternative<HomogeneousMaterial>(skin.material);
     check_profile_export(material_name(skin.material), bands, fit_request);
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths()
@@ -87,8 +75,8 @@ py::object export_profile(const py::object& material, const py::object& output, 
     const auto profiles = solve_profiles_interruptible(solver, skin.material, profile_request_argument(grid, radii, false, rays, seed, switches));
     const auto exported = fit_profile_export(profiles, bands, fit_request);
     const auto document = profile_export_json(exported);
-    if (json_file) write_text_file(*json_file, document.dump(2) + "\n", overwrite);
-    if (table_file) write_text_file(*table_file, profile_export_table_csv(exported), overwrite);
+    if (!json_file.empty()) write_text_file(json_file, document.dump(2) + "\n", overwrite);
+    if (!table_file.empty()) write_text_file(table_file, profile_export_table_csv(exported), overwrite);
     py::dict out = json_object(document);
     out["warnings"] = summarise_warnings(profiles.warnings);
     return out;
@@ -103,9 +91,9 @@ py::object export_lut(const std::string& material, const py::object& output, con
     const auto u = lut_axis(lut_melanin_field, melanin, "melanin");
     const auto v = lut_axis(lut_blood_field, blood, "blood");
     request.sweeps = {u, v};
-    const auto files = check_lut_files(LutFiles{path_argument(output, "output"), optional_path(spectra, "spectra").value_or(""),
-                                                optional_path(preview, "preview").value_or(""), space, half, display, view, overwrite},
-                                       u, v);
+    const auto optional = [](const py::object& value, std::string_view what) { return value.is_none() ? std::filesystem::path() : path_argument(value, what); };
+    const auto files = check_lut_files(
+        LutFiles{path_argument(output, "output"), optional(spectra, "spectra"), optional(preview, "preview"), space, half, display, view, overwrite}, u, v);
     const auto start = std::chrono::steady_clock::now();
     const auto chart = compute_swatch_interruptible(request, threads, progress);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -77,10 +77,9 @@ py::list fit_profile_image(const py::object& irradiance, const py::object& exita
     options.solve = {tikhonov, non_negative};
     std::vector<PlanarScene> scenes;
     std::vector<std::string> names;
-    if (py::isinstance<py::str>(irradiance) || py::hasattr(irradiance, "__fspath__")) {
-        const auto fspath = py::module_::import("os").attr("fspath");
-        const auto path = [&](const py::object& v) { return v.is_none() ? std::string() : py::str(fspath(v)).cast<std::string>(); };
-        scenes = read_planar_scenes({path(irradiance), path(exitance), path(mask), pitch_mm}, names);
+    if (is_path(irradiance)) {
+        const auto path = [](const py::object& v, std::string_view what) { return v.is_none() ? std::string() : path_argument(v, what).string(); };
+        scenes = read_planar_scenes({path(irradiance, "irradiance"), path(exitance, "exitance"), path(mask, "mask"), pitch_mm}, names);
     } else {
         py::ssize_t h = 0, w = 0, he = 0, we = 0;
         const auto e = image_channels(irradiance, "irradiance", h, w);
@@ -115,8 +114,8 @@ py::dict fit_profile_patches(const py::object& patches, double step_mm, double t
     options.step_mm = step_mm;
     options.solve = {tikhonov, non_negative};
     std::vector<SurfacePatch> list;
-    if (py::isinstance<py::str>(patches) || py::hasattr(patches, "__fspath__")) {
-        list = read_patch_list(py::str(py::module_::import("os").attr("fspath")(patches)).cast<std::string>());
+    if (is_path(patches)) {
+        list = read_patch_list(path_argument(patches, "patches").string());
     } else {
         const auto a = finite_array(patches, "patches");
         if (a.ndim() != 2 || a.shape(1) != 9) throw InputError("patches: expected an array (patches, 9): x_mm, y_mm, z_mm, nx, ny, nz, c, l, visible");

@@ -15,16 +15,6 @@
 namespace skinspec::python {
 namespace {
 
-// One path or a list of them (None: none).
-std::vector<std::filesystem::path> output_paths(const py::object& output) {
-    std::vector<std::filesystem::path> out;
-    if (output.is_none()) return out;
-    const auto fspath = py::module_::import("os").attr("fspath");
-    const bool one = py::isinstance<py::str>(output) || py::hasattr(output, "__fspath__");
-    for (const auto& f : one ? py::list(py::make_tuple(output)) : py::list(output)) out.emplace_back(py::str(fspath(f)).cast<std::string>());
-    return out;
-}
-
 py::dict swatch(const std::string& material, const py::object& vary, const py::object& set, double delta_e, const std::string& illuminant,
                 const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays, const std::string& geometry,
                 const std::string& space, const py::object& output, bool half, const std::string& display, const std::string& view, int patch_size,
@@ -34,7 +24,7 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
     else {
         for (const auto& text : name_list(vary, "vary")) request.sweeps.push_back(parse_sweep(text));
     }
-    const auto files = check_swatch_files(SwatchFiles{output_paths(output), space, half, display, view, patch_size, overwrite}, request);
+    const auto files = check_swatch_files(SwatchFiles{output_paths(output, "output"), space, half, display, view, patch_size, overwrite}, request);
     const auto chart = compute_swatch_interruptible(request, threads, progress);
     write_swatch_files(chart, request, files);
     auto d = swatch_dict(chart, request, files.space);
@@ -54,10 +44,7 @@ Illumination lighting_argument(const std::string& lighting, const py::object& pa
     if (lighting == "spot") return Illumination::spot(spot_radius_mm);
     if (lighting == "edge") return Illumination::edge();
     const auto& cm = ColorManagement::builtin();
-    if (py::isinstance<py::str>(pattern) || py::hasattr(pattern, "__fspath__")) {
-        const auto file = py::str(py::module_::import("os").attr("fspath")(pattern)).cast<std::string>();
-        return pattern_lighting(read_linear_image(file, "Linear Rec.709", cm), view);
-    }
+    if (is_path(pattern)) return pattern_lighting(read_linear_image(path_argument(pattern, "pattern"), "Linear Rec.709", cm), view);
     const auto a = finite_array(pattern, "pattern");
     if (!(a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) == 3))) throw InputError("pattern: expected an array (height, width) or (height, width, 3)");
     LinearImage image{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)), {}};
@@ -73,7 +60,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
                     const std::string& view_name, bool overwrite, const py::object& progress, const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     auto view = lit_view(field_mm, pixels);
-    const auto files = check_lit_swatch_files(LitSwatchFiles{output_paths(output), space, half, display, view_name, overwrite});
+    const auto files = check_lit_swatch_files(LitSwatchFiles{output_paths(output, "output"), space, half, display, view_name, overwrite});
     const auto& solver = find_solver(mode, "mode");
     const auto light = lighting_argument(lighting, pattern, spot_radius_mm, view);
     const auto grid = wavelength_argument(wavelengths);
