@@ -45,18 +45,8 @@ LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wave
     return out;
 }
 
-LitSwatchFiles check_lit_swatch_files(const LitSwatchFiles& files) {
-    const auto& cm = ColorManagement::builtin();
-    LitSwatchFiles out = files;
-    out.space = cm.canonical_space(files.space, "--space");
-    space_chromaticities(out.space);
-    cm.check_display_view(files.display, files.view);
-    for (const auto& file : files.outputs) check_output_path(file, files.overwrite, {".exr", ".png", ".tif", ".tiff"});
-    return out;
-}
-
 void write_lit_swatch(const LitSwatch& swatch, const std::string& material, const Illumination& light, double field_mm,
-                      const std::string& wavelengths_text, const LitSwatchFiles& files) {
+                      const std::string& wavelengths_text, const ImageOutputs& files) {
     const auto& cm = ColorManagement::builtin();
     const auto lighting = light.description();
     const auto& model = swatch.patch.profiles.model;
@@ -69,7 +59,7 @@ void write_lit_swatch(const LitSwatch& swatch, const std::string& material, cons
                                  {"skinspec:wavelengths", swatch.bands ? std::string("bands R, G, B") : wavelengths_text},
                                  {"ImageDescription", fmt::format("skinspec lit swatch: {} under {} ({} mode; diffuse exitance, "
                                                                   "no specular)", material, lighting, model)}};
-    for (const auto& out : files.outputs) {
+    for (const auto& out : files.files) {
         if (out.extension() == ".exr") write_linear_image(out, swatch.image, files.space, files.half, metadata, cm);
         else write_image_grid(out, {swatch.image}, 1, {fmt::format("{}\n{}, {:g} mm", material, lighting, field_mm)}, files.space, files.display, files.view, metadata, cm);
     }

@@ -33,19 +33,9 @@ LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wave
                             const std::string& space, const std::function<void(std::size_t done, std::size_t total)>& on_progress = {},
                             const std::atomic<bool>* cancel = nullptr);
 
-struct LitSwatchFiles {
-    std::vector<std::filesystem::path> outputs;  // .exr (linear), .png, .tif, .tiff (display-referred, labelled)
-    std::string space = "ACEScg";
-    bool half = false;
-    std::string display = "sRGB";
-    std::string view = "Standard";
-    bool overwrite = false;
-};
-// Every output checked before any work (extension, folder, existing files, the space, display and view); returns
-// `files` with the space's canonical name.
-LitSwatchFiles check_lit_swatch_files(const LitSwatchFiles& files);
-// Writes the swatch's image to every output, with its provenance (material, model, lighting, field, wavelengths).
+// Writes the swatch's image to every file of `outputs` (as check_image_outputs returned them; the display-referred
+// ones labelled), with its provenance (material, model, lighting, field, wavelengths).
 void write_lit_swatch(const LitSwatch& swatch, const std::string& material, const Illumination& light, double field_mm,
-                      const std::string& wavelengths_text, const LitSwatchFiles& files);
+                      const std::string& wavelengths_text, const ImageOutputs& outputs);
 
 }  // namespace skinspec

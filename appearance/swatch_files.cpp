@@ -31,25 +31,20 @@ std::vector<std::string> axis_values(const ParameterSweep& sweep) {
 
 SwatchFiles check_swatch_files(const SwatchFiles& files, const SwatchRequest& request) {
     if (files.patch_px < 32 || files.patch_px > 2048) throw InputError("--patch-size " + std::to_string(files.patch_px) + " is outside [32, 2048]");
-    if (!files.outputs.empty()) {
+    if (!files.images.files.empty()) {
         check_chart_size({request.sweeps.empty() ? 1 : request.sweeps[0].steps, request.sweeps.size() < 2 ? 1 : request.sweeps[1].steps, files.patch_px, 8});
     }
-    const auto& cm = ColorManagement::builtin();
-    SwatchFiles out = files;
-    out.space = cm.canonical_space(files.space, "--space");
-    space_chromaticities(out.space);
-    cm.check_display_view(files.display, files.view);
-    for (const auto& file : files.outputs) check_output_path(file, files.overwrite, {".exr", ".png", ".tif", ".tiff"});
-    return out;
+    return {check_image_outputs(files.images), files.patch_px};
 }
 
 void write_swatch_files(const SwatchChart& chart, const SwatchRequest& request, const SwatchFiles& files) {
-    if (files.outputs.empty()) return;
+    const auto& images = files.images;
+    if (images.files.empty()) return;
     const auto& cm = ColorManagement::builtin();
     std::vector<RGB> working;
     std::vector<std::string> labels;  // each patch's sRGB value (the parameters are on the chart's axes)
     for (const auto& p : chart.patches) {
-        working.push_back(cm.from_xyz(p.xyz, chart.white, files.space));
+        working.push_back(cm.from_xyz(p.xyz, chart.white, images.space));
         labels.push_back(hex_rgb8(cm.from_xyz(p.xyz, chart.white, "sRGB")));
     }
     ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
@@ -85,9 +80,9 @@ void write_swatch_files(const SwatchChart& chart, const SwatchRequest& request, 
         axes.row_title = axis_title(request.sweeps[1]);
         axes.row_values = axis_values(request.sweeps[1]);
     }
-    for (const auto& out : files.outputs) {
-        if (out.extension() == ".exr") write_linear_chart(out, layout, working, files.space, files.half, metadata, cm);
-        else write_display_chart(out, layout, working, labels, files.space, files.display, files.view, metadata, cm, axes);
+    for (const auto& out : images.files) {
+        if (out.extension() == ".exr") write_linear_chart(out, layout, working, images.space, images.half, metadata, cm);
+        else write_display_chart(out, layout, working, labels, images.space, images.display, images.view, metadata, cm, axes);
     }
 }
 

@@ -67,7 +67,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     if (kind == "pattern" && o.lit.size() != 2) throw InputError("--lit pattern: give the image file, e.g. --lit pattern stripes.png");
     if (kind != "pattern" && o.lit.size() != 1) throw InputError("--lit " + kind + ": takes no file (only pattern does)");
     auto view = lit_view(o.field_mm, o.pixels);
-    const auto files = check_lit_swatch_files(LitSwatchFiles{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.overwrite});
+    const auto files = check_image_outputs(ImageOutputs{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.overwrite});
 
     const auto material = load_material(name, parsed_overrides(o.overrides));
     // A lit patch needs radial profiles: the multipole unless --mode names another solver.
@@ -127,8 +127,8 @@ void run_swatch(const SwatchOptions& o) {
     request.geometry = measurement_geometry(o.solver);
     // Every output is checked before any work: nothing is written for a bad request.
     const auto files =
-        check_swatch_files(SwatchFiles{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.patch_px, o.overwrite}, request);
-    const auto& space = files.space;
+        check_swatch_files(SwatchFiles{{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.overwrite}, o.patch_px}, request);
+    const auto& space = files.images.space;
     const auto& cm = ColorManagement::builtin();
 
     std::optional<tbb::global_control> threads;

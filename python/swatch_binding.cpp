@@ -24,12 +24,12 @@ py::dict swatch(const std::string& material, const py::object& vary, const py::o
     else {
         for (const auto& text : name_list(vary, "vary")) request.sweeps.push_back(parse_sweep(text));
     }
-    const auto files = check_swatch_files(SwatchFiles{output_paths(output, "output"), space, half, display, view, patch_size, overwrite}, request);
+    const auto files = check_swatch_files(SwatchFiles{{output_paths(output, "output"), space, half, display, view, overwrite}, patch_size}, request);
     const auto chart = compute_swatch_interruptible(request, threads, progress);
     write_swatch_files(chart, request, files);
-    auto d = swatch_dict(chart, request, files.space);
+    auto d = swatch_dict(chart, request, files.images.space);
     std::vector<std::string> written;
-    for (const auto& f : files.outputs) written.push_back(f.string());
+    for (const auto& f : files.images.files) written.push_back(f.string());
     d["files"] = written;
     return d;
 }
@@ -60,7 +60,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
                     const std::string& view_name, bool overwrite, const py::object& progress, const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     auto view = lit_view(field_mm, pixels);
-    const auto files = check_lit_swatch_files(LitSwatchFiles{output_paths(output, "output"), space, half, display, view_name, overwrite});
+    const auto files = check_image_outputs(ImageOutputs{output_paths(output, "output"), space, half, display, view_name, overwrite});
     const auto& solver = find_solver(mode, "mode");
     const auto light = lighting_argument(lighting, pattern, spot_radius_mm, view);
     const auto grid = wavelength_argument(wavelengths);
@@ -85,7 +85,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
         labels.push_back(patch.profiles.channels[c].label);
     }
     std::vector<std::string> written;
-    for (const auto& f : files.outputs) written.push_back(f.string());
+    for (const auto& f : files.files) written.push_back(f.string());
     py::dict d;
     d["material"] = material_name(skin.material);
     d["model"] = patch.profiles.model;

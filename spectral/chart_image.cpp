@@ -154,6 +154,16 @@ void check_output_path(const std::filesystem::path& file, bool overwrite, const 
     OutputClaims::claim(file, overwrite);
 }
 
+ImageOutputs check_image_outputs(const ImageOutputs& outputs) {
+    const auto& cm = ColorManagement::builtin();
+    ImageOutputs out = outputs;
+    out.space = cm.canonical_space(outputs.space, "--space");
+    space_chromaticities(out.space);
+    cm.check_display_view(outputs.display, outputs.view);
+    for (const auto& file : outputs.files) check_output_path(file, outputs.overwrite, {".exr", ".png", ".tif", ".tiff"});
+    return out;
+}
+
 // Scene-linear output: chromaticities and colour-space name of `space`, the metadata, half or float.
 void write_scene_linear(const DataImage& image, const std::filesystem::path& file, std::string_view working_space, bool half_float,
                         const ImageMetadata& metadata, const ColorManagement& cm) {

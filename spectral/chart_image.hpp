@@ -48,6 +48,20 @@ std::array<float, 8> space_chromaticities(std::string_view space);
 // without `overwrite`), or its extension is not one of `extensions`. Writes nothing.
 void check_output_path(const std::filesystem::path& file, bool overwrite, const std::vector<std::string>& extensions);
 
+// Image files of one picture in one working space: linear OpenEXR (.exr) or display-referred PNG / TIFF through an
+// OCIO display and view.
+struct ImageOutputs {
+    std::vector<std::filesystem::path> files;  // .exr, .png, .tif, .tiff
+    std::string space = "ACEScg";              // the linear working space
+    bool half = false;                         // EXR in half float
+    std::string display = "sRGB";
+    std::string view = "Standard";
+    bool overwrite = false;
+};
+// Every file checked before any work (the space, display and view, extension, folder, existing files unless
+// overwrite); returns `outputs` with the space's canonical name.
+ImageOutputs check_image_outputs(const ImageOutputs& outputs);
+
 // Packed RGB floats, row-major.
 struct LinearImage {
     int width = 0;
