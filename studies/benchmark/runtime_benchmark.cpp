@@ -187,7 +187,9 @@ void preset_cases(Benchmark& bench) {
             request.spectral.max_rays_per_wavelength = rays;
             request.spectral.seed = seed;
             request.spectral.cancel = bench.options().cancel;
-            return solve_spectrum(find_solver("biospec"), material, request).wavelengths.front().reflectance;
+            const auto result = solve_spectrum(find_solver("biospec"), material, request);
+            bench.check_cancel();  // a stopped walk may have finished no wavelength (front() of none crashed bench on Ctrl-C)
+            return result.wavelengths.front().reflectance;
         };
         const auto index = bench.add_walk_reference_case(fmt::format("{} 550 nm", name), "R", walk, "BioSpec");
         bench.sweep_walk(index, BenchSolver::biospec_walk, walk);

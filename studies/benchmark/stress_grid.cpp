@@ -294,7 +294,10 @@ void biospec_cases(Grid& grid) {
                     c.energy(sum);
                     if (w.truncated_rays > 0) c.limit = fmt::format("{} ray(s) stopped at the event limit", w.truncated_rays);
                 }
-                if (reflector && v.wavelengths_nm == std::vector<double>{450.0}) r450[v.name] = result.wavelengths.front().reflectance.value;
+                // A stopped walk may have finished no wavelength.
+                if (reflector && v.wavelengths_nm == std::vector<double>{450.0} && !result.wavelengths.empty()) {
+                    r450[v.name] = result.wavelengths.front().reflectance.value;
+                }
             });
         }
     }
