@@ -123,7 +123,7 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
     // and its convolution per wavelength; solved all first, the estimate took the profiles' rate for the cheaper
     // convolutions); a band material's bands in one solve.
     const auto* stack = std::get_if<LayerStack>(&material);
-    const std::size_t channels = stack ? wavelengths.size() : std::get<HomogeneousMaterial>(material).bands.size();
+    const std::size_t channels = profile_channel_count(material, wavelengths);
     const std::size_t per_solve = stack ? 1 : channels;
     out.profiles.material = material_name(material);
     for (std::size_t c = 0; c < channels; ++c) {

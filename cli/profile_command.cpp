@@ -12,12 +12,12 @@
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
+#include "formats/profile_inputs.hpp"
 #include "materials/material_file.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
-#include "formats/profile_inputs.hpp"
 #include "spectral/line_plot.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -127,7 +127,7 @@ void run_profile(const ProfileOptions& o) {
     }
     if (profiles.partial) {
         std::cerr << fmt::format("skinspec: {}: the {} of {} channels finished were written, marked partial\n", InterruptGuard::reason(),
-                                 profiles.channels.size(), std::holds_alternative<LayerStack>(material) ? grid.size() : std::get<HomogeneousMaterial>(material).bands.size());
+                                 profiles.channels.size(), profile_channel_count(material, grid));
         std::exit(InterruptGuard::exit_code());
     }
 }

@@ -1,4 +1,5 @@
 // Argument conversions, result objects and the interruptible call shared by every binding (bindings.hpp).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -10,8 +11,6 @@
 
 #include "python/bindings.hpp"
 #include "solvers/spectral_solver.hpp"
-
-#include <algorithm>
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 

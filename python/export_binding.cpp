@@ -1,6 +1,7 @@
 // skinspec.export_lut / export_profile / export_pbrt / export_mitsuba (docs/PYTHON.md "Exports"): the files
 // `skinspec export ...` writes, written by the same library calls, with the command's --json report returned as a
 // dict of numpy arrays.
+#include <array>
 #include <chrono>
 #include <filesystem>
 
@@ -151,28 +152,24 @@ void bind_exports(py::module_& m) {
           py::arg("wavelengths") = py::none(), py::arg("space") = "ACEScg", py::arg("illuminant") = "D65", py::arg("observer") = "2",
           py::arg("gaussians") = ProfileExportRequest{}.gaussians, py::arg("radii_mm") = py::none(), py::arg("mode") = "multipole",
           py::arg("rays") = py::none(), py::arg("seed") = py::none(), py::arg("overwrite") = false);
-    static const std::string pbrt_doc = std::string("The layered skin as pbrt-v4 media in a lit-slab scene, as `skinspec export pbrt` writes it (phase "
-                                                    "default \"hg\": pbrt-v4 media take Henyey-Greenstein only).") + scene_doc;
-    static const std::string mitsuba_doc = std::string("The layered skin as Mitsuba 3 media in a lit-slab scene, as `skinspec export mitsuba` writes it "
-                                                       "(phase default \"own\": HG, isotropic, measured phases as tabphase).") + scene_doc;
-    m.def(
-        "export_pbrt",
-        [](const py::object& material, const py::object& output, const py::object& wavelengths, const py::object& rgb, const py::object& phase,
-           double phase_wavelength, bool overwrite) {
-            return export_scene_files(SceneRenderer::pbrt, material, output, wavelengths, rgb, phase, phase_wavelength, overwrite);
-        },
-        pbrt_doc.c_str(),
-        py::arg("material"), py::arg("output"), py::kw_only(), py::arg("wavelengths") = py::none(), py::arg("rgb") = py::none(),
-        py::arg("phase") = py::none(), py::arg("phase_wavelength") = MediaRequest{}.phase_wavelength_nm, py::arg("overwrite") = false);
-    m.def(
-        "export_mitsuba",
-        [](const py::object& material, const py::object& output, const py::object& wavelengths, const py::object& rgb, const py::object& phase,
-           double phase_wavelength, bool overwrite) {
-            return export_scene_files(SceneRenderer::mitsuba, material, output, wavelengths, rgb, phase, phase_wavelength, overwrite);
-        },
-        mitsuba_doc.c_str(),
-        py::arg("material"), py::arg("output"), py::kw_only(), py::arg("wavelengths") = py::none(), py::arg("rgb") = py::none(),
-        py::arg("phase") = py::none(), py::arg("phase_wavelength") = MediaRequest{}.phase_wavelength_nm, py::arg("overwrite") = false);
+    // Both renderers: one function each, named and described by the renderer (pybind11 keeps the pointers: static).
+    static const std::array<std::string, 2> names{"export_pbrt", "export_mitsuba"};
+    static const std::array<std::string, 2> docs{
+        std::string("The layered skin as pbrt-v4 media in a lit-slab scene, as `skinspec export pbrt` writes it (phase default \"hg\": "
+                    "pbrt-v4 media take Henyey-Greenstein only).") + scene_doc,
+        std::string("The layered skin as Mitsuba 3 media in a lit-slab scene, as `skinspec export mitsuba` writes it (phase default \"own\": "
+                    "HG, isotropic, measured phases as tabphase).") + scene_doc};
+    for (const auto renderer : {SceneRenderer::pbrt, SceneRenderer::mitsuba}) {
+        const std::size_t i = renderer == SceneRenderer::pbrt ? 0 : 1;
+        m.def(
+            names[i].c_str(),
+            [renderer](const py::object& material, const py::object& output, const py::object& wavelengths, const py::object& rgb,
+                       const py::object& phase, double phase_wavelength, bool overwrite) {
+                return export_scene_files(renderer, material, output, wavelengths, rgb, phase, phase_wavelength, overwrite);
+            },
+            docs[i].c_str(), py::arg("material"), py::arg("output"), py::kw_only(), py::arg("wavelengths") = py::none(), py::arg("rgb") = py::none(),
+            py::arg("phase") = py::none(), py::arg("phase_wavelength") = MediaRequest{}.phase_wavelength_nm, py::arg("overwrite") = false);
+    }
 }
 
 }  // namespace skinspec::python

@@ -9,6 +9,10 @@
 
 namespace skinspec {
 
+std::size_t profile_channel_count(const Material& material, const WavelengthGrid& wavelengths) {
+    return std::holds_alternative<LayerStack>(material) ? wavelengths.size() : std::get<HomogeneousMaterial>(material).bands.size();
+}
+
 SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGrid& wavelengths, std::span<const double> radii_mm,
                                     const DiffusionOptions& options, bool transmittance, const std::atomic<bool>* cancel,
                                     const std::function<void(const Progress&)>& on_progress) {
@@ -22,8 +26,7 @@ SpectralProfiles diffusion_profiles(const Material& material, const WavelengthGr
     out.material = material_name(material);
     out.model = std::string(to_string(options.mode));
     out.radii_mm.assign(radii_mm.begin(), radii_mm.end());
-    const std::size_t channels =
-        std::holds_alternative<LayerStack>(material) ? wavelengths.size() : std::get<HomogeneousMaterial>(material).bands.size();
+    const std::size_t channels = profile_channel_count(material, wavelengths);
     const auto add = [&](const DiffusionMaterial& m, std::string label, double nm) {
         if (out.partial || (cancel && cancel->load())) {
             out.partial = true;

@@ -36,6 +36,10 @@ struct SpectralProfiles {
     bool partial = false;  // stopped: the channels finished so far
 };
 
+// The channels profiles of `material` have: one per wavelength of `wavelengths` for a layered material, one per band
+// for a homogeneous one.
+std::size_t profile_channel_count(const Material& material, const WavelengthGrid& wavelengths);
+
 // `wavelengths` is used for layered materials and ignored for homogeneous ones (all their bands).
 // InputError for radii that are negative, non-finite or not increasing.
 // `cancel`: checked between channels and within a transform; a stop leaves the channels finished so far, partial.
