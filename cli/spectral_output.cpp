@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 
 #include <fmt/format.h>
 
@@ -182,17 +183,18 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
         }
         previous = &r;
         const auto& p = s.result.provenance;
-        std::string overrides;
-        for (const auto& [key, value] : p.overrides) overrides += " " + key + "=" + value;
-        std::string stated;
+        auto to = std::back_inserter(out);
+        fmt::format_to(to, "# provenance {}: solver {}, skinspec {}, overrides", s.result.material, p.solver, p.version);
+        if (p.overrides.empty()) out += " none";
+        for (const auto& [key, value] : p.overrides) fmt::format_to(to, " {}={}", key, value);
         if (const auto& e = s.result.stated_error) {
             const bool repeated = previous_meaning && *previous_meaning == e->meaning;
-            stated = fmt::format(", stated error of R {:.6g}{} ({})", e->R, e->delta_e2000 ? fmt::format(", CIEDE2000 {:.4g}", *e->delta_e2000) : std::string(),
-                                 repeated ? std::string("as above") : e->meaning);
+            fmt::format_to(to, ", stated error of R {:.6g}", e->R);
+            if (e->delta_e2000) fmt::format_to(to, ", CIEDE2000 {:.4g}", *e->delta_e2000);
+            fmt::format_to(to, " ({})", repeated ? std::string_view("as above") : std::string_view(e->meaning));
             previous_meaning = &e->meaning;
         }
-        out += fmt::format("# provenance {}: solver {}, skinspec {}, overrides{}{}\n", s.result.material, p.solver, p.version,
-                           overrides.empty() ? std::string(" none") : overrides, stated);
+        out += '\n';
         if (std::any_of(written_materials.begin(), written_materials.end(),
                         [&](const auto& w) { return w.first == s.result.material && (w.second == p.material_toml.get() || *w.second == *p.material_toml); })) {
             continue;
@@ -216,16 +218,20 @@ std::string to_csv(const std::vector<ReportedSpectrum>& spectra) {
     out += first.bands.empty() ? ",wavelength_nm" : ",band";
     for (const auto& c : columns) out += "," + c.name + (uncertain ? "," + c.name + "_stderr" : "");
     out += uncertain ? ",rays,converged\n" : "\n";
+    auto to = std::back_inserter(out);
     for (const auto& s : spectra) {
         for (std::size_t i = 0; i < s.result.wavelengths.size(); ++i) {
             const auto& w = s.result.wavelengths[i];
             out += s.result.material;
-            for (const auto& [field, value] : s.result.provenance.varied) out += fmt::format(",{:.9g}", value);
-            out += s.result.bands.empty() ? fmt::format(",{:g}", w.wavelength_nm) : fmt::format(",{}", s.result.bands[i]);
+            for (const auto& [field, value] : s.result.provenance.varied) fmt::format_to(to, ",{:.9g}", value);
+            if (s.result.bands.empty()) fmt::format_to(to, ",{:g}", w.wavelength_nm);
+            else fmt::format_to(to, ",{}", s.result.bands[i]);
             for (const auto& c : columns) {
-                out += uncertain ? fmt::format(",{:.9g},{:.3g}", c.get(w).value, c.get(w).stderr) : fmt::format(",{:.9g}", c.get(w).value);
+                if (uncertain) fmt::format_to(to, ",{:.9g},{:.3g}", c.get(w).value, c.get(w).stderr);
+                else fmt::format_to(to, ",{:.9g}", c.get(w).value);
             }
-            out += uncertain ? fmt::format(",{},{}\n", w.rays, w.converged ? 1 : 0) : "\n";
+            if (uncertain) fmt::format_to(to, ",{},{}\n", w.rays, w.converged ? 1 : 0);
+            else out += '\n';
         }
     }
     return out;
@@ -322,12 +328,14 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
         out += fmt::format("  {:>20}", first.bands.empty() ? fmt::format("R at {:g} nm", first.wavelengths.front().wavelength_nm) : "R, band " + first.bands.front());
     }
     out += fmt::format("  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", "sRGB", "Lab", "ITA deg (category)", "dE00 +-", "worst stderr", "rays");
+    auto to = std::back_inserter(out);
     for (const auto& s : spectra) {
-        out += fmt::format("{:<22}", s.result.material.substr(0, 22));
-        for (const auto& [field, value] : s.result.provenance.varied) out += fmt::format("  {:>30.6g}", value);
+        fmt::format_to(to, "{:<22}", std::string_view(s.result.material).substr(0, 22));
+        for (const auto& [field, value] : s.result.provenance.varied) fmt::format_to(to, "  {:>30.6g}", value);
         if (one_row) {
             const auto& r = s.result.wavelengths.front().reflectance;
-            out += fmt::format("  {:>20}", s.result.has_uncertainty ? fmt::format("{:.4f} +- {:.4f}", r.value, r.stderr) : fmt::format("{:.4f}", r.value));
+            if (s.result.has_uncertainty) fmt::format_to(to, "  {:>20}", fmt::format("{:.4f} +- {:.4f}", r.value, r.stderr));
+            else fmt::format_to(to, "  {:>20.4f}", r.value);
         }
         double worst = 0.0;
         std::uint64_t rays = 0;
@@ -339,7 +347,7 @@ std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra) {
         const auto spread = s.color && s.color->uncertainty ? fmt::format("{:.2f}", s.color->uncertainty->delta_e2000) : std::string("-");
         const auto tone = s.color && s.color->skin_tone ? fmt::format("{:.1f} ({})", s.color->skin_tone->ita_deg, to_string(s.color->skin_tone->category))
                                                          : std::string("-");
-        out += fmt::format("  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab, tone, spread,
+        fmt::format_to(to, "  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab, tone, spread,
                            s.result.has_uncertainty ? fmt::format("{:.4f}", worst) : std::string("-"), s.result.has_uncertainty ? rays : 0);
     }
     const bool partial = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.partial; });

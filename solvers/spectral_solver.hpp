@@ -125,6 +125,8 @@ std::string solver_names();
 // InputError for anything the solver does not declare: the material's kind, a quantity, a measurement geometry,
 // a switch, a standard-error target or a ray count for a deterministic solver.
 void check_request(const SpectralSolver& solver, const Material& material, const SolverRequest& request);
+// The part of check_request that does not depend on the material (a sweep checks it once for all its members).
+void check_request_settings(const SpectralSolver& solver, const SolverRequest& request);
 void check_request(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 
 // check_request, solve, and the provenance (material TOML, overrides, switches, seed, version) filled in.
