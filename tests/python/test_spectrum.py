@@ -17,6 +17,8 @@ CASES = [
     ("rte", ["--quantities", "R,T", "--rays", "400", "--seed", "3", "--boundaries", "split"],
      dict(quantities=["R", "T"], rays=400, seed=3, boundaries="split")),
     ("adding-doubling", ["--quantities", "R,T", "--channels", "8"], dict(quantities="R,T", channels=8)),
+    ("biospec-adding-doubling", ["--quantities", "R,T,A", "--channels", "12", "--fold-into-skin", "resample", "--incidence", "30"],
+     dict(quantities="R,T,A", channels=12, fold_into_skin="resample", incidence_deg=30)),
     ("multipole", ["--quantities", "R,T"], dict(quantities="R,T")),
     ("dipole", ["--roughness", "0.3"], dict(roughness=0.3)),
 ]

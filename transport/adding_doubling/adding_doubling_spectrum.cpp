@@ -6,10 +6,11 @@
 
 namespace skinspec {
 
-SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const SpectralRequest& request, const AdOptions& options) {
-    if (request.geometry == MeasurementGeometry::zero_45) throw InputError("adding-doubling computes hemispherical totals, not geometry 0-45");
+SpectralResult adding_doubling_spectrum(const LayerStack& stack, const SpectralRequest& request, const AdOptions& options, std::string model,
+                                        const std::function<AdWavelength(double wavelength_nm, const AdOptions& options)>& solve) {
+    if (request.geometry == MeasurementGeometry::zero_45) throw InputError(model + " computes hemispherical totals, not geometry 0-45");
     SpectralResult out;
-    out.model = "adding-doubling";
+    out.model = std::move(model);
     out.material = stack.name;
     out.has_uncertainty = false;
     for (const auto& l : stack.layers) out.layer_names.push_back(l.name);
@@ -18,7 +19,6 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
     auto ad = options;
     ad.cancel = request.cancel;
     out.quantities = Quantities{true, request.quantities.transmittance, request.quantities.absorptance, false};
-    AdCache phases;
     for (std::size_t w = 0; w < total; ++w) {
         if (request.cancel && request.cancel->load()) {
             out.partial = true;
@@ -27,7 +27,8 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
         const double nm = request.wavelengths[w];
         // The quadrature-doubling check at the first, middle and last wavelength (8x the work of one).
         ad.accuracy_check = options.accuracy_check && (w == 0 || w == total / 2 || w + 1 == total);
-        const auto r = solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, request.incidence_deg}, ad, &phases);
+        const auto solved = solve(nm, ad);
+        const auto& r = solved.totals;
         if (r.cancelled) {
             out.partial = true;
             break;
@@ -38,6 +39,7 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
         row.reflectance = {r.diffuse_reflectance + (excluded ? 0.0 : r.specular_reflectance), 0.0};
         row.specular_reflectance = {r.specular_reflectance, 0.0};
         row.transmittance = {r.transmittance, 0.0};
+        row.absorptance_surface = {solved.surface_absorbed, 0.0};
         if (request.quantities.absorptance) {
             for (const double a : r.absorbed_layers) row.absorptance_layers.push_back({a, 0.0});
         }
@@ -53,6 +55,13 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
         out.stated_error = StatedError{accuracy, "twice the largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength", {}};
     }
     return out;
+}
+
+SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const SpectralRequest& request, const AdOptions& options) {
+    AdCache phases;
+    return adding_doubling_spectrum(stack, request, options, "adding-doubling", [&](double nm, const AdOptions& ad) {
+        return AdWavelength{solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, request.incidence_deg}, ad, &phases), 0.0};
+    });
 }
 
 }  // namespace skinspec

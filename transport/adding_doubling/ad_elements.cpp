@@ -1,0 +1,348 @@
+#include "transport/adding_doubling/ad_elements.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "spectral/input_error.hpp"
+#include "transport/adding_doubling/gauss_quadrature.hpp"
+#include "transport/adding_doubling/phase_moments.hpp"
+#include "transport/fresnel.hpp"
+
+namespace skinspec {
+
+double AdChannels::cosine(std::size_t k, double n) const {
+    return s[k] < n ? std::sqrt(std::max(0.0, 1.0 - (s[k] / n) * (s[k] / n))) : 0.0;
+}
+
+AdElement fresnel_interface(const AdChannels& c, double n1, double n2) {
+    const auto size = static_cast<Eigen::Index>(c.size());
+    AdElement e{AdElement::Kind::interface, AdVector::Zero(size), AdVector::Zero(size), AdVector::Zero(size), {}, {}, {}, {}};
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        const auto kk = static_cast<Eigen::Index>(k);
+        const bool above = c.s[k] < n1, below = c.s[k] < n2;
+        if (above && below) {
+            const double f = fresnel_reflectance(c.cosine(k, n1), n1, n2);
+            e.r_top_diagonal(kk) = e.r_bottom_diagonal(kk) = f;
+            e.t_diagonal(kk) = 1.0 - f;
+        } else if (above) {
+            e.r_top_diagonal(kk) = 1.0;  // total internal reflection
+        } else if (below) {
+            e.r_bottom_diagonal(kk) = 1.0;
+        }
+    }
+    return e;
+}
+
+
+namespace {
+
+// `indices`: every medium's index; `layer_indices`: the layers' (where light scatters, so where the quadrature
+// should be Gaussian in the cosine).
+AdChannels make_channels(const std::vector<double>& indices, const std::vector<double>& layer_indices, std::size_t per_hemisphere,
+                       double incident_s, bool collimated) {
+    std::vector<double> breaks{0.0};
+    for (const double n : indices) breaks.push_back(n);
+    if (collimated && incident_s > 0.0) breaks.push_back(incident_s);
+    std::sort(breaks.begin(), breaks.end());
+    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+    const double n_max = breaks.back();
+    AdChannels c;
+    std::vector<std::pair<double, double>> nodes;  // (s, measure)
+    bool incident_found = false;
+    for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
+        const double s_lo = breaks[b], s_hi = breaks[b + 1];
+        // The segment's own medium, whose cosine is the quadrature variable: the lowest-index layer that covers it
+        // (Gaussian where the light scatters; the others see smooth functions of it), else the lowest medium.
+        double owner = n_max;
+        bool in_a_layer = false;
+        for (const double n : layer_indices) {
+            if (n >= s_hi) {
+                owner = std::min(owner, n);
+                in_a_layer = true;
+            }
+        }
+        if (!in_a_layer) {
+            for (const double n : indices) {
+                if (n >= s_hi) owner = std::min(owner, n);
+            }
+        }
+        const double mu_hi = std::sqrt(std::max(0.0, 1.0 - (s_lo / owner) * (s_lo / owner)));
+        const double mu_lo = std::sqrt(std::max(0.0, 1.0 - (s_hi / owner) * (s_hi / owner)));
+        const double share = (s_hi * s_hi - s_lo * s_lo) / (n_max * n_max);
+        const auto m = std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(share * static_cast<double>(per_hemisphere))));
+        QuadratureRule rule;
+        const bool fixed_at_lo_s = collimated && s_lo == incident_s;
+        const bool fixed_at_hi_s = collimated && s_hi == incident_s && !incident_found;
+        if (fixed_at_lo_s && !incident_found) rule = gauss_radau(m, mu_lo, mu_hi, mu_hi);
+        else if (fixed_at_hi_s) rule = gauss_radau(m, mu_lo, mu_hi, mu_lo);
+        else rule = gauss_legendre(m, mu_lo, mu_hi);
+        for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+            const double mu = rule.nodes[i];
+            const double s = owner * std::sqrt(std::max(0.0, 1.0 - mu * mu));
+            nodes.emplace_back(s, 2.0 * owner * owner * mu * rule.weights[i]);  // d(s^2) = 2 n^2 mu dmu
+        }
+        if (fixed_at_lo_s || fixed_at_hi_s) incident_found = true;
+    }
+    std::sort(nodes.begin(), nodes.end());
+    for (const auto& [s, w] : nodes) {
+        c.s.push_back(s);
+        c.measure.push_back(w);
+    }
+    if (collimated) {
+        // The node placed at the incident s (exact by construction; the nearest within rounding).
+        std::size_t best = 0;
+        for (std::size_t k = 0; k < c.size(); ++k) {
+            if (std::abs(c.s[k] - incident_s) < std::abs(c.s[best] - incident_s)) best = k;
+        }
+        c.incident = best;
+        c.s[best] = incident_s;
+    }
+    return c;
+}
+
+// The ideal Lambertian reflector under a layer of index n: any incident flux leaves upward as c_i.
+AdElement lambertian_reflector(const AdChannels& c, double n) {
+    const auto size = static_cast<Eigen::Index>(c.size());
+    AdElement e{AdElement::Kind::reflector, {}, {}, {}, AdMatrix::Zero(size, size), {}, {}, {}};
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        for (std::size_t j = 0; j < c.size(); ++j) {
+            if (c.s[j] < n) e.r(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c.weight(i, n);
+        }
+    }
+    return e;
+}
+
+std::vector<double> cosines_of(const PhaseFunction& phase) {
+    std::vector<double> out;
+    if (phase.kind == PhaseFunction::Kind::tabulated) {
+        for (std::size_t i = 0; i < phase.table->size(); ++i) out.push_back(phase.table->cos_theta(i));
+    }
+    return out;
+}
+
+bool same_scattering(const AdCache::Entry& e, const PhaseFunction& phase, const std::vector<double>& cosines, double n, const AdChannels& c) {
+    return e.phase.kind == phase.kind && e.phase.g == phase.g && e.phase.g2 == phase.g2 && e.phase.weight == phase.weight && e.n == n &&
+           e.table_cosines == cosines && e.channel_s == c.s;
+}
+
+AdCache::Entry redistribution(const AdChannels& c, double n, const PhaseFunction& phase, std::vector<double> cosines) {
+    AdCache::Entry e{phase, std::move(cosines), n, c.s, {}, 0.0, {}, {}, {}, {}, {}};
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        if (c.s[k] < n) e.live.push_back(k);
+    }
+    const auto m = static_cast<Eigen::Index>(e.live.size());
+    // Delta-M with 2m moments kept: f = chi_2m (Wiscombe 1977), for a forward peak only (a backward-peaked phase
+    // function has chi_2m > 0 too, but its truncated part is not light going on unscattered).
+    const std::size_t moments = 2 * e.live.size();
+    auto chi = legendre_moments(phase, moments + 2);
+    const double f = chi[moments];
+    if (f > 0.0 && f < 1.0 && chi[moments + 1] > 0.0) {
+        e.f = f;
+        for (std::size_t l = 0; l < moments; ++l) chi[l] = (chi[l] - f) / (1.0 - f);
+    }
+    chi.resize(moments);
+    AdVector mu(m), w(m), cw(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+        const auto k = e.live[static_cast<std::size_t>(i)];
+        mu(i) = c.cosine(k, n);
+        cw(i) = c.weight(k, n);
+        w(i) = cw(i) / (2.0 * mu(i));  // the dmu weight
+    }
+    // H(mu_i | +-mu_j) = sum_l (2l + 1) / 2 chi_l P_l(mu_i) P_l(+-mu_j); P_l(-x) = (-1)^l P_l(x).
+    AdMatrix pl(m, static_cast<Eigen::Index>(moments));
+    for (Eigen::Index i = 0; i < m; ++i) {
+        const auto p = legendre_polynomials(mu(i), moments);
+        for (std::size_t l = 0; l < moments; ++l) pl(i, static_cast<Eigen::Index>(l)) = p[l];
+    }
+    AdVector even(static_cast<Eigen::Index>(moments)), odd(static_cast<Eigen::Index>(moments));
+    for (std::size_t l = 0; l < moments; ++l) {
+        const double coefficient = (2.0 * static_cast<double>(l) + 1.0) / 2.0 * chi[l];
+        even(static_cast<Eigen::Index>(l)) = coefficient;
+        odd(static_cast<Eigen::Index>(l)) = l % 2 == 0 ? coefficient : -coefficient;
+    }
+    // The truncated series of a strongly forward phase function dips below zero in places (g -> 1): those entries
+    // are set to 0 (a redistribution is a probability) before the energy renormalisation below.
+    AdMatrix same = (pl * even.asDiagonal() * pl.transpose()).cwiseMax(0.0);
+    const AdMatrix opposite = (pl * odd.asDiagonal() * pl.transpose()).cwiseMax(0.0);
+    // Energy: scattered light from every direction j integrates to 1 (correction on the diagonal, Prahl 1995).
+    for (Eigen::Index j = 0; j < m; ++j) {
+        double total = 0.0;
+        for (Eigen::Index i = 0; i < m; ++i) total += (same(i, j) + opposite(i, j)) * w(i);
+        same(j, j) += (1.0 - total) / w(j);
+    }
+    e.mu = mu;
+    e.w = w;
+    e.cw = cw;
+    e.same = std::move(same);
+    e.opposite = opposite;
+    return e;
+}
+
+}  // namespace
+
+const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const AdChannels& c, double n, const PhaseFunction& phase, AdCache& cache) {
+    // Least recently used last out: a spectrum's tabulated phases inside 400-546 nm differ at every wavelength, so an
+    // unbounded cache would grow with the wavelength count.
+    constexpr std::size_t capacity = 16;
+    auto cosines = cosines_of(phase);
+    auto& entries = cache.entries;
+    for (auto it = entries.begin(); it != entries.end(); ++it) {
+        if (same_scattering(**it, phase, cosines, n, c)) {
+            std::rotate(it, it + 1, entries.end());
+            return entries.back();
+        }
+    }
+    if (entries.size() == capacity) entries.erase(entries.begin());
+    entries.push_back(std::make_shared<const AdCache::Entry>(redistribution(c, n, phase, std::move(cosines))));
+    return entries.back();
+}
+
+
+namespace {
+
+struct Solution {
+    double specular = 0.0, diffuse = 0.0, transmittance = 0.0;
+    std::vector<double> absorbed;
+};
+
+// Everything below a level as one reflection operator S (flux from above -> flux back up), built bottom-up by adding
+// one element E on top (van de Hulst 1980, Eq. 4.25; Prahl 1995, Eq. 5.17):
+//   S' = R_E + T'_E S (1 - R'_E S)^-1 T_E,
+// with the factor 1 - R'_E S kept for the fluxes: the downward flux under E is x = (1 - R'_E S)^-1 T_E d for the
+// flux d arriving on E, and S x goes back up through it.
+struct Level {
+    AdMatrix reflection;                    // S of this element and everything below it
+    Eigen::PartialPivLU<AdMatrix> factor;   // of 1 - R'_E S_below (empty for the bottom element)
+};
+
+// X M^-1 for the factored M, as (M^T)^-1 X^T transposed.
+AdMatrix right_solve(const Eigen::PartialPivLU<AdMatrix>& factor, const AdMatrix& x) {
+    const AdMatrix rhs = x.transpose();
+    const AdMatrix solved = factor.transpose().solve(rhs);
+    return solved.transpose();
+}
+
+AdMatrix reflection_with(const AdElement& e, const AdMatrix& below, Eigen::PartialPivLU<AdMatrix>& factor) {
+    const auto n = below.rows();
+    if (e.kind == AdElement::Kind::reflector) return e.r;
+    const AdMatrix identity = AdMatrix::Identity(n, n);
+    if (e.kind == AdElement::Kind::interface) {
+        factor.compute(identity - e.r_bottom_diagonal.asDiagonal() * below);
+        // S (1 - R' S)^-1 by a transposed solve, then the diagonal transmissions on both sides.
+        const AdMatrix y = right_solve(factor, below);
+        AdMatrix s = e.t_diagonal.asDiagonal() * y * e.t_diagonal.asDiagonal();
+        s.diagonal() += e.r_top_diagonal;
+        return s;
+    }
+    factor.compute(identity - e.reflection_from_below() * below);
+    const AdMatrix y = right_solve(factor, below);
+    return e.r + e.transmission_up() * y * e.t;
+}
+
+AdVector transmit(const AdElement& e, const AdVector& flux) {
+    if (e.kind == AdElement::Kind::interface) return e.t_diagonal.cwiseProduct(flux);
+    if (e.kind == AdElement::Kind::layer) return e.t * flux;
+    return AdVector::Zero(flux.size());
+}
+
+Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std::size_t per_hemisphere, const AdLayerMaker& make_layer,
+                    const std::atomic<bool>* cancel) {
+    std::vector<double> indices{shape.above_refractive_index};
+    indices.insert(indices.end(), shape.layer_indices.begin(), shape.layer_indices.end());
+    if (!shape.bottom_reflector) indices.push_back(shape.below_refractive_index);
+    constexpr double deg = std::numbers::pi / 180.0;
+    const double n0 = shape.above_refractive_index;
+    const double incident_s = incidence.diffuse ? 0.0 : n0 * std::sin(incidence.angle_deg * deg);
+    const auto channels = make_channels(indices, shape.layer_indices, per_hemisphere, incident_s, !incidence.diffuse);
+    const auto n = static_cast<Eigen::Index>(channels.size());
+
+    std::vector<AdElement> elements;
+    std::vector<int> layer_of;  // per element: layer index or -1
+    double above = n0;
+    for (std::size_t k = 0; k < shape.layer_indices.size(); ++k) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+        const double index = shape.layer_indices[k];
+        elements.push_back(fresnel_interface(channels, above, index));
+        layer_of.push_back(-1);
+        // The collimated beam's cosine in this layer (Snell: the same s); 1 for diffuse incidence.
+        const double beam = incidence.diffuse || channels.s[channels.incident] >= index ? 1.0 : std::max(channels.cosine(channels.incident, index), 1e-6);
+        elements.push_back(make_layer(channels, k, beam));
+        layer_of.push_back(static_cast<int>(k));
+        above = index;
+    }
+    elements.push_back(shape.bottom_reflector ? lambertian_reflector(channels, above) : fresnel_interface(channels, above, shape.below_refractive_index));
+    layer_of.push_back(-1);
+
+    AdVector incident = AdVector::Zero(n);
+    if (incidence.diffuse) {
+        for (std::size_t k = 0; k < channels.size(); ++k) incident(static_cast<Eigen::Index>(k)) = channels.weight(k, n0);
+    } else {
+        incident(static_cast<Eigen::Index>(channels.incident)) = 1.0;
+    }
+    // Bottom-up: the reflection of every suffix (levels[e] = element e and all below it); nothing returns from
+    // under the last element.
+    const std::size_t count = elements.size();
+    std::vector<Level> levels(count + 1);
+    levels[count].reflection = AdMatrix::Zero(n, n);
+    for (std::size_t e = count; e-- > 0;) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+        levels[e].reflection = reflection_with(elements[e], levels[e + 1].reflection, levels[e].factor);
+    }
+
+    Solution out;
+    const double total_r = (levels[0].reflection * incident).sum();
+    out.specular = elements.front().r_top_diagonal.cwiseProduct(incident).sum();
+    out.diffuse = total_r - out.specular;
+    // Top-down: the downward flux under each element and the net flux (down - up) there; A of a layer is the net
+    // flux entering it minus the net flux leaving its bottom.
+    AdVector down = incident;
+    double net_above = incident.sum() - total_r;
+    out.absorbed.assign(shape.layer_indices.size(), 0.0);
+    for (std::size_t e = 0; e < count; ++e) {
+        const AdVector through = transmit(elements[e], down);
+        down = e + 1 < count ? AdVector(levels[e].factor.solve(through)) : through;
+        const double net_below = down.sum() - (levels[e + 1].reflection * down).sum();
+        if (layer_of[e] >= 0) {
+            // A difference of fluxes: a layer without absorption absorbs exactly nothing, and roundoff (~1e-11 in
+            // thick conservative layers) does not make an absorbing layer's A negative.
+            const auto k = static_cast<std::size_t>(layer_of[e]);
+            out.absorbed[k] = shape.absorbing[k] ? std::max(0.0, net_above - net_below) : 0.0;
+        }
+        net_above = net_below;
+    }
+    out.transmittance = shape.bottom_reflector ? 0.0 : net_above;
+    return out;
+}
+
+}  // namespace
+
+AdResult solve_stack(const AdStackShape& shape, const AdIncidence& incidence, const AdOptions& options, const AdLayerMaker& make_layer) {
+    const auto full = solve_with(shape, incidence, options.channels, make_layer, options.cancel);
+    AdResult result;
+    if (options.cancel && options.cancel->load()) {
+        result.cancelled = true;
+        return result;
+    }
+    result.specular_reflectance = full.specular;
+    result.diffuse_reflectance = full.diffuse;
+    result.transmittance = full.transmittance;
+    result.absorbed_layers = full.absorbed;
+    result.channels = options.channels;
+    if (options.accuracy_check) {
+        // The quadrature-doubling check: the same stack with twice the channels. With an error ~ 1/N (the measured
+        // forward peaks converge that slowly: docs/ADDING_DOUBLING.md), the change is half the error, so twice it.
+        const auto fine = solve_with(shape, incidence, 2 * options.channels, make_layer, options.cancel);
+        if (options.cancel && options.cancel->load()) {
+            result.cancelled = true;
+            return result;
+        }
+        double change = std::max(std::abs(full.diffuse - fine.diffuse), std::abs(full.transmittance - fine.transmittance));
+        for (std::size_t k = 0; k < full.absorbed.size(); ++k) change = std::max(change, std::abs(full.absorbed[k] - fine.absorbed[k]));
+        result.accuracy = 2.0 * change;
+    }
+    return result;
+}
+
+}  // namespace skinspec
