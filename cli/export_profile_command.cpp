@@ -47,7 +47,6 @@ void run_export_profile(const ProfileExportOptions& o) {
     const std::string name = chosen_material(o.preset, o.material_file);
     ProfileExportRequest fit_request;
     fit_request.per = parse_profile_channels(o.channels, "--per");
-    const auto& solver = chosen_solver(o.solver, "multipole");
     const auto radii = parse_radii_mm(o.radii, "--radii");
     const auto& cm = ColorManagement::builtin();
     fit_request.space = cm.canonical_space(o.space, "--space");
@@ -58,6 +57,7 @@ void run_export_profile(const ProfileExportOptions& o) {
     if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".json"});
     if (!o.table.empty()) check_output_path(o.table, o.overwrite, {".csv"});
     const auto material = load_material(name, parsed_overrides(o.overrides));
+    const auto& solver = chosen_profile_solver(o.solver, material);
     const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
     check_profile_export(name, bands, fit_request);
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths() : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
@@ -107,7 +107,7 @@ void add_export_profile_command(CLI::App& exporter) {
     auto o = std::make_shared<ProfileExportOptions>();
     auto* cmd = exporter.add_subcommand("profile", "R(r) fitted as a sum of Gaussians with shared variances (d'Eon et al. 2007), JSON and a table");
     add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
-    add_solver_options(*cmd, o->solver, "multipole");
+    add_solver_options(*cmd, o->solver, profile_solver_default);
     cmd->add_option("--per", o->channels, "rgb: one fit per colour band (the profile's colour in linear --space); wavelength: one per --wavelengths")
         ->capture_default_str();
     cmd->add_option("--wavelengths", o->wavelengths, "With --per wavelength: wavelengths (nm)")->capture_default_str();

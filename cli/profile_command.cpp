@@ -104,7 +104,6 @@ void write_profile_plot(const std::string& file, const SpectralProfiles& p) {
 
 void run_profile(const ProfileOptions& o) {
     if (!o.preset.empty() && !o.material_file.empty()) throw InputError("--preset and --material: give one material, not both");
-    const auto& solver = chosen_solver(o.solver, "multipole");
     const auto radii = parse_radii_mm(o.radii, "--radii");
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
     if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".csv"});
@@ -112,6 +111,7 @@ void run_profile(const ProfileOptions& o) {
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
+    const auto& solver = chosen_profile_solver(o.solver, material);
     const auto profiles = solve_profiles_stoppable(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given), "profile");
     print_warning_summary(profiles.material, profiles.warnings);
     const auto csv = to_csv(profiles);
@@ -138,7 +138,7 @@ void add_profile_command(CLI::App& app) {
     auto o = std::make_shared<ProfileOptions>();
     auto* cmd = app.add_subcommand("profile", "Radial diffuse reflectance R(r) and transmittance T(r) of a solver that computes them (CSV, plot)");
     add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
-    add_solver_options(*cmd, o->solver, "multipole");
+    add_solver_options(*cmd, o->solver, profile_solver_default);
     cmd->add_option("--wavelengths", o->wavelengths, "Wavelengths (nm) for layered materials; homogeneous ones use their bands")->capture_default_str();
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm")->capture_default_str();
     cmd->add_option("--output", o->output, "CSV file (default: standard output)");

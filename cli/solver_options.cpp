@@ -5,6 +5,7 @@
 
 #include "cli/common_options.hpp"
 #include "cli/progress.hpp"
+#include "solvers/matched_multipole_solver.hpp"
 #include "spectral/input_error.hpp"
 
 namespace skinspec::cli {
@@ -28,6 +29,10 @@ void add_solver_options(CLI::App& command, SolverOptions& o, const std::string& 
 
 const SpectralSolver& chosen_solver(const SolverOptions& o, std::string_view fallback) {
     return find_solver(o.mode.empty() ? fallback : std::string_view(o.mode), "--mode");
+}
+
+const SpectralSolver& chosen_profile_solver(const SolverOptions& o, const Material& material) {
+    return o.mode.empty() ? default_profile_solver(material) : chosen_solver(o);
 }
 
 SolverSwitches solver_switches(const SolverOptions& o) {

@@ -24,6 +24,11 @@ void add_solver_options(CLI::App& command, SolverOptions& options, const std::st
 
 // The solver named by --mode, or `fallback` when --mode was not given.
 const SpectralSolver& chosen_solver(const SolverOptions& options, std::string_view fallback = "biospec");
+// --mode, or the default of the commands that need radial profiles (default_profile_solver: matched-multipole for
+// layered materials, the multipole for band materials).
+const SpectralSolver& chosen_profile_solver(const SolverOptions& options, const Material& material);
+// The --mode help of those commands.
+inline constexpr const char* profile_solver_default = "matched-multipole for layered materials, multipole for band materials";
 SolverSwitches solver_switches(const SolverOptions& options);
 // --geometry (for the commands whose R is a measurement: spectrum, swatch, fit-spectrum).
 void add_geometry_option(CLI::App& command, SolverOptions& options);

@@ -70,8 +70,8 @@ void run_lit_swatch(const SwatchOptions& o) {
     const auto files = check_image_outputs(ImageOutputs{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.overwrite});
 
     const auto material = load_material(name, parsed_overrides(o.overrides));
-    // A lit patch needs radial profiles: the multipole unless --mode names another solver.
-    const auto& solver = chosen_solver(o.solver, "multipole");
+    // A lit patch needs radial profiles: matched-multipole (band materials: the multipole) unless --mode names another solver.
+    const auto& solver = chosen_profile_solver(o.solver, material);
     const auto switches = solver_switches(o.solver);
     if (measurement_geometry(o.solver) != MeasurementGeometry::sci) {
         throw InputError("--geometry " + o.solver.geometry + ": a lit patch shows the light leaving every point of the surface (sci); "
@@ -228,7 +228,7 @@ void add_swatch_command(CLI::App& app) {
                     "Render one patch in a diffusion mode under structured light: spot, edge, or pattern FILE (an image "
                     "whose luminance is the irradiance)")
         ->expected(1, 2);
-    add_solver_options(*cmd, o->solver, "biospec; multipole with --lit");
+    add_solver_options(*cmd, o->solver, std::string("biospec; with --lit ") + profile_solver_default);
     add_geometry_option(*cmd, o->solver);
     cmd->add_option("--wavelengths", o->wavelengths, "With --lit: wavelengths (nm) for layered materials")->capture_default_str();
     cmd->add_option("--field", o->field_mm, "With --lit: width of the patch in mm")->capture_default_str();

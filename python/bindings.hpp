@@ -64,6 +64,8 @@ SolverSwitches solver_switches(const py::kwargs& keywords);
 // A profile request as skinspec.profiles takes its keywords (rays, seed: None for the solver's defaults).
 ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const py::object& rays,
                                         const py::object& seed, const py::kwargs& switches);
+// The solver of a function that needs radial profiles: mode= by name, or (None) default_profile_solver for the material.
+const SpectralSolver& profile_solver_argument(const py::object& mode, const Material& material);
 // solve_profiles under run_interruptible (Ctrl-C stops it).
 SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 // A string of comma-separated names or a sequence of strings ("R,T" or ["R", "T"]).

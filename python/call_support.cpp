@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "python/bindings.hpp"
+#include "solvers/matched_multipole_solver.hpp"
 #include "solvers/spectral_solver.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
@@ -32,6 +33,12 @@ std::vector<std::filesystem::path> output_paths(const py::handle& value, std::st
     if (is_path(value) || !py::isinstance<py::iterable>(value)) return {path_argument(value, what)};
     for (const auto& f : py::iter(value)) out.push_back(path_argument(f, what));
     return out;
+}
+
+const SpectralSolver& profile_solver_argument(const py::object& mode, const Material& material) {
+    if (mode.is_none()) return default_profile_solver(material);
+    if (!py::isinstance<py::str>(mode)) throw InputError("mode: expected a solver name or None, got " + std::string(py::str(py::type::of(mode).attr("__name__"))));
+    return find_solver(mode.cast<std::string>(), "mode");
 }
 
 PyMaterial material_argument(const py::handle& value, std::string_view what) {

@@ -52,12 +52,12 @@ py::object export_scene_files(SceneRenderer renderer, const py::object& material
 
 py::object export_profile(const py::object& material, const py::object& output, const py::object& table, const std::string& per,
                           const py::object& wavelengths, const std::string& space, const std::string& illuminant, const std::string& observer,
-                          std::size_t gaussians, const py::object& radii_mm, const std::string& mode, const py::object& rays, const py::object& seed,
+                          std::size_t gaussians, const py::object& radii_mm, const py::object& mode, const py::object& rays, const py::object& seed,
                           bool overwrite, const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     ProfileExportRequest fit_request;
     fit_request.per = parse_profile_channels(per, "per");
-    const auto& solver = find_solver(mode, "mode");
+    const auto& solver = profile_solver_argument(mode, skin.material);
     const auto& cm = ColorManagement::builtin();
     fit_request.space = cm.canonical_space(space, "space");
     space_chromaticities(fit_request.space);
@@ -145,12 +145,12 @@ void bind_exports(py::module_& m) {
     write the variances and weights as CSV (.csv); per: "rgb" (one fit per colour band: the profile's colour at each
     radius in the linear `space` under `illuminant` and `observer`, from 380-780 nm every 10) or "wavelength" (one per
     `wavelengths`, default 450, 550, 650 nm); gaussians: [1, 12]; radii_mm: where R(r) is fitted (default 0-10 mm by
-    0.01); mode: a solver that computes profiles (default "multipole"); rays, seed and solver switches as
+    0.01); mode: a solver that computes profiles (default None: matched-multipole for layered materials, multipole for band materials); rays, seed and solver switches as
     skinspec.profiles takes them; overwrite: replace existing files. Returns the JSON the command writes
     (variances_mm2 and per channel its weights and the fit's errors) and the solver's warnings.)doc",
           py::arg("material"), py::kw_only(), py::arg("output") = py::none(), py::arg("table") = py::none(), py::arg("per") = "rgb",
           py::arg("wavelengths") = py::none(), py::arg("space") = "ACEScg", py::arg("illuminant") = "D65", py::arg("observer") = "2",
-          py::arg("gaussians") = ProfileExportRequest{}.gaussians, py::arg("radii_mm") = py::none(), py::arg("mode") = "multipole",
+          py::arg("gaussians") = ProfileExportRequest{}.gaussians, py::arg("radii_mm") = py::none(), py::arg("mode") = py::none(),
           py::arg("rays") = py::none(), py::arg("seed") = py::none(), py::arg("overwrite") = false);
     // Both renderers: one function each, named and described by the renderer (pybind11 keeps the pointers: static).
     static const std::array<std::string, 2> names{"export_pbrt", "export_mitsuba"};

@@ -244,10 +244,10 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
     return spectrum_result(results, axes, seconds);
 }
 
-py::object profiles(const py::object& material, const py::object& radii_mm, const py::object& wavelengths, const std::string& mode,
+py::object profiles(const py::object& material, const py::object& radii_mm, const py::object& wavelengths, const py::object& mode,
                     bool transmittance, const py::object& rays, const py::object& seed, const py::kwargs& switches) {
-    const auto& solver = find_solver(mode, "mode");
     const auto base = material_argument(material, "material");
+    const auto& solver = profile_solver_argument(mode, base.material);
     const auto request = profile_request_argument(wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths),
                                                   radii_mm, transmittance, rays, seed, switches);
     const auto p = solve_profiles_interruptible(solver, base.material, request);
@@ -351,11 +351,12 @@ void bind_spectra(py::module_& m) {
     m.def("profiles", &profiles, R"doc(Radial diffuse reflectance R(r) (and T(r)) in 1/mm^2, as `skinspec profile` computes it.
 
     radii_mm: 1-D array; wavelengths (layered materials; default 450, 550, 650 nm); mode: a solver with radial
-    profiles (multipole, dipole, rte: the volumetric walk, radii from 0 in equal steps, rays photons per wavelength
-    (default 1e6), seed; its R_stderr_per_mm2). Solver switches as keywords (roughness=, boundaries=, ...); a switch the
+    profiles (default None: matched-multipole for layered materials, multipole for band materials; multipole, dipole,
+    rte: the volumetric walk, radii from 0 in equal steps, rays photons per wavelength (default 1e6), seed; its
+    R_stderr_per_mm2). Solver switches as keywords (roughness=, boundaries=, ...); a switch the
     solver does not take is refused.
     Returns a skinspec.Profiles.)doc",
-          py::arg("material"), py::arg("radii_mm"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = "multipole",
+          py::arg("material"), py::arg("radii_mm"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = py::none(),
           py::arg("transmittance") = false, py::arg("rays") = py::none(), py::arg("seed") = py::none());
     m.def("solvers", &solvers, "The registered solvers and what each declares it supports.");
     m.def("result_quantities", &quantities, "The result quantities (the rows of skinspec.Spectrum's arrays), with units.");

@@ -55,13 +55,13 @@ Illumination lighting_argument(const std::string& lighting, const py::object& pa
 }
 
 py::dict lit_swatch(const py::object& material, const std::string& lighting, const py::object& pattern, double field_mm, int pixels,
-                    double spot_radius_mm, const py::object& wavelengths, const std::string& mode, const std::string& illuminant,
+                    double spot_radius_mm, const py::object& wavelengths, const py::object& mode, const std::string& illuminant,
                     const std::string& observer, const std::string& space, const py::object& output, bool half, const std::string& display,
                     const std::string& view_name, bool overwrite, const py::object& progress, const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     auto view = lit_view(field_mm, pixels);
     const auto files = check_image_outputs(ImageOutputs{output_paths(output, "output"), space, half, display, view_name, overwrite});
-    const auto& solver = find_solver(mode, "mode");
+    const auto& solver = profile_solver_argument(mode, skin.material);
     const auto light = lighting_argument(lighting, pattern, spot_radius_mm, view);
     const auto grid = wavelength_argument(wavelengths);
     const auto solver_settings = solver_switches(switches);
@@ -201,12 +201,12 @@ void bind_swatch(py::module_& m) {
     "edge" (lit for x > 0) or "pattern" with pattern= an array (height, width) of relative irradiance, (height,
     width, 3) linear Rec.709, or an image file (the view takes its aspect); field_mm: the view's width; pixels: its
     width in pixels, [8, 4096]; wavelengths: nm (default 400-700 every 10); mode: a solver that computes profiles
-    (default "multipole") with its switches as keywords; space: the working space of "rgb"; output: a file or a list
+    (default None: matched-multipole for layered materials, multipole for band materials) with its switches as keywords; space: the working space of "rgb"; output: a file or a list
     (.exr linear; .png, .tif display-referred through display / view), checked before any work. Returns rgb
     (height, width, 3), exitance per channel (channels, height, width; diffuse exitance per unit irradiance, no
     specular), labels, wavelength_nm, pixel_mm, kernel_reach_mm, largest_kernel_correction, files and warnings.)doc",
           py::arg("material"), py::arg("lighting") = "spot", py::kw_only(), py::arg("pattern") = py::none(), py::arg("field_mm") = 20.0,
-          py::arg("pixels") = 256, py::arg("spot_radius_mm") = 2.0, py::arg("wavelengths") = py::none(), py::arg("mode") = "multipole",
+          py::arg("pixels") = 256, py::arg("spot_radius_mm") = 2.0, py::arg("wavelengths") = py::none(), py::arg("mode") = py::none(),
           py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("space") = "ACEScg", py::arg("output") = py::none(),
           py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("overwrite") = false,
           py::arg("progress") = py::none());

@@ -14,6 +14,7 @@
 #include "solvers/biospec_adding_doubling_solver.hpp"
 #include "solvers/biospec_walk_solver.hpp"
 #include "solvers/diffusion_solvers.hpp"
+#include "solvers/matched_multipole_solver.hpp"
 #include "solvers/result_wire.hpp"
 #include "solvers/volumetric_walk_solver.hpp"
 #include "spectral/input_error.hpp"
@@ -202,7 +203,7 @@ SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&
 const std::vector<const SpectralSolver*>& solver_registry() {
     // Adding a solver: its own files and one entry here (docs/SOLVERS.md).
     static const std::vector<const SpectralSolver*> solvers{&biospec_walk_solver(), &volumetric_walk_solver(), &adding_doubling_solver(),
-                                                            &biospec_adding_doubling_solver(),
+                                                            &biospec_adding_doubling_solver(), &matched_multipole_solver(),
                                                             &multipole_solver(), &dipole_solver()};
     return solvers;
 }

@@ -25,9 +25,9 @@ SolverRequest one_wavelength(std::uint64_t rays = 2000) {
 }  // namespace
 
 TEST_CASE("the registry lists every solver once, by name", "[solver]") {
-    CHECK(solver_names() == "biospec, rte, adding-doubling, biospec-adding-doubling, multipole, dipole");
+    CHECK(solver_names() == "biospec, rte, adding-doubling, biospec-adding-doubling, matched-multipole, multipole, dipole");
     for (const auto* s : solver_registry()) CHECK(&find_solver(s->name()) == s);
-    CHECK_THROWS_WITH(find_solver("tripole"), Catch::Contains("--mode: 'tripole' is not a solver (allowed: biospec, rte, adding-doubling, biospec-adding-doubling, multipole, dipole)"));
+    CHECK_THROWS_WITH(find_solver("tripole"), Catch::Contains("--mode: 'tripole' is not a solver (allowed: biospec, rte, adding-doubling, biospec-adding-doubling, matched-multipole, multipole, dipole)"));
 }
 
 TEST_CASE("a request for what a solver does not declare is refused with one message", "[solver]") {
@@ -58,7 +58,7 @@ TEST_CASE("a request for what a solver does not declare is refused with one mess
     target.spectral.stderr_target = 0.01;
     CHECK_THROWS_WITH(solve_spectrum(find_solver("multipole"), skin, target), Catch::Contains("is deterministic"));
     CHECK_THROWS_WITH(solve_profiles(find_solver("biospec"), skin, ProfileRequest{WavelengthGrid::list({550.0}), {0.0, 1.0}, false, {}}),
-                      "solver 'biospec' does not compute radial profiles R(r) (solvers that do: rte, multipole, dipole)");
+                      "solver 'biospec' does not compute radial profiles R(r) (solvers that do: rte, matched-multipole, multipole, dipole)");
 }
 
 TEST_CASE("every declared capability is served", "[solver]") {

@@ -78,7 +78,7 @@ nlohmann::ordered_json bench_report_json(const BenchReport& report, const BenchR
     }
     Json skin = Json::array();
     for (const auto& r : report.skin_modes) {
-        skin.push_back({{"material", r.material}, {"solver", r.solver}, {"same_skin", r.same_skin}, {"seconds_one_thread", r.seconds_one_thread},
+        skin.push_back({{"material", r.material}, {"solver", r.solver}, {"reference", r.reference}, {"seconds_one_thread", r.seconds_one_thread},
                         {"rays", r.rays}, {"uncertainty", r.uncertainty}, {"max_abs_error", r.max_abs_error},
                         {"min_relative_diffuse_error", r.min_relative_diffuse_error}, {"max_relative_diffuse_error", r.max_relative_diffuse_error},
                         {"delta_e_ab", r.delta_e_ab}, {"delta_e2000", r.delta_e2000},

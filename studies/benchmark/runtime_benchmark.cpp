@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <span>
 
 #include <fmt/format.h>
@@ -283,22 +284,30 @@ Lab lab_of(const SpectralResult& result, const TristimulusWeights& weights) {
     return xyz_to_lab(weights.integrate(r), weights.white());
 }
 
-// Each preset's spectrum by every solver on one thread, against adding-doubling (the same mu_a, mu_s and phase
-// functions solved exactly); then the volumetric walk against adding-doubling at 550 nm in standard errors.
+// Each preset's spectrum by every solver on one thread, against the exact solution of the description it solves:
+// the BioSpec walk against biospec-adding-doubling (the per-crossing model), the volumetric and reduced-scattering
+// solvers against adding-doubling (mu_a, mu_s, phase); and the two descriptions against each other. Then the
+// volumetric walk against adding-doubling at 550 nm in standard errors.
 void skin_modes(Benchmark& bench) {
     const auto grid = WavelengthGrid::range(400.0, 700.0, 10.0);
     const TristimulusWeights weights(grid.nm(), IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
-    // Every registered solver for layered materials (a new one appears with no edit), adding-doubling first: the
-    // reference the others are compared with.
-    std::vector<std::string> solvers{"adding-doubling"};
+    constexpr std::string_view volumetric_exact = "adding-doubling", biospec_exact = "biospec-adding-doubling";
+    // Every registered solver for layered materials (a new one appears with no edit), the exact ones first.
+    std::vector<std::string> solvers{std::string(biospec_exact), std::string(volumetric_exact)};
     for (const auto* s : solver_registry()) {
-        if (s->name() == "adding-doubling" || !s->capabilities().layered_materials) continue;
+        if (s->name() == volumetric_exact || s->name() == biospec_exact || !s->capabilities().layered_materials) continue;
         if (s->name() == "rte" && !bench.plan().skin_volumetric_walk) continue;
         solvers.emplace_back(s->name());
     }
+    // A solver that needs no extra description solves the BioSpec one.
+    const auto reference_of = [&](const std::string& solver) -> std::string {
+        if (solver == biospec_exact) return solver;
+        if (solver == volumetric_exact) return std::string(biospec_exact);  // the gap between the two descriptions
+        return find_solver(solver).capabilities().material_needs.empty() ? std::string(biospec_exact) : std::string(volumetric_exact);
+    };
     for (const auto& name : bench.plan().skin_presets) {
         const auto material = load_material(name);
-        SpectralResult exact;
+        std::map<std::string, SpectralResult> results;
         for (const auto& solver : solvers) {
             bench.stage(fmt::format("{}: 400-700 nm by {} on one thread", name, solver));
             SolverRequest request;
@@ -317,10 +326,9 @@ void skin_modes(Benchmark& bench) {
             }
             const double seconds = seconds_since(start);
             bench.check_cancel();
-            if (solver == "adding-doubling") exact = result;
-            // The same skin where the solver solves the volumetric or reduced description adding-doubling solves; the
-            // BioSpec walk (no extra description needed) solves its own per-crossing one.
-            SkinModeRow row{name, solver, !chosen.capabilities().material_needs.empty(), seconds, 0, 0.0, 0.0, 1e300, -1e300, 0.0, 0.0, {}};
+            const auto reference = reference_of(solver);
+            const auto& exact = results.count(reference) ? results.at(reference) : result;
+            SkinModeRow row{name, solver, reference, seconds, 0, 0.0, 0.0, 1e300, -1e300, 0.0, 0.0, {}};
             for (std::size_t w = 0; w < grid.size(); ++w) {
                 const auto& x = result.wavelengths[w];
                 const auto& e = exact.wavelengths[w];
@@ -332,12 +340,13 @@ void skin_modes(Benchmark& bench) {
                 row.min_relative_diffuse_error = std::min(row.min_relative_diffuse_error, relative);
                 row.max_relative_diffuse_error = std::max(row.max_relative_diffuse_error, relative);
             }
-            if (solver == "adding-doubling") row.uncertainty = result.stated_error->R;
+            if (!chosen.capabilities().uncertainty && result.stated_error && !result.stated_error->delta_e2000) row.uncertainty = result.stated_error->R;
             const auto a = lab_of(result, weights), b = lab_of(exact, weights);
             row.delta_e_ab = std::hypot(a.L - b.L, a.a - b.a, a.b - b.b);
             row.delta_e2000 = ciede2000(b, a);
             if (result.stated_error) row.stated_delta_e2000 = result.stated_error->delta_e2000;
             bench.report().skin_modes.push_back(row);
+            results.emplace(solver, std::move(result));
         }
     }
     for (const auto& name : bench.plan().skin_presets) {

@@ -8,8 +8,9 @@
 //   - Jensen's skin1 (G band) as `spectrum --mode rte` walks it (rte_band_slab): R by the volumetric walk against a
 //     long walk, and diffusion;
 //   - one skin in every mode: each pigmentation preset's 31-wavelength spectrum (400-700 nm) by every solver on one
-//     thread against adding-doubling (the exact transport of the same mu_a, mu_s, phase), and the volumetric walk
-//     against adding-doubling in standard errors at 550 nm (1e7 photons).
+//     thread against the exact solution of its description (biospec-adding-doubling for the BioSpec walk,
+//     adding-doubling for the mu_a, mu_s, phase solvers), the two descriptions against each other, and the
+//     volumetric walk against adding-doubling in standard errors at 550 nm (1e7 photons).
 // The walks sweep their ray budget (several seeds per budget, RMS relative error); diffusion has no budget
 // for totals (closed form), so it gives one point whose error is the model's. The multipole profile's pair
 // tolerance is swept separately against the fully converged image series. Also: thread scaling 1 -> 2 and
@@ -71,18 +72,19 @@ struct ColourTiming {
     bool converged = true;
 };
 
-// One preset's spectrum (400-700 nm / 10 nm, SCI) by one solver, against adding-doubling.
+// One preset's spectrum (400-700 nm / 10 nm, SCI) by one solver, against the exact solution of its description.
 struct SkinModeRow {
     std::string material;
     std::string solver;                 // registry name
-    bool same_skin = true;              // false for the BioSpec walk: another scattering description (reported as such)
+    std::string reference;              // biospec-adding-doubling (the BioSpec description; for adding-doubling: the gap
+                                        // between the descriptions) or adding-doubling (the volumetric one); itself: none
     double seconds_one_thread = 0.0;    // the whole spectrum
     std::uint64_t rays = 0;             // walks: over all wavelengths
     double uncertainty = 0.0;           // walks: largest standard error of R; adding-doubling: its stated accuracy
-    double max_abs_error = 0.0;         // largest |R - R_adding-doubling|
-    double min_relative_diffuse_error = 0.0;  // range of (Rd - Rd_ad) / Rd_ad, Rd = R - R_specular
+    double max_abs_error = 0.0;         // largest |R - R_reference|
+    double min_relative_diffuse_error = 0.0;  // range of (Rd - Rd_ref) / Rd_ref, Rd = R - R_specular
     double max_relative_diffuse_error = 0.0;
-    double delta_e_ab = 0.0;            // CIELAB (D65, CIE 1931 2 deg) against adding-doubling
+    double delta_e_ab = 0.0;            // CIELAB (D65, CIE 1931 2 deg) against the reference
     double delta_e2000 = 0.0;           // CIEDE2000, the same colours
     std::optional<double> stated_delta_e2000;  // the solver's own statement of its colour error (diffusion)
 };

@@ -19,6 +19,7 @@ CASES = [
     ("adding-doubling", ["--quantities", "R,T", "--channels", "8"], dict(quantities="R,T", channels=8)),
     ("biospec-adding-doubling", ["--quantities", "R,T,A", "--channels", "12", "--fold-into-skin", "resample", "--incidence", "30"],
      dict(quantities="R,T,A", channels=12, fold_into_skin="resample", incidence_deg=30)),
+    ("matched-multipole", ["--quantities", "R,T,A", "--channels", "8"], dict(quantities="R,T,A", channels=8)),
     ("multipole", ["--quantities", "R,T"], dict(quantities="R,T")),
     ("dipole", ["--roughness", "0.3"], dict(roughness=0.3)),
 ]
@@ -196,6 +197,6 @@ def test_monte_carlo_settings_are_refused_by_deterministic_modes():
         skinspec.spectrum("biospec-lightly", [550], mode="dipole", seed=5)
     with pytest.raises(skinspec.InputError, match="max_rays: solver 'adding-doubling' is deterministic"):
         skinspec.spectrum("biospec-lightly", [550], mode="adding-doubling", max_rays=100)
-    with pytest.raises(skinspec.InputError, match="seed: solver 'multipole' is deterministic"):
+    with pytest.raises(skinspec.InputError, match="seed: solver 'matched-multipole' is deterministic"):
         skinspec.profiles("biospec-lightly", [0.0, 0.5, 1.0], seed=2)
     assert skinspec.spectrum("biospec-lightly", [550], mode="dipole").R[0] > 0.0

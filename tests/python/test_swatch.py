@@ -35,11 +35,11 @@ def test_swatch_defaults_and_refusals():
 
 def test_lit_swatch_conserves_energy_and_writes_its_files(tmp_path):
     lit = skinspec.lit_swatch("biospec-moderately", "edge", pixels=64, field_mm=30, output=[tmp_path / "edge.exr", tmp_path / "edge.png"])
-    assert lit["rgb"].shape == (64, 64, 3) and lit["exitance"].shape == (31, 64, 64) and lit["model"] == "multipole"
+    assert lit["rgb"].shape == (64, 64, 3) and lit["exitance"].shape == (31, 64, 64) and lit["model"] == "matched-multipole"
     assert lit["files"] == [str(tmp_path / "edge.exr"), str(tmp_path / "edge.png")] and all(os.path.getsize(f) > 0 for f in lit["files"])
     # Far into the lit half, a uniformly lit half-space returns the whole diffuse reflectance (R without the
     # first-surface reflection: the lit swatch has no specular); far into the shadow, nothing.
-    plane = skinspec.spectrum("biospec-moderately", mode="multipole")
+    plane = skinspec.spectrum("biospec-moderately", mode="matched-multipole")
     np.testing.assert_allclose(lit["exitance"][:, 32, -3], plane.R - plane.R_specular, rtol=1e-4)
     assert np.all(lit["exitance"][:, 32, 2] < 1e-6)
     # A pattern sets the view's aspect: 16 x 32 pixels of irradiance -> 32 x 64.

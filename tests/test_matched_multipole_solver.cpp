@@ -1,0 +1,74 @@
+// matched-multipole: the multipole's profile shapes carrying the BioSpec model's exact totals.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "materials/material_file.hpp"
+#include "solvers/diffusion_solvers.hpp"
+#include "solvers/matched_multipole_solver.hpp"
+#include "transport/adding_doubling/biospec_adding_doubling.hpp"
+#include "transport/biospec/biospec_solver.hpp"
+
+using namespace skinspec;
+
+namespace {
+
+// 2 pi int f(r) r dr by the trapezoid rule.
+double radial_integral(const std::vector<double>& radii_mm, const std::vector<double>& f) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 1 < radii_mm.size(); ++i) {
+        sum += 0.5 * (f[i] * radii_mm[i] + f[i + 1] * radii_mm[i + 1]) * (radii_mm[i + 1] - radii_mm[i]);
+    }
+    return 2.0 * std::numbers::pi * sum;
+}
+
+}  // namespace
+
+TEST_CASE("matched-multipole profiles integrate to the BioSpec model's exact totals", "[matched_multipole]") {
+    const auto skin = load_material("biospec-moderately", {{"bottom.boundary", "exit"}, {"reticular_dermis.thickness_cm", "0.05"}});
+    ProfileRequest request;
+    request.wavelengths = WavelengthGrid::list({450.0, 650.0});
+    for (double r = 0.0; r <= 40.0; r += 0.01) request.radii_mm.push_back(r);
+    request.transmittance = true;
+    const auto profiles = solve_profiles(matched_multipole_solver(), skin, request);
+    REQUIRE(profiles.channels.size() == 2);
+    BiospecAdOptions options;
+    options.ad.channels = 12;
+    for (const auto& c : profiles.channels) {
+        INFO(c.label);
+        const auto exact = solve_biospec_adding_doubling(std::get<LayerStack>(skin), c.wavelength_nm, 0.0, options).totals;
+        CHECK(c.total_reflectance == Approx(exact.diffuse_reflectance).epsilon(1e-12));
+        CHECK(c.total_transmittance == Approx(exact.transmittance).epsilon(1e-12));
+        // The profile itself carries them: its integral over the plane (the multipole composes within 0.1-0.2 %).
+        CHECK(radial_integral(profiles.radii_mm, c.reflectance_per_mm2) == Approx(exact.diffuse_reflectance).epsilon(0.01));
+        CHECK(radial_integral(profiles.radii_mm, c.transmittance_per_mm2) == Approx(exact.transmittance).epsilon(0.01));
+    }
+}
+
+TEST_CASE("matched-multipole spectra are the BioSpec walk's within 0.01 (the diffusion modes are off by up to 0.2)", "[matched_multipole]") {
+    // The walk is the BioSpec model's Monte Carlo: an independent solution of the same description.
+    for (const char* name : {"biospec-lightly", "biospec-heavily"}) {
+        INFO(name);
+        const auto skin = load_material(name);
+        SolverRequest request;
+        request.spectral.wavelengths = WavelengthGrid::list({410.0, 480.0, 560.0, 620.0, 690.0});
+        const auto matched = solve_spectrum(matched_multipole_solver(), skin, request);
+        auto walk_request = request.spectral;
+        walk_request.stderr_target = 0.001;
+        walk_request.max_rays_per_wavelength = 2'000'000;
+        const auto walk = solve_biospec(std::get<LayerStack>(skin), walk_request);
+        for (std::size_t i = 0; i < walk.wavelengths.size(); ++i) {
+            CHECK(std::abs(matched.wavelengths[i].reflectance.value - walk.wavelengths[i].reflectance.value) < 0.01);
+        }
+    }
+}
+
+TEST_CASE("commands that need profiles default to matched-multipole for layered materials, the multipole for bands", "[matched_multipole]") {
+    CHECK(default_profile_solver(load_material("biospec-lightly")).name() == "matched-multipole");
+    CHECK(default_profile_solver(load_material("jensen2001-marble")).name() == "multipole");
+    SolverRequest request;
+    request.spectral.wavelengths = WavelengthGrid::list({550.0});
+    CHECK_THROWS_WITH(solve_spectrum(matched_multipole_solver(), load_material("jensen2001-marble"), request),
+                      Catch::Contains("needs a layered material"));
+}
