@@ -127,16 +127,17 @@ bool same_scattering(const AdCache::Entry& e, const PhaseFunction& phase, const 
            e.table_cosines == cosines && e.channel_s == c.s;
 }
 
-AdCache::Entry redistribution(const AdChannels& c, double n, const PhaseFunction& phase, std::vector<double> cosines) {
-    AdCache::Entry e{phase, std::move(cosines), n, c.s, {}, 0.0, {}, {}, {}, {}, {}};
+// The entry of `e`'s channels and index from the phase function's Legendre moments chi (redistribution_moment_count
+// of them).
+AdCache::Entry redistribution(AdCache::Entry e, const AdChannels& c, std::vector<double> chi) {
     for (std::size_t k = 0; k < c.size(); ++k) {
-        if (c.s[k] < n) e.live.push_back(k);
+        if (c.s[k] < e.n) e.live.push_back(k);
     }
+    const double n = e.n;
     const auto m = static_cast<Eigen::Index>(e.live.size());
     // Delta-M with 2m moments kept: f = chi_2m (Wiscombe 1977), for a forward peak only (a backward-peaked phase
     // function has chi_2m > 0 too, but its truncated part is not light going on unscattered).
     const std::size_t moments = 2 * e.live.size();
-    auto chi = legendre_moments(phase, moments + 2);
     const double f = chi[moments];
     if (f > 0.0 && f < 1.0 && chi[moments + 1] > 0.0) {
         e.f = f;
@@ -182,21 +183,47 @@ AdCache::Entry redistribution(const AdChannels& c, double n, const PhaseFunction
 
 }  // namespace
 
-const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const AdChannels& c, double n, const PhaseFunction& phase, AdCache& cache) {
-    // Least recently used last out: a spectrum's tabulated phases inside 400-546 nm differ at every wavelength, so an
-    // unbounded cache would grow with the wavelength count.
+namespace {
+
+// Least recently used last out: a spectrum's tabulated phases inside 400-546 nm differ at every wavelength, so an
+// unbounded cache would grow with the wavelength count.
+template <typename Same, typename Make>
+const std::shared_ptr<const AdCache::Entry>& cached_entry(AdCache& cache, const Same& same, const Make& make) {
     constexpr std::size_t capacity = 16;
-    auto cosines = cosines_of(phase);
     auto& entries = cache.entries;
     for (auto it = entries.begin(); it != entries.end(); ++it) {
-        if (same_scattering(**it, phase, cosines, n, c)) {
+        if (same(**it)) {
             std::rotate(it, it + 1, entries.end());
             return entries.back();
         }
     }
     if (entries.size() == capacity) entries.erase(entries.begin());
-    entries.push_back(std::make_shared<const AdCache::Entry>(redistribution(c, n, phase, std::move(cosines))));
+    entries.push_back(std::make_shared<const AdCache::Entry>(make()));
     return entries.back();
+}
+
+}  // namespace
+
+std::size_t redistribution_moment_count(const AdChannels& c, double n) {
+    std::size_t live = 0;
+    for (const double s : c.s) live += s < n ? 1 : 0;
+    return 2 * live + 2;
+}
+
+const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const AdChannels& c, double n, const PhaseFunction& phase, AdCache& cache) {
+    auto cosines = cosines_of(phase);
+    return cached_entry(
+        cache, [&](const AdCache::Entry& e) { return e.moments.empty() && same_scattering(e, phase, cosines, n, c); },
+        [&] {
+            const auto count = redistribution_moment_count(c, n);
+            return redistribution(AdCache::Entry{phase, std::move(cosines), {}, n, c.s, {}, 0.0, {}, {}, {}, {}, {}}, c, legendre_moments(phase, count));
+        });
+}
+
+const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const AdChannels& c, double n, const std::vector<double>& moments, AdCache& cache) {
+    return cached_entry(
+        cache, [&](const AdCache::Entry& e) { return e.moments == moments && e.n == n && e.channel_s == c.s; },
+        [&] { return redistribution(AdCache::Entry{{}, {}, moments, n, c.s, {}, 0.0, {}, {}, {}, {}, {}}, c, moments); });
 }
 
 
@@ -215,6 +242,7 @@ struct Solution {
 struct Level {
     AdMatrix reflection;                    // S of this element and everything below it
     Eigen::PartialPivLU<AdMatrix> factor;   // of 1 - R'_E S_below (empty for the bottom element)
+    bool identity = false;                  // R'_E = 0 (BioSpec's layers reflect nothing back down): the factor is 1
 };
 
 // X M^-1 for the factored M, as (M^T)^-1 X^T transposed.
@@ -224,7 +252,8 @@ AdMatrix right_solve(const Eigen::PartialPivLU<AdMatrix>& factor, const AdMatrix
     return solved.transpose();
 }
 
-AdMatrix reflection_with(const AdElement& e, const AdMatrix& below, Eigen::PartialPivLU<AdMatrix>& factor) {
+AdMatrix reflection_with(const AdElement& e, const AdMatrix& below, Level& level) {
+    auto& factor = level.factor;
     const auto n = below.rows();
     if (e.kind == AdElement::Kind::reflector) return e.r;
     const AdMatrix identity = AdMatrix::Identity(n, n);
@@ -235,6 +264,10 @@ AdMatrix reflection_with(const AdElement& e, const AdMatrix& below, Eigen::Parti
         AdMatrix s = e.t_diagonal.asDiagonal() * y * e.t_diagonal.asDiagonal();
         s.diagonal() += e.r_top_diagonal;
         return s;
+    }
+    if (e.reflection_from_below().isZero(0.0)) {
+        level.identity = true;
+        return e.r + e.transmission_up() * below * e.t;
     }
     factor.compute(identity - e.reflection_from_below() * below);
     const AdMatrix y = right_solve(factor, below);
@@ -288,7 +321,7 @@ Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std
     levels[count].reflection = AdMatrix::Zero(n, n);
     for (std::size_t e = count; e-- > 0;) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return {};
-        levels[e].reflection = reflection_with(elements[e], levels[e + 1].reflection, levels[e].factor);
+        levels[e].reflection = reflection_with(elements[e], levels[e + 1].reflection, levels[e]);
     }
 
     Solution out;
@@ -302,7 +335,7 @@ Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std
     out.absorbed.assign(shape.layer_indices.size(), 0.0);
     for (std::size_t e = 0; e < count; ++e) {
         const AdVector through = transmit(elements[e], down);
-        down = e + 1 < count ? AdVector(levels[e].factor.solve(through)) : through;
+        down = e + 1 < count && !levels[e].identity ? AdVector(levels[e].factor.solve(through)) : through;
         const double net_below = down.sum() - (levels[e + 1].reflection * down).sum();
         if (layer_of[e] >= 0) {
             // A difference of fluxes: a layer without absorption absorbs exactly nothing, and roundoff (~1e-11 in

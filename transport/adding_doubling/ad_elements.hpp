@@ -54,6 +54,7 @@ AdElement fresnel_interface(const AdChannels& c, double n1, double n2);
 struct AdCache::Entry {
     PhaseFunction phase;
     std::vector<double> table_cosines;  // tabulated phases compare by content (each wavelength has its own table)
+    std::vector<double> moments;        // an entry made from Legendre moments: compared by them (phase unused)
     double n = 0.0;
     std::vector<double> channel_s;
     std::vector<std::size_t> live;
@@ -62,6 +63,10 @@ struct AdCache::Entry {
     AdMatrix same, opposite;
 };
 const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const AdChannels& c, double n, const PhaseFunction& phase, AdCache& cache);
+// The same from the phase function's Legendre moments chi_0, chi_1, ... (redistribution_moment_count of them), e.g. a
+// mixture of tabulated phases (moments are linear in the distribution).
+std::size_t redistribution_moment_count(const AdChannels& c, double n);
+const std::shared_ptr<const AdCache::Entry>& cached_redistribution(const AdChannels& c, double n, const std::vector<double>& moments, AdCache& cache);
 
 // The media of a stack: what the channels and the interfaces are built from.
 struct AdStackShape {

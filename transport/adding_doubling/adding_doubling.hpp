@@ -49,10 +49,12 @@ struct AdResult {
 // in a sweep the layers a member does not change (the dermis while the melanin varies) are reused, not doubled again.
 // Both are least recently used out, with bounded sizes; entries compare by content, so a cache is never wrong.
 struct AdCache {
-    struct Entry;  // adding_doubling.cpp
-    struct Slab;
+    struct Entry;  // ad_elements.hpp
+    struct Slab;   // adding_doubling.cpp
+    struct TableMoments;  // biospec_adding_doubling.cpp: a measured profile's Legendre moments
     std::vector<std::shared_ptr<const Entry>> entries;
     std::vector<std::shared_ptr<const Slab>> slabs;
+    std::vector<std::shared_ptr<const TableMoments>> table_moments;
 };
 
 // InputError for stacks the solver cannot take (validate(RteStack) plus the incidence).

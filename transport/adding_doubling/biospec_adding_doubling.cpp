@@ -7,10 +7,17 @@
 #include "spectral/input_error.hpp"
 #include "transport/adding_doubling/ad_elements.hpp"
 #include "transport/adding_doubling/adding_doubling_spectrum.hpp"
+#include "transport/adding_doubling/phase_moments.hpp"
 #include "transport/biospec/biospec_packet.hpp"
 #include "transport/skin_fold.hpp"
 
 namespace skinspec {
+
+struct AdCache::TableMoments {
+    std::shared_ptr<const InverseCdfTable> table;
+    std::vector<double> moments;
+};
+
 namespace {
 
 // int_0^d exp(-a z) exp(-b (d - z)) dz = d exp(-min) (1 - exp(-|x - y|)) / |x - y| with x = a d, y = b d (no
@@ -42,10 +49,9 @@ AdElement empty_layer(const AdChannels& c) {
     return AdElement{AdElement::Kind::layer, {}, {}, {}, AdMatrix::Zero(size, size), AdMatrix::Zero(size, size), {}, {}};
 }
 
-// Step 2 (SC, epidermis; shared spec): deflected by the phase's redistribution within the travel hemisphere (the walk
+// Step 2 (SC, epidermis; shared spec): deflected by the redistribution `e` within the travel hemisphere (the walk
 // re-draws reversals), then exp(-mu_a d / cos). The same both ways.
-AdElement perturbing_layer(const AdChannels& c, const LayerOptics& o, const PhaseFunction& phase, AdCache& cache) {
-    const auto& e = *cached_redistribution(c, o.refractive_index, phase, cache);
+AdElement perturbing_layer(const AdChannels& c, const LayerOptics& o, const AdCache::Entry& e) {
     auto out = empty_layer(c);
     const auto m = static_cast<Eigen::Index>(e.live.size());
     for (Eigen::Index j = 0; j < m; ++j) {
@@ -136,6 +142,28 @@ double fold_exit_share(double sigma, FoldFormula formula, double incidence_deg) 
     return sum / points;
 }
 
+// The Legendre moments of a measured profile at a wavelength: the walk samples it as the mixture of the two tabulated
+// profiles around the wavelength (MeasuredProfile::mixture), whose moments are the mixture of theirs; each tabulated
+// profile's are computed once per count.
+std::vector<double> profile_moments(const MeasuredProfile& profile, double wavelength_nm, std::size_t count, AdCache& cache) {
+    const auto tabulated = [&](std::size_t index) -> const std::vector<double>& {
+        const auto table = profile.tabulated_inverse_table(index);
+        for (const auto& m : cache.table_moments) {
+            if (m->table == table && m->moments.size() == count) return m->moments;
+        }
+        const PhaseFunction phase{PhaseFunction::Kind::tabulated, table->mean_cos(), 0.0, 1.0, table};
+        cache.table_moments.push_back(std::make_shared<const AdCache::TableMoments>(AdCache::TableMoments{table, legendre_moments(phase, count)}));
+        return cache.table_moments.back()->moments;
+    };
+    const auto mixture = profile.mixture(wavelength_nm);
+    auto moments = tabulated(mixture.lower);
+    if (mixture.upper_weight > 0.0) {
+        const auto& upper = tabulated(mixture.upper);
+        for (std::size_t l = 0; l < count; ++l) moments[l] = (1.0 - mixture.upper_weight) * moments[l] + mixture.upper_weight * upper[l];
+    }
+    return moments;
+}
+
 void check_model(const ModelOptions& model) {
     if (model.swapped_upward_indices) {
         throw InputError("biospec-adding-doubling does not model model.swapped_upward_indices = true (the authors' code's upward interfaces); "
@@ -174,15 +202,17 @@ BiospecAdResult solve_biospec_adding_doubling(const LayerStack& stack, double wa
             case CrossingScattering::measured_stratum_corneum:
             case CrossingScattering::measured_epidermis: {
                 const bool sc = o.crossing == CrossingScattering::measured_stratum_corneum;
+                const double n = o.refractive_index;
                 if (options.thin_layer_hg) {
                     const double g = sc ? options.thin_layer_hg->stratum_corneum_g(wavelength_nm) : options.thin_layer_hg->epidermis_g(wavelength_nm);
-                    return perturbing_layer(channels, o, PhaseFunction::henyey_greenstein(g), phases);
+                    return perturbing_layer(channels, o, *cached_redistribution(channels, n, PhaseFunction::henyey_greenstein(g), phases));
                 }
                 const auto& profile = sc ? MeasuredProfile::stratum_corneum() : MeasuredProfile::epidermis();
-                const auto table = profile.shared_inverse_table(wavelength_nm);
-                return perturbing_layer(channels, o, PhaseFunction{PhaseFunction::Kind::tabulated, table->mean_cos(), 0.0, 1.0, table}, phases);
+                const auto moments = profile_moments(profile, wavelength_nm, redistribution_moment_count(channels, n), phases);
+                return perturbing_layer(channels, o, *cached_redistribution(channels, n, moments, phases));
             }
-            case CrossingScattering::henyey_greenstein: return perturbing_layer(channels, o, PhaseFunction::henyey_greenstein(o.hg_g), phases);
+            case CrossingScattering::henyey_greenstein:
+                return perturbing_layer(channels, o, *cached_redistribution(channels, o.refractive_index, PhaseFunction::henyey_greenstein(o.hg_g), phases));
             case CrossingScattering::rayleigh_cosine:
             case CrossingScattering::cosine: return dermal_layer(channels, o, stack.model.rayleigh_turn);
         }
