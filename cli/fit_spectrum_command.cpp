@@ -46,6 +46,7 @@ struct FitSpectrumOptions {
     std::size_t starts = 4;
     unsigned threads = 0;
     SolverOptions solver;
+    std::vector<std::string> walk_options_given;  // --rays, --seed as given (the exact model takes neither)
     std::string output;
     std::string plot;
     bool force = false;
@@ -201,6 +202,18 @@ void write_fit_plot(const std::string& file, const std::vector<SpectrumFit>& fit
 }
 
 void run_fit_spectrum(const FitSpectrumOptions& o) {
+    // How the model is evaluated, checked before any input is read.
+    FitEngine engine = FitEngine::replayed_walk;
+    if (o.solver.mode == "biospec-adding-doubling") {
+        engine = FitEngine::adding_doubling;
+        if (!o.walk_options_given.empty()) {
+            throw InputError(o.walk_options_given.front() + ": --mode biospec-adding-doubling solves the model exactly at every evaluation and traces no "
+                             "rays (--rays and --seed are for --mode biospec, the replayed walk)");
+        }
+    } else if (!o.solver.mode.empty() && o.solver.mode != "biospec") {
+        throw InputError("--mode: fit-spectrum fits with biospec (the walk's paths, replayed) or biospec-adding-doubling (the model solved exactly), not '" +
+                         o.solver.mode + "'");
+    }
     if (!o.output.empty()) check_output_path(o.output, o.force, {".csv", ".json"});
     if (!o.plot.empty()) {
         check_output_path(o.plot, o.force, {".png", ".svg"});
@@ -231,6 +244,7 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     if (!base) throw InputError("material '" + base_name + "' is homogeneous: the fit needs a layered skin for the BioSpec walk");
 
     SpectrumFitSettings settings;
+    settings.engine = engine;
     settings.free = free_parameters(o);
     if (!o.window.empty()) std::tie(settings.window_from_nm, settings.window_to_nm) = parse_range(o.window, "--window");
     settings.weights = weights_of(o);
@@ -267,9 +281,11 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const std::string provenance = fmt::format("material {} ({}), geometry {}, {} rays per wavelength, seed {}, window {}", base_name,
-                                               base->model.variant, to_string(settings.geometry), o.rays, o.seed,
-                                               o.window.empty() ? "all" : o.window);
+    const bool exact = settings.engine == FitEngine::adding_doubling;
+    const std::string evaluation = exact ? fmt::format("biospec-adding-doubling, {} channels", settings.channels)
+                                         : fmt::format("biospec walk, {} rays per wavelength, seed {}", o.rays, o.seed);
+    const std::string provenance = fmt::format("material {} ({}), geometry {}, {}, window {}", base_name, base->model.variant,
+                                               to_string(settings.geometry), evaluation, o.window.empty() ? "all" : o.window);
     std::vector<double> rms;
     for (const auto& f : fits) rms.push_back(f.rms);
     const auto bands = residual_bands(fits);
@@ -288,8 +304,10 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
                         {"variant", base->model.variant},
                         {"overrides", overrides_json},
                         {"geometry", std::string(to_string(settings.geometry))},
-                        {"rays_per_wavelength", o.rays},
-                        {"seed", o.seed},
+                        {"mode", exact ? "biospec-adding-doubling" : "biospec"},
+                        {"rays_per_wavelength", exact ? Json(nullptr) : Json(o.rays)},
+                        {"seed", exact ? Json(nullptr) : Json(o.seed)},
+                        {"quadrature_channels", exact ? Json(settings.channels) : Json(nullptr)},
                         {"partial", fits.size() < chosen.size()},
                         {"median_rms", rms.empty() ? Json(nullptr) : Json(median(rms))},
                         {"worst_rms", rms.empty() ? Json(nullptr) : Json(*std::max_element(rms.begin(), rms.end()))},
@@ -307,9 +325,9 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     if (!fits.empty()) {
         std::string band_text;
         for (const auto& b : bands) band_text += fmt::format("{}{} {:+.4f}", band_text.empty() ? "" : ", ", b.name, b.mean_residual);
-        std::cerr << fmt::format("{} spectra fitted in {:.2f} s (paths: {} rays in {:.2f} s; {:.2f} s per spectrum): median RMS {:.4f}, worst {:.4f}\n",
-                                 fits.size(), seconds, fitter.rays(), trace_seconds, (seconds - trace_seconds) / static_cast<double>(fits.size()),
-                                 median(rms), *std::max_element(rms.begin(), rms.end()))
+        const std::string setup = exact ? "the model solved exactly at each evaluation" : fmt::format("paths: {} rays in {:.2f} s", fitter.rays(), trace_seconds);
+        std::cerr << fmt::format("{} spectra fitted in {:.2f} s ({}; {:.2f} s per spectrum): median RMS {:.4f}, worst {:.4f}\n", fits.size(), seconds, setup,
+                                 (seconds - trace_seconds) / static_cast<double>(fits.size()), median(rms), *std::max_element(rms.begin(), rms.end()))
                   << "mean residual (fitted - measured): " << band_text << '\n';
     }
     if (InterruptGuard::interrupted()) {
@@ -336,6 +354,9 @@ void add_fit_spectrum_command(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--bounds", o->bounds, "FIELD=LO:HI for a free field (repeatable; defaults in docs/SPECTRUM_FIT.md)");
     add_geometry_option(*cmd, o->solver);
+    cmd->add_option("--mode", o->solver.mode,
+                    "How the BioSpec model is evaluated: biospec (default: paths traced once and re-weighted, Monte Carlo) or "
+                    "biospec-adding-doubling (solved exactly at every evaluation: no noise, any layer field free)");
     cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();
     cmd->add_option("--window", o->window, "Fit only the wavelengths in FROM:TO nm (default: all of the file)");
     cmd->add_option("--weight", o->weights, "FROM:TO=W: residuals in [FROM, TO] nm count W times (repeatable; default 1)");
@@ -352,7 +373,10 @@ void add_fit_spectrum_command(CLI::App& app) {
     cmd->add_option("--plot", o->plot, "Plot measured vs fitted to FILE.png|.svg (and the residuals to FILE-residuals.png|.svg)");
     add_overwrite_flag(*cmd, o->force, "Replace the --output / --plot files if they exist");
     cmd->add_flag("--json", o->json, "Print the fits as JSON");
-    cmd->callback([o] { run_fit_spectrum(*o); });
+    cmd->callback([o, cmd] {
+        o->walk_options_given = given_options(*cmd, {"--rays", "--seed"});
+        run_fit_spectrum(*o);
+    });
 }
 
 }  // namespace skinspec::cli

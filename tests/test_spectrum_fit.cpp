@@ -24,10 +24,15 @@ std::vector<double> grid() {
 
 TEST_CASE("fit round trip: spectra of the independent forward walk give back their parameters", "[spectrum_fit]") {
     // Truth made by the BioSpec walk itself (another seed, its own paths, with absorption), plus Gaussian noise of
-    // 0.005; the fitter re-weights paths of its own. Each parameter must come back within 3 standard errors.
+    // 0.005; the fitter re-weights paths of its own, or solves the model exactly (biospec-adding-doubling). Each
+    // parameter must come back within 3 standard errors.
+    const auto engine = GENERATE(FitEngine::replayed_walk, FitEngine::adding_doubling);
+    INFO((engine == FitEngine::replayed_walk ? "replayed walk" : "adding-doubling"));
     const std::vector<std::vector<double>> truths{{0.03, 0.012, 0.0091, 0.75}, {0.10, 0.02, 0.005, 0.6}, {0.008, 0.006, 0.015, 0.85}};
     SpectrumFitSettings settings;
     settings.free = default_free_parameters();
+    settings.engine = engine;
+    settings.channels = 12;
     const auto base = preset("biospec-moderately");
     const SpectrumFitter fitter(base, grid(), settings);
     REQUIRE(fitter.keys().size() == 4);
@@ -82,6 +87,12 @@ TEST_CASE("fit inputs: free fields, bounds and wavelengths are checked before an
     s.free = {{"epidermis.thickness_cm", {}, {}}};
     s.rays_per_wavelength = 100;
     CHECK_NOTHROW(SpectrumFitter(base, grid(), s));
+    // The exact model re-solves everything at each evaluation: any number field of a layer may be free.
+    s.engine = FitEngine::adding_doubling;
+    s.free = {{"dermis.collagen_fibre_fraction", {}, {}}, {"reticular_dermis.thickness_cm", {}, {}}};
+    CHECK_NOTHROW(SpectrumFitter(base, grid(), s));
+    s.geometry = MeasurementGeometry::zero_45;
+    CHECK_THROWS_WITH(SpectrumFitter(base, grid(), s), Catch::Contains("biospec-adding-doubling computes hemispherical totals"));
 }
 
 TEST_CASE("the replayed model's analytic Jacobian equals central differences", "[spectrum_fit]") {

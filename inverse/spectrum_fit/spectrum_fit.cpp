@@ -16,6 +16,7 @@
 #include "spectral/ciede2000.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
+#include "transport/adding_doubling/biospec_adding_doubling.hpp"
 #include "transport/biospec/biospec_solver.hpp"
 
 namespace skinspec {
@@ -80,7 +81,7 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
     for (const auto& p : settings.free) {
         auto handle = layer_field(base, p.key, "--free");
         const auto& f = *handle.field;
-        if (!f.absorption_only) {
+        if (!f.absorption_only && settings.engine == FitEngine::replayed_walk) {
             const bool scalable = f.key == "thickness_cm" && std::all_of(handle.layers.begin(), handle.layers.end(), [&](std::size_t k) {
                 return base.layers[k].crossing != CrossingScattering::rayleigh_cosine || !base.model.dermal_rayleigh;
             });
@@ -90,7 +91,7 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
                     if (g.absorption_only) allowed += std::string(g.key) + ", ";
                 }
                 throw InputError("--free '" + p.key + "': a fit re-weights traced paths, so a free field must change absorption only (" +
-                                 allowed + "or thickness_cm of a layer without Rayleigh scattering)");
+                                 allowed + "or thickness_cm of a layer without Rayleigh scattering); --mode biospec-adding-doubling takes any");
             }
         }
         for (const auto& other : keys_) {
@@ -144,6 +145,13 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
             }
         }
     }
+    if (settings.engine == FitEngine::adding_doubling) {
+        if (settings.geometry == MeasurementGeometry::zero_45) {
+            throw InputError("--geometry 0-45: biospec-adding-doubling computes hemispherical totals (the walk measures 0-45)");
+        }
+        exact_model({}, nullptr);  // refuses what the exact model cannot solve, before any fit
+        return;
+    }
     SpectralRequest request;
     request.wavelengths = WavelengthGrid::list(wavelengths_nm_);
     request.geometry = settings.geometry;
@@ -163,6 +171,46 @@ std::uint64_t SpectrumFitter::rays() const {
 }
 
 std::vector<Estimate> SpectrumFitter::model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const {
+    return settings_.engine == FitEngine::adding_doubling ? exact_model(parameters, jacobian) : replayed_model(parameters, jacobian);
+}
+
+// `parameters` empty: the base material's own values.
+std::vector<Estimate> SpectrumFitter::exact_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const {
+    // One cache per thread: the measured profiles' moments and redistribution matrices outlive the evaluations.
+    thread_local AdCache cache;
+    BiospecAdOptions options;
+    options.ad = AdOptions{settings_.channels, false};
+    options.fold_into_skin = settings_.walk.fold_into_skin;
+    options.thin_layer_hg = settings_.walk.thin_layer_hg;
+    const bool excluded = settings_.geometry == MeasurementGeometry::sce;
+    const auto values = [&](const std::vector<double>& at) {
+        auto stack = base_;
+        for (std::size_t p = 0; p < at.size(); ++p) handles_[p].set(stack, at[p]);
+        std::vector<double> r;
+        for (const double nm : wavelengths_nm_) {
+            const auto t = solve_biospec_adding_doubling(stack, nm, settings_.incidence_deg, options, &cache).totals;
+            r.push_back(t.diffuse_reflectance + (excluded ? 0.0 : t.specular_reflectance));
+        }
+        return r;
+    };
+    const auto at = values(parameters);
+    std::vector<Estimate> out;
+    for (const double r : at) out.push_back({r, 0.0});
+    if (!jacobian) return out;
+    jacobian->assign(at.size(), std::vector<double>(parameters.size(), 0.0));
+    for (std::size_t j = 0; j < parameters.size(); ++j) {
+        const auto [lo, hi] = bounds_[j];
+        double step = 1e-5 * std::max(std::abs(parameters[j]), hi - lo);
+        if (parameters[j] + step > hi) step = -step;
+        auto moved = parameters;
+        moved[j] += step;
+        const auto r = values(moved);
+        for (std::size_t w = 0; w < at.size(); ++w) (*jacobian)[w][j] = (r[w] - at[w]) / step;
+    }
+    return out;
+}
+
+std::vector<Estimate> SpectrumFitter::replayed_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const {
     auto stack = base_;
     for (std::size_t p = 0; p < handles_.size(); ++p) handles_[p].set(stack, parameters[p]);
     const std::size_t layers = stack.layers.size(), n = paths_.size(), free = handles_.size();

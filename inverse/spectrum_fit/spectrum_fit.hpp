@@ -31,8 +31,14 @@ struct WavelengthWeight {
     double from_nm, to_nm, weight;  // residuals at wavelengths in [from, to] count `weight` times
 };
 
+// How the fit evaluates the BioSpec model: re-weighting paths traced once (Monte Carlo, common random numbers), or the
+// model solved exactly at every evaluation (biospec-adding-doubling: no noise, no traced paths, any free field).
+enum class FitEngine { replayed_walk, adding_doubling };
+
 struct SpectrumFitSettings {
     std::vector<FitParameter> free;
+    FitEngine engine = FitEngine::replayed_walk;
+    std::size_t channels = 24;  // adding_doubling: the quadrature
     double window_from_nm = 0.0;  // default: every given wavelength
     double window_to_nm = std::numeric_limits<double>::infinity();
     std::vector<WavelengthWeight> weights;
@@ -84,9 +90,10 @@ std::vector<ResidualBand> residual_bands(const std::vector<SpectrumFit>& fits);
 
 class SpectrumFitter {
 public:
-    // Traces the paths of `base` at the measured wavelengths inside the window. InputError for a free field that
-    // is not one of a layer's absorption fields or a scalable thickness, bounds outside the field's range or
-    // with lo >= hi, and wavelengths outside the model's tables.
+    // Traces the paths of `base` at the measured wavelengths inside the window (replayed_walk). InputError for a free
+    // field that is not one of a layer's absorption fields or a scalable thickness (replayed_walk; adding_doubling
+    // takes any number field of a layer), bounds outside the field's range or with lo >= hi, and wavelengths outside
+    // the model's tables.
     SpectrumFitter(const LayerStack& base, const std::vector<double>& wavelength_nm, const SpectrumFitSettings& settings);
 
     // One spectrum at the fitter's wavelengths (all given ones; those outside the window are left out).
@@ -96,7 +103,8 @@ public:
     std::vector<std::optional<SpectrumFit>> fit_all(const std::vector<std::string>& names, const std::vector<std::vector<double>>& measured,
                                                     const std::function<void(std::size_t, std::size_t)>& on_fitted) const;
     // The model at parameter values (in the order of the free keys), per fitted wavelength, with standard errors;
-    // with `jacobian`, also dR_w / dparameter_j ([w][j]) from the same pass over the paths.
+    // with `jacobian`, also dR_w / dparameter_j ([w][j]): from the same pass over the paths (replayed_walk), or by
+    // forward differences of the exact model (adding_doubling).
     std::vector<Estimate> model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian = nullptr) const;
 
     const std::vector<double>& wavelengths_nm() const { return wavelengths_nm_; }
@@ -106,6 +114,8 @@ public:
     bool cancelled() const { return cancelled_; }
 
 private:
+    std::vector<Estimate> replayed_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const;
+    std::vector<Estimate> exact_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const;
     LayerStack base_;
     SpectrumFitSettings settings_;
     std::vector<LayerFieldHandle> handles_;

@@ -193,3 +193,6 @@ skinspec_malformed_input("a sweep member that is not there" 2 "--member 3 is out
 skinspec_malformed_input("a value no member has" 2 "--where: no member matches" - color sweep_two_members.csv --where epidermis.melanosome_fraction=0.5)
 skinspec_malformed_input("a JSON sweep without a member chosen" 2 "sweep_two_members.json: the file holds 2 members of a sweep" - color sweep_two_members.json)
 skinspec_malformed_input("a JSON that is no spectral result" 2 "not a skinspec spectral result" - color not_a_result.json)
+# fit-spectrum --mode: the walk (replayed) or the exact model; the exact model traces no rays.
+skinspec_malformed_input("fit with a solver that is not the BioSpec model" 2 "--mode: fit-spectrum fits with biospec \\(the walk's paths, replayed\\) or biospec-adding-doubling \\(the model solved exactly\\), not 'dipole'" - fit-spectrum fit_short.csv --mode dipole)
+skinspec_malformed_input("fit exactly with a ray count" 2 "--rays: --mode biospec-adding-doubling solves the model exactly at every evaluation and traces no rays" - fit-spectrum fit_short.csv --mode biospec-adding-doubling --rays 1000)
