@@ -92,9 +92,16 @@ nlohmann::ordered_json bench_report_json(const BenchReport& report, const BenchR
                              {"fine_channels", a.fine_channels}, {"adding_doubling_fine", a.adding_doubling_fine},
                              {"sigma_fine", (a.walk.value - a.adding_doubling_fine) / a.walk.stderr}, {"seconds", a.seconds}});
     }
+    Json profiles = Json::array();
+    for (const auto& a : report.profile_agreement) {
+        profiles.push_back({{"material", a.material}, {"wavelength_nm", a.wavelength_nm}, {"solver", a.solver}, {"photons", a.photons},
+                            {"radii_compared", a.radii}, {"share_within_15_percent", a.share_within_15_percent},
+                            {"worst_relative_error", a.worst_relative_error}, {"relative_error_at_0_1_mm", a.relative_error_at_0_1_mm},
+                            {"median_relative_error_1_to_5_mm", a.median_relative_error_1_to_5_mm}, {"walk_seconds", a.walk_seconds}});
+    }
     return {{"skinspec_version", version}, {"quick", o.quick}, {"seed", o.seed}, {"tolerance_percent", o.tolerance_percent}, {"partial", report.partial},
             {"cases", cases}, {"multipole_pair_sweep", pairs}, {"thread_scaling", scaling}, {"time_per_colour", colours},
-            {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}};
+            {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}, {"profiles_against_the_walk", profiles}};
 }
 
 }  // namespace skinspec

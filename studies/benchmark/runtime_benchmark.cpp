@@ -1,5 +1,6 @@
 #include "studies/benchmark/runtime_benchmark.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -57,7 +58,8 @@ struct Stopped {};
 struct Plan {
     std::vector<std::string> skin_presets;   // one skin in every mode
     bool skin_volumetric_walk;               // its 31-wavelength spectrum too (tens of seconds per preset)
-    std::uint64_t agreement_photons;         // the volumetric walk against adding-doubling at 550 nm
+    std::uint64_t agreement_photons;         // the volumetric walk against adding-doubling at 550 nm, and its R(r)
+    bool quick_profiles;                     // R(r) at 550 nm only (else 450, 550, 650)
     std::vector<std::uint64_t> rays;
     int repetitions;
     std::uint64_t reference_rays;
@@ -67,9 +69,9 @@ struct Plan {
 };
 
 Plan plan_of(bool quick) {
-    if (quick) return {{"biospec-moderately"}, false, 200'000, {1000, 4000, 16000, 64000, 256000}, 4, 4'000'000, 0.02, 400'000, {"biospec-moderately"}};
+    if (quick) return {{"biospec-moderately"}, false, 200'000, true, {1000, 4000, 16000, 64000, 256000}, 4, 4'000'000, 0.02, 400'000, {"biospec-moderately"}};
     const std::vector<std::string> presets{"biospec-lightly", "biospec-moderately", "biospec-heavily"};
-    return {presets, true, 10'000'000, {1000, 3162, 10000, 31623, 100000, 316228, 1'000'000}, 6, 20'000'000, 0.1, 4'000'000, presets};
+    return {presets, true, 10'000'000, false, {1000, 3162, 10000, 31623, 100000, 316228, 1'000'000}, 6, 20'000'000, 0.1, 4'000'000, presets};
 }
 
 class Benchmark {
@@ -373,6 +375,60 @@ void skin_modes(Benchmark& bench) {
     }
 }
 
+// Every deterministic solver with radial profiles against the volumetric walk's R(r) on each preset.
+void profile_agreement(Benchmark& bench) {
+    constexpr double step_mm = 0.025, reach_mm = 5.0;
+    std::vector<double> radii;
+    for (int i = 0; i * step_mm <= reach_mm + 1e-9; ++i) radii.push_back(i * step_mm);
+    const std::vector<double> wavelengths = bench.plan().quick_profiles ? std::vector<double>{550.0} : std::vector<double>{450.0, 550.0, 650.0};
+    for (const auto& name : bench.plan().skin_presets) {
+        const auto material = load_material(name);
+        for (const double nm : wavelengths) {
+            const auto photons = bench.plan().agreement_photons;
+            bench.stage(fmt::format("{}: R(r) at {:g} nm, volumetric walk ({} photons) against the diffusion profiles", name, nm, photons));
+            ProfileRequest request;
+            request.wavelengths = WavelengthGrid::list({nm});
+            request.radii_mm = radii;
+            request.rays_per_wavelength = photons;
+            request.seed = bench.options().reference_seed;
+            request.cancel = bench.options().cancel;
+            const auto start = Clock::now();
+            const auto walk = solve_profiles(find_solver("rte"), material, request);
+            const double walk_seconds = seconds_since(start);
+            bench.check_cancel();
+            const auto& w = walk.channels.front();
+            for (const auto* solver : solver_registry()) {
+                const auto& caps = solver->capabilities();
+                if (!caps.radial_profiles || caps.uncertainty || !caps.layered_materials) continue;
+                ProfileRequest deterministic;
+                deterministic.wavelengths = request.wavelengths;
+                deterministic.radii_mm = walk.radii_mm;
+                const auto profiles = solve_profiles(*solver, material, deterministic);
+                const auto& d = profiles.channels.front();
+                ProfileAgreement row{name, nm, std::string(solver->name()), photons, 0, 0.0, 0.0, 0.0, 0.0, walk_seconds};
+                std::vector<double> far;
+                std::size_t within = 0;
+                for (std::size_t i = 0; i < walk.radii_mm.size(); ++i) {
+                    const double r = walk.radii_mm[i], value = w.reflectance_per_mm2[i];
+                    if (r < 0.05 || r > reach_mm || !(value > 0.0) || w.reflectance_stderr_per_mm2[i] >= 0.05 * value) continue;
+                    const double relative = (d.reflectance_per_mm2[i] - value) / value;
+                    ++row.radii;
+                    within += std::abs(relative) <= 0.15 ? 1 : 0;
+                    if (std::abs(relative) > std::abs(row.worst_relative_error)) row.worst_relative_error = relative;
+                    if (std::abs(r - 0.1) < 0.5 * step_mm) row.relative_error_at_0_1_mm = relative;
+                    if (r >= 1.0) far.push_back(relative);
+                }
+                row.share_within_15_percent = row.radii ? static_cast<double>(within) / static_cast<double>(row.radii) : 0.0;
+                if (!far.empty()) {
+                    std::nth_element(far.begin(), far.begin() + static_cast<std::ptrdiff_t>(far.size() / 2), far.end());
+                    row.median_relative_error_1_to_5_mm = far[far.size() / 2];
+                }
+                bench.report().profile_agreement.push_back(row);
+            }
+        }
+    }
+}
+
 void colour_timings(Benchmark& bench) {
     for (const auto& material : bench.plan().colour_materials) {
         bench.stage(fmt::format("{}: one swatch patch at Delta E <= 0.3", material));
@@ -401,6 +457,7 @@ BenchReport run_benchmark(const BenchOptions& options) {
         thread_scaling(bench, slabs.front());
         colour_timings(bench);
         skin_modes(bench);
+        profile_agreement(bench);
     } catch (const Stopped&) {
         bench.report().partial = true;
     }
