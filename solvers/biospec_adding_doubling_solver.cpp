@@ -1,6 +1,5 @@
 #include "solvers/biospec_adding_doubling_solver.hpp"
 
-#include "transport/adding_doubling/biospec_adding_doubling.hpp"
 
 namespace skinspec {
 namespace {
@@ -26,16 +25,19 @@ public:
         return caps;
     }
     SpectralResult solve(const Material& material, const SolverRequest& request) const override {
-        BiospecAdOptions options;
-        const auto& s = request.switches;
-        if (s.quadrature_channels) options.ad.channels = *s.quadrature_channels;
-        if (s.fold_into_skin) options.fold_into_skin = *s.fold_into_skin;
-        options.thin_layer_hg = s.thin_layer_hg;
-        return solve_biospec_adding_doubling_spectrum(std::get<LayerStack>(material), request.spectral, options);
+        return solve_biospec_adding_doubling_spectrum(std::get<LayerStack>(material), request.spectral, biospec_ad_options(request.switches, AdOptions{}.channels));
     }
 };
 
 }  // namespace
+
+BiospecAdOptions biospec_ad_options(const SolverSwitches& s, std::size_t default_channels) {
+    BiospecAdOptions o;
+    o.ad.channels = s.quadrature_channels.value_or(default_channels);
+    if (s.fold_into_skin) o.fold_into_skin = *s.fold_into_skin;
+    o.thin_layer_hg = s.thin_layer_hg;
+    return o;
+}
 
 const SpectralSolver& biospec_adding_doubling_solver() {
     static const BiospecAddingDoublingSolver solver;

@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
+#include "solvers/biospec_adding_doubling_solver.hpp"
 #include "solvers/diffusion_solvers.hpp"
 #include "spectral/input_error.hpp"
-#include "transport/adding_doubling/biospec_adding_doubling.hpp"
 
 namespace skinspec {
 namespace {
@@ -20,21 +20,16 @@ public:
         return "multipole profiles scaled to the exact totals of the BioSpec model (biospec-adding-doubling): the BioSpec colour with diffusion's spatial spread";
     }
     const SolverCapabilities& capabilities() const override {
-        static const SolverCapabilities caps{
-            .quantities = {true, true, true, false},
-            .layered_materials = true,
-            .band_materials = false,
-            .uncertainty = false,
-            .radial_profiles = true,
-            .switches = {SolverSwitch::channels, SolverSwitch::fold_into_skin, SolverSwitch::thin_layer_phase},
-            .replay_fields = {},
-            .material_needs = "",
-            .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce},
-        };
+        // biospec-adding-doubling's (its totals, switches and geometries), with radial profiles.
+        static const SolverCapabilities caps = [] {
+            auto c = biospec_adding_doubling_solver().capabilities();
+            c.radial_profiles = true;
+            return c;
+        }();
         return caps;
     }
     SpectralResult solve(const Material& material, const SolverRequest& request) const override {
-        auto result = solve_biospec_adding_doubling_spectrum(std::get<LayerStack>(material), request.spectral, totals_options(request.switches));
+        auto result = solve_biospec_adding_doubling_spectrum(std::get<LayerStack>(material), request.spectral, biospec_ad_options(request.switches, matched_channels));
         result.model = std::string(name());
         return result;
     }
@@ -45,7 +40,7 @@ public:
         auto out = multipole_solver().profiles(material, shapes);
         out.model = std::string(name());
         const auto& stack = std::get<LayerStack>(material);
-        const auto options = totals_options(request.switches);
+        const auto options = biospec_ad_options(request.switches, matched_channels);
         AdCache cache;
         for (auto& channel : out.channels) {
             if (request.cancel && request.cancel->load()) {
@@ -67,15 +62,6 @@ public:
             channel.total_transmittance = exact.transmittance;
         }
         return out;
-    }
-
-private:
-    static BiospecAdOptions totals_options(const SolverSwitches& s) {
-        BiospecAdOptions o;
-        o.ad.channels = s.quadrature_channels.value_or(matched_channels);
-        if (s.fold_into_skin) o.fold_into_skin = *s.fold_into_skin;
-        o.thin_layer_hg = s.thin_layer_hg;
-        return o;
     }
 };
 

@@ -6,8 +6,10 @@
 #include "spectral/input_error.hpp"
 #include "transport/adding_doubling/biospec_adding_doubling.hpp"
 #include "transport/biospec/biospec_solver.hpp"
+#include "energy_balance.hpp"
 
 using namespace skinspec;
+using skinspec::testing::energy;
 
 namespace {
 
@@ -21,12 +23,6 @@ SpectralRequest request(std::vector<double> nm, double incidence_deg = 0.0) {
     r.quantities = Quantities{true, true, true, false};
     r.incidence_deg = incidence_deg;
     return r;
-}
-
-double energy(const WavelengthResult& w) {
-    double sum = w.reflectance.value + w.transmittance.value + w.absorptance_surface.value;
-    for (const auto& a : w.absorptance_layers) sum += a.value;
-    return sum;
 }
 
 // E_3(x) = (e^-x (1 - x) + x^2 E_1(x)) / 2 (Abramowitz & Stegun 5.1.14), E_1(x) = -Ei(-x).

@@ -9,8 +9,10 @@
 #include "materials/measured_profile.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
+#include "energy_balance.hpp"
 
 using namespace skinspec;
+using skinspec::testing::energy;
 
 namespace {
 
@@ -22,12 +24,6 @@ SpectralRequest all_quantities(std::vector<double> nm, std::uint64_t rays) {
     r.quantities = Quantities{true, true, true, false};
     r.max_rays_per_wavelength = rays;
     return r;
-}
-
-double energy(const WavelengthResult& w) {
-    double sum = w.reflectance.value + w.transmittance.value + w.absorptance_surface.value;
-    for (const auto& a : w.absorptance_layers) sum += a.value;
-    return sum;
 }
 
 void check_physical(const SpectralResult& result) {
