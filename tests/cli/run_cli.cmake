@@ -19,6 +19,15 @@ endforeach()
 
 execute_process(COMMAND ${PROGRAM} ${ARGS} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
+# Under the sanitizers, LeakSanitizer's own exit scan can crash beside OpenImageIO's threads ("Tracer caught signal"),
+# depending on the memory layout, even the environment's size (docs/STABILITY.md): a failure of the tool, not a finding.
+# The program then runs once more with AddressSanitizer and UBSan but no leak scan, and says so.
+if(NOT "${result}" STREQUAL "${EXPECT_EXIT}" AND "${all}" MATCHES "Tracer caught signal" AND "${all}" MATCHES "LeakSanitizer has encountered a fatal error")
+  message(STATUS "LeakSanitizer's tracer crashed at exit (a tool failure): running again without the leak scan")
+  set(ENV{ASAN_OPTIONS} "$ENV{ASAN_OPTIONS}:detect_leaks=0")
+  execute_process(COMMAND ${PROGRAM} ${ARGS} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(all "${out}${err}")
+endif()
 if(NOT "${result}" STREQUAL "${EXPECT_EXIT}")
   message(FATAL_ERROR "exit ${result}, expected ${EXPECT_EXIT}; output:\n${all}")
 endif()
