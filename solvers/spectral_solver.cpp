@@ -446,14 +446,13 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
     }
     const auto effective = effective_request(request);
     auto results = share ? solve_shared(solver, materials, effective, *share) : solver.solve_many(materials, effective);
-    const auto overrides_of = [&](std::size_t i) {
-        auto overrides = request.overrides;
-        overrides.insert(overrides.end(), members[i].overrides.begin(), members[i].overrides.end());
-        return overrides;
-    };
+    // Each member's overrides after the request's own: in its messages and its provenance.
+    std::vector<std::vector<MaterialOverride>> overrides_of(results.size());
     parallel_indices(results.size(), [&](std::size_t i) {
+        overrides_of[i] = request.overrides;
+        overrides_of[i].insert(overrides_of[i].end(), members[i].overrides.begin(), members[i].overrides.end());
         keep_requested(results[i], request);
-        check_result_values(solver, results[i], overrides_of(i));
+        check_result_values(solver, results[i], overrides_of[i]);
     });
     if (!results.empty()) {
         std::vector<std::vector<std::size_t>> positions;
@@ -465,7 +464,7 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
     for (std::size_t i = 0; i < results.size(); ++i) settings_of.push_back(model_settings(members[i].material));
     parallel_indices(results.size(), [&](std::size_t i) {
         const auto& m = members[i];
-        record_provenance(results[i], solver, settings_of[i], m.base_toml ? m.base_toml : std::make_shared<const std::string>(to_toml(m.material)), overrides_of(i),
+        record_provenance(results[i], solver, settings_of[i], m.base_toml ? m.base_toml : std::make_shared<const std::string>(to_toml(m.material)), overrides_of[i],
                           m.varied);
     });
     return results;

@@ -16,6 +16,7 @@
 #include "materials/material_fields.hpp"
 #include "spectral/cie.hpp"
 #include "spectral/colorimetry.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
 #include "transport/biospec/biospec_options.hpp"
 #include "transport/biospec/biospec_walk.hpp"
 #include "transport/spectral_request.hpp"
@@ -38,7 +39,7 @@ enum class FitEngine { replayed_walk, adding_doubling };
 struct SpectrumFitSettings {
     std::vector<FitParameter> free;
     FitEngine engine = FitEngine::replayed_walk;
-    std::size_t channels = 24;  // adding_doubling: the quadrature
+    std::size_t channels = AdOptions{}.channels;  // adding_doubling: the quadrature (adding-doubling's default)
     double window_from_nm = 0.0;  // default: every given wavelength
     double window_to_nm = std::numeric_limits<double>::infinity();
     std::vector<WavelengthWeight> weights;

@@ -125,10 +125,18 @@ AdElement dermal_layer(const AdChannels& c, const LayerOptics& o, RayleighTurn t
 // The share of a fold-perturbed surface reflection that points out of the skin, for a beam at incidence theta: about
 // the mirror direction at polar angle t (cosine c from the fold's distribution) and uniform azimuth phi, the ray
 // leaves when cos(theta) c > sin(theta) sqrt(1 - c^2) cos(phi), i.e. for the share 1 - acos(x) / pi of azimuths,
-// x = cos(theta) c / (sin(theta) sqrt(1 - c^2)). Midpoint rule over the sampling variable u.
+// x = cos(theta) c / (sin(theta) sqrt(1 - c^2)). Midpoint rule over the sampling variable u. It depends on no
+// wavelength: the last value is kept (per thread), so a spectrum at oblique incidence computes it once.
 double fold_exit_share(double sigma, FoldFormula formula, double incidence_deg) {
     const double theta = incidence_deg * std::numbers::pi / 180.0;
     if (theta == 0.0) return 1.0;
+    struct Last {
+        double sigma = -1.0, incidence_deg = -1.0;
+        FoldFormula formula = FoldFormula::biospec_2004;
+        double share = 0.0;
+    };
+    thread_local Last last;
+    if (last.sigma == sigma && last.formula == formula && last.incidence_deg == incidence_deg) return last.share;
     constexpr int points = 4096;
     double sum = 0.0;
     for (int k = 0; k < points; ++k) {
@@ -139,7 +147,8 @@ double fold_exit_share(double sigma, FoldFormula formula, double incidence_deg) 
         const double x = denominator > 0.0 ? std::cos(theta) * c / denominator : 2.0;
         sum += 1.0 - std::acos(std::clamp(x, -1.0, 1.0)) / std::numbers::pi;
     }
-    return sum / points;
+    last = {sigma, incidence_deg, formula, sum / points};
+    return last.share;
 }
 
 // The Legendre moments of a measured profile at a wavelength: the walk samples it as the mixture of the two tabulated
