@@ -44,10 +44,10 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     // The other patches are loaded as they are solved.
     std::vector<std::size_t> corners{0, chart.columns - 1, (chart.rows - 1) * chart.columns, chart.rows * chart.columns - 1};
     // The material is read once; each patch sets its swept values on a copy in memory.
-    const auto base_material = load_material(request.material, request.overrides);
-    const auto base_toml = std::make_shared<const std::string>(to_toml(base_material));
+    const auto base_material = std::make_shared<const Material>(load_material(request.material, request.overrides));
+    const auto base_toml = std::make_shared<const std::string>(to_toml(*base_material));
     const auto axes = sweep_axes(request.sweeps);
-    const auto material_of = [&](std::size_t i) { return with_overrides(base_material, sweep_overrides(axes, parameters[i])); };
+    const auto material_of = [&](std::size_t i) { return with_overrides(*base_material, sweep_overrides(axes, parameters[i])); };
     SolverRequest base;
     base.switches = request.switches;
     base.overrides = request.overrides;
@@ -113,9 +113,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         for (std::size_t i = begin; i < end; ++i) {
             std::vector<std::pair<std::string, double>> varied;
             for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
-            auto overrides = sweep_overrides(axes, parameters[i]);
-            auto material = with_overrides(base_material, overrides);
-            members.push_back({std::move(material), std::move(overrides), std::move(varied), base_toml, {}});
+            members.push_back({base_material, sweep_overrides(axes, parameters[i]), std::move(varied), base_toml, {}});
         }
         auto results = solve_sweep(solver, members, base);
         if (share) {

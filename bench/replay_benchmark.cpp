@@ -50,23 +50,21 @@ int main() {
     request.spectral.stderr_target = 0.002;
     request.spectral.max_rays_per_wavelength = 10'000'000;
     const auto sweep = parse_sweep("epidermis.melanosome_fraction=0.005:0.25:100:log");
-    std::vector<SweepMember> members;
-    for (const auto& values : sweep_grid({sweep.axis()})) {
-        const auto overrides = sweep_overrides({sweep.axis()}, values);
-        members.push_back({load_material("biospec-moderately", overrides), overrides, {{sweep.field, values[0]}}});
-    }
     const auto preset = load_material("biospec-moderately");
+    const auto base = std::make_shared<const Material>(preset);
+    std::vector<SweepMember> members;
+    for (const auto& values : sweep_grid({sweep.axis()})) members.push_back({base, sweep_overrides({sweep.axis()}, values), {{sweep.field, values[0]}}});
     solve_spectrum(walk, preset, request);  // warm-up: tables loaded
 
     SpectralResult one, lightest;
     const double t_one = seconds_of([&] { one = solve_spectrum(walk, preset, request); });
-    const double t_light = seconds_of([&] { lightest = solve_spectrum(walk, members.front().material, request); });
+    const double t_light = seconds_of([&] { lightest = solve_spectrum(walk, members.front().material(), request); });
     std::vector<SpectralResult> replayed;
     const double t_sweep = seconds_of([&] { replayed = solve_sweep(walk, members, request); });
     double t_direct10 = 0.0;
     std::vector<SpectralResult> direct;
     for (std::size_t i = 0; i < members.size(); i += 10) {
-        t_direct10 += seconds_of([&] { direct.push_back(solve_spectrum(walk, members[i].material, request)); });
+        t_direct10 += seconds_of([&] { direct.push_back(solve_spectrum(walk, members[i].material(), request)); });
     }
     const double t_direct = 10.0 * t_direct10;
     const auto threads = tbb::this_task_arena::max_concurrency();
@@ -86,7 +84,7 @@ int main() {
         fixed.fixed_rays_per_wavelength = 20'000;
         double t1 = 0.0, t100 = 0.0;
         single.execute([&] {
-            t1 = seconds_of([&] { solve_spectrum(walk, members.front().material, fixed); });
+            t1 = seconds_of([&] { solve_spectrum(walk, members.front().material(), fixed); });
             t100 = seconds_of([&] { solve_sweep(walk, members, fixed); });
         });
         const double ray_layers = 20'000.0 * 31.0 * 4.0;

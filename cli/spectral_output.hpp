@@ -1,6 +1,7 @@
 #pragma once
 // Renderings of spectral results shared by every solver's command: the JSON schema of
 // docs/RESULTS_SCHEMA.md, CSV with the same columns and units in the header, and readable tables.
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,10 +25,10 @@ struct ReportedSpectrum {
 std::optional<ColorSummary> reflectance_color(const SpectralResult& result, IlluminantKind illuminant, ObserverKind observer);
 
 nlohmann::ordered_json to_json(const std::vector<ReportedSpectrum>& spectra);
-std::string to_csv(const std::vector<ReportedSpectrum>& spectra);
+void write_csv(std::ostream& out, const std::vector<ReportedSpectrum>& spectra);
 std::string to_table(const std::vector<ReportedSpectrum>& spectra);
 // A sweep (--vary): one line per result with its field values, colour, worst standard error and rays.
-std::string to_sweep_table(const std::vector<ReportedSpectrum>& spectra);
+void write_sweep_table(std::ostream& out, const std::vector<ReportedSpectrum>& spectra);
 
 // R (solid) and T (dashed, when computed) of every material with +-2 standard-error bands, drawn in the
 // material's simulated sRGB colour, as PNG or SVG.

@@ -99,8 +99,8 @@ void run_spectrum(const SpectrumOptions& o) {
     std::vector<std::vector<SweepMember>> members_per_name;
     for (const auto& name : names) {
         auto members = sweep_members(solver, request, axes, o.layers, load_material(name, request.overrides));
-        const bool bands = std::holds_alternative<HomogeneousMaterial>(members.front().material);
-        if (!members_per_name.empty() && bands != std::holds_alternative<HomogeneousMaterial>(members_per_name.front().front().material)) {
+        const bool bands = std::holds_alternative<HomogeneousMaterial>(*members.front().base);
+        if (!members_per_name.empty() && bands != std::holds_alternative<HomogeneousMaterial>(*members_per_name.front().front().base)) {
             throw InputError("material '" + name + "' has " + (bands ? "bands" : "wavelengths") + ", the materials before it " +
                              (bands ? "wavelengths" : "bands") + ": run them separately");
         }
@@ -114,7 +114,7 @@ void run_spectrum(const SpectrumOptions& o) {
     spectra.reserve(results_expected);
     for (std::size_t m = 0; m < names.size(); ++m) {
         if (InterruptGuard::interrupted() && !process_work_share()) break;  // every rank takes part in every gather
-        ProgressBar bar(material_name(members_per_name[m].front().material));
+        ProgressBar bar(material_name(*members_per_name[m].front().base));
         if (is_root_process()) spectral.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
         auto results = solve_sweep(solver, members_per_name[m], request, process_work_share());
@@ -140,10 +140,12 @@ void run_spectrum(const SpectrumOptions& o) {
         print_warning_summary(j - i > 1 ? name + " (" + std::to_string(j - i) + " results)" : name, warnings, results);
     }
     if (o.json) std::cout << to_json(spectra).dump(2) << '\n';
-    else std::cout << (sweeps.empty() ? to_table(spectra) : to_sweep_table(spectra));
+    else if (sweeps.empty()) std::cout << to_table(spectra);
+    else write_sweep_table(std::cout, spectra);
     if (!o.output.empty()) {
         const bool json_file = o.output.ends_with(".json");
-        write_text_file(o.output, json_file ? to_json(spectra).dump(2) + "\n" : to_csv(spectra), true);
+        if (json_file) write_text_file(o.output, to_json(spectra).dump(2) + "\n", true);
+        else write_text_file(o.output, [&](std::ostream& out) { write_csv(out, spectra); }, true);
         std::cerr << "wrote " << o.output << '\n';
     }
     if (!o.plot.empty() && !spectra.empty()) {

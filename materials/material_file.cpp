@@ -615,17 +615,21 @@ bool set_number_in_place(LayerStack& stack, const MaterialOverride& o) {
 
 }  // namespace
 
-Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides) {
-    if (overrides.empty()) return material;  // to_toml round-trips exactly: nothing to re-check
-    if (const auto* stack = std::get_if<LayerStack>(&material)) {
+void assign_with_overrides(Material& into, const Material& material, const std::vector<MaterialOverride>& overrides) {
+    into = material;
+    if (overrides.empty()) return;  // to_toml round-trips exactly: nothing to re-check
+    if (auto* stack = std::get_if<LayerStack>(&into)) {
         // Numbers (every sweep, most --set) are set in the material directly; anything else goes through the file
         // reader, which also words every refusal.
-        LayerStack changed = *stack;
-        if (std::all_of(overrides.begin(), overrides.end(), [&](const MaterialOverride& o) { return set_number_in_place(changed, o); })) {
-            return changed;
-        }
+        if (std::all_of(overrides.begin(), overrides.end(), [&](const MaterialOverride& o) { return set_number_in_place(*stack, o); })) return;
     }
-    return parse_material(to_toml(material), "material " + material_name(material), overrides);
+    into = parse_material(to_toml(material), "material " + material_name(material), overrides);
+}
+
+Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides) {
+    Material out;
+    assign_with_overrides(out, material, overrides);
+    return out;
 }
 
 namespace {

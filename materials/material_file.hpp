@@ -48,6 +48,8 @@ Material read_material(const std::filesystem::path& file, const std::vector<Mate
 Material parse_material(std::string_view toml_text, std::string_view source, const std::vector<MaterialOverride>& overrides = {});
 // `material` with the overrides applied and checked as when read from a file (messages name "material NAME").
 Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides);
+// The same into `into`, reusing the memory it holds (a sweep builds thousands of members into a few materials).
+void assign_with_overrides(Material& into, const Material& material, const std::vector<MaterialOverride>& overrides);
 // A preset name (file stem in data/materials) or a path to a .toml file.
 Material load_material(std::string_view name_or_file, const std::vector<MaterialOverride>& overrides = {});
 std::vector<std::filesystem::path> preset_files();

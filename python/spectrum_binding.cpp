@@ -33,7 +33,7 @@ py::list warnings_list(const std::vector<ResultWarning>& warnings) {
 
 py::object stated_error_object(const std::optional<StatedError>& e) {
     if (!e) return py::none();
-    return py::dict(py::arg("R") = e->R, py::arg("meaning") = e->meaning,
+    return py::dict(py::arg("R") = e->R, py::arg("meaning") = *e->meaning,
                     py::arg("delta_e2000") = e->delta_e2000 ? py::object(py::float_(*e->delta_e2000)) : py::none());
 }
 

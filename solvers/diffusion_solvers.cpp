@@ -8,6 +8,7 @@
 
 #include "spectral/ciede2000.hpp"
 #include "spectral/colorimetry.hpp"
+#include "spectral/parallel_indices.hpp"
 #include "transport/adding_doubling/adding_doubling.hpp"
 #include "transport/diffusion/diffusion_model.hpp"
 #include "transport/diffusion/diffusion_profiles.hpp"
@@ -62,8 +63,8 @@ std::optional<std::vector<double>> measured_difference(const LayerStack& stack, 
 // wavelengths `at`, and the largest CIEDE2000 (D65, 2 degrees) between the result's colour and that of its spectrum
 // less a difference.
 StatedError stated_error(const std::vector<WavelengthResult>& rows, const std::vector<const std::vector<double>*>& differences,
-                         const std::vector<std::size_t>& at, const std::optional<TristimulusWeights>& weights, const std::string& meaning) {
-    StatedError e{0.0, meaning, {}};
+                         const std::vector<std::size_t>& at, const std::optional<TristimulusWeights>& weights, std::shared_ptr<const std::string> meaning) {
+    StatedError e{0.0, std::move(meaning), {}};
     std::vector<double> r;
     for (const auto& row : rows) r.push_back(row.reflectance.value);
     for (const auto* difference : differences) {
@@ -74,7 +75,6 @@ StatedError stated_error(const std::vector<WavelengthResult>& rows, const std::v
         const double delta = ciede2000(xyz_to_lab(weights->integrate(corrected), weights->white()), xyz_to_lab(weights->integrate(r), weights->white()));
         e.delta_e2000 = std::max(e.delta_e2000.value_or(0.0), delta);
     }
-    if (weights) e.meaning += "; the colour difference with that difference (interpolated between the measured wavelengths)";
     return e;
 }
 
@@ -135,10 +135,10 @@ public:
     // model_error_wavelengths of the request's wavelengths (interpolated linearly between them) and, in a sweep, at up
     // to model_error_nodes_* values of each axis; a member between measured ones states the largest of theirs (the
     // error changes steeply with pigment: interpolating it understated it by up to 44 % at 5 of 16 values).
-    void state_errors(const std::vector<const Material*>& materials, const std::vector<std::vector<std::size_t>>& positions,
+    void state_errors(const std::function<Material(std::size_t)>& material_of, const std::vector<std::vector<std::size_t>>& positions,
                       const SolverRequest& request, std::vector<SpectralResult>& results) const override {
         const auto& rows = results.front().wavelengths;
-        if (rows.empty() || !std::holds_alternative<LayerStack>(*materials.front())) return;
+        if (rows.empty() || !std::holds_alternative<LayerStack>(material_of(0))) return;
         const auto at = spread(rows.size(), model_error_wavelengths);
         std::string meaning = fmt::format("largest |R - R of adding-doubling| (exact transport of the same skin's volumetric description, {} channels) at {} of the {} wavelengths",
                                           model_error_channels, at.size(), rows.size());
@@ -146,6 +146,7 @@ public:
         for (const auto& row : rows) nm.push_back(row.wavelength_nm);
         std::optional<TristimulusWeights> weights;
         if (has_color_span(nm)) weights.emplace(nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
+        const std::size_t members = positions.size();
         const auto shape = lattice_shape(positions);
         // Per axis: the measured indices.
         std::vector<std::vector<std::size_t>> nodes;
@@ -155,23 +156,16 @@ public:
                 nodes.push_back(spread(n, shape->size() == 1 ? model_error_nodes_one_axis : model_error_nodes_per_axis));
                 measured *= nodes.back().size();
             }
-            if (measured < materials.size()) {
+            if (measured < members) {
                 meaning += fmt::format(" and at {} of the sweep's {} members (a member between them: the largest of the measured members around it)",
-                                       measured, materials.size());
+                                       measured, members);
             }
         }
-        // A measured member's difference, computed once (from its own result, or solved here when a stop left it out).
-        std::map<std::size_t, std::optional<std::vector<double>>> measured_differences;
-        const auto difference_of = [&](std::size_t i) -> const std::optional<std::vector<double>>& {
-            const auto found = measured_differences.find(i);
-            if (found != measured_differences.end()) return found->second;
-            const auto& stack = std::get<LayerStack>(*materials[i]);
-            const double incidence = request.spectral.incidence_deg;
-            if (i < results.size()) return measured_differences[i] = measured_difference(stack, results[i].wavelengths, at, incidence);
-            return measured_differences[i] = measured_difference(stack, solve(*materials[i], request).wavelengths, at, incidence);
-        };
+        if (weights) meaning += "; the colour difference with that difference (interpolated between the measured wavelengths)";
+        const auto shared_meaning = std::make_shared<const std::string>(std::move(meaning));
+        // The measured members around each result: itself, or the corners of its lattice cell.
+        std::vector<std::vector<std::size_t>> around_of(results.size());
         for (std::size_t i = 0; i < results.size(); ++i) {
-            // The measured members around this one: itself, or the corners of its lattice cell.
             std::vector<std::size_t> around{0};
             if (!shape) around = {i};
             std::size_t stride = 1;
@@ -186,14 +180,34 @@ public:
                 around = std::move(next);
                 stride *= (*shape)[a];
             }
+            around_of[i] = std::move(around);
+        }
+        // Each measured member's difference, computed once, in parallel (from its own result, or solved here when a
+        // stop left it out).
+        std::vector<std::size_t> wanted;
+        for (const auto& around : around_of) wanted.insert(wanted.end(), around.begin(), around.end());
+        std::sort(wanted.begin(), wanted.end());
+        wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+        std::vector<std::optional<std::vector<double>>> wanted_differences(wanted.size());
+        parallel_indices(wanted.size(), [&](std::size_t k) {
+            const auto i = wanted[k];
+            const auto material = material_of(i);
+            const auto& stack = std::get<LayerStack>(material);
+            const double incidence = request.spectral.incidence_deg;
+            wanted_differences[k] = measured_difference(stack, i < results.size() ? results[i].wavelengths : solve(material, request).wavelengths, at, incidence);
+        });
+        const auto difference_of = [&](std::size_t i) -> const std::optional<std::vector<double>>& {
+            return wanted_differences[static_cast<std::size_t>(std::lower_bound(wanted.begin(), wanted.end(), i) - wanted.begin())];
+        };
+        parallel_indices(results.size(), [&](std::size_t i) {
             std::vector<const std::vector<double>*> differences;
-            for (const auto member : around) {
+            for (const auto member : around_of[i]) {
                 const auto& d = difference_of(member);
-                if (!d) break;
+                if (!d) return;
                 differences.push_back(&*d);
             }
-            if (differences.size() == around.size()) results[i].stated_error = stated_error(results[i].wavelengths, differences, at, weights, meaning);
-        }
+            results[i].stated_error = stated_error(results[i].wavelengths, differences, at, weights, shared_meaning);
+        });
     }
     SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
         return diffusion_profiles(material, request.wavelengths, request.radii_mm, diffusion_options(request.switches), request.transmittance, request.cancel,

@@ -25,6 +25,9 @@
 namespace skinspec {
 namespace {
 
+// Members of a sweep built and solved at a time by a solver that does not replay (solve_sweep).
+constexpr std::size_t sweep_block_members = 256;
+
 // Results solved group by group, back in the materials' order, up to the first one not solved (stopped).
 std::vector<SpectralResult> solved_prefix(std::vector<std::optional<SpectralResult>>& by_index) {
     std::vector<SpectralResult> out;
@@ -129,7 +132,7 @@ std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const M
     return results;
 }
 
-void SpectralSolver::state_errors(const std::vector<const Material*>&, const std::vector<std::vector<std::size_t>>&, const SolverRequest&,
+void SpectralSolver::state_errors(const std::function<Material(std::size_t)>&, const std::vector<std::vector<std::size_t>>&, const SolverRequest&,
                                   std::vector<SpectralResult>&) const {}
 
 std::vector<std::vector<std::size_t>> SpectralSolver::solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const {
@@ -366,7 +369,7 @@ SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& mate
     std::vector<SpectralResult> one{solver.solve(material, effective)};
     keep_requested(one.front(), request);
     check_result_values(solver, one.front(), request.overrides);
-    solver.state_errors({&material}, {{}}, effective, one);
+    solver.state_errors([&](std::size_t) { return material; }, {{}}, effective, one);
     auto result = std::move(one.front());
     record_provenance(result, solver, ModelSettingsCache()(material), std::make_shared<const std::string>(to_toml(material)), request.overrides, {});
     return result;
@@ -374,29 +377,35 @@ SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& mate
 
 std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
                                        const std::vector<std::string>& layers, const Material& base) {
-    Material cut = base;
+    auto cut = std::make_shared<Material>(base);
     if (!layers.empty()) {
-        if (const auto* stack = std::get_if<LayerStack>(&base)) cut = stack->sub_stack(layers);
+        if (const auto* stack = std::get_if<LayerStack>(&base)) *cut = stack->sub_stack(layers);
         else throw InputError("--layers: material '" + material_name(base) + "' is homogeneous and has no layers");
     }
     // Overrides keep the material's kind and every member sets the same fields: the request is checked once.
-    check_request(solver, cut, request);
+    check_request(solver, *cut, request);
     const auto grid = sweep_grid(axes);
     if (!grid.empty()) check_overrides(solver, sweep_overrides(axes, grid.front()));
-    const auto base_toml = std::make_shared<const std::string>(to_toml(cut));
+    const auto base_toml = std::make_shared<const std::string>(to_toml(*cut));
     std::vector<SweepMember> members(grid.size());
-    // Built in parallel (a 64 x 64 sweep's copies and overrides were a quarter of a dipole sweep's time).
-    parallel_indices(grid.size(), [&](std::size_t i) {
-        const auto& values = grid[i];
-        auto& member = members[i];
-        member.overrides = sweep_overrides(axes, values);
-        member.material = with_overrides(cut, member.overrides);
-        member.base_toml = base_toml;
-        // Its index on each axis: the first axis fastest (sweep_grid's order).
-        for (std::size_t a = 0, rest = i; a < axes.size(); ++a) {
-            member.varied.emplace_back(axes[a].field, values[a]);
-            member.position.push_back(rest % axes[a].values.size());
-            rest /= axes[a].values.size();
+    // A block of members at a time, each built into one material to be checked (and dropped): the first refusal of
+    // the lowest block is the lowest member's.
+    const std::size_t blocks = (grid.size() + sweep_block_members - 1) / sweep_block_members;
+    parallel_indices(blocks, [&](std::size_t b) {
+        Material checked;
+        for (std::size_t i = b * sweep_block_members; i < std::min(grid.size(), (b + 1) * sweep_block_members); ++i) {
+            const auto& values = grid[i];
+            auto& member = members[i];
+            member.base = cut;
+            member.overrides = sweep_overrides(axes, values);
+            member.base_toml = base_toml;
+            // Its index on each axis: the first axis fastest (sweep_grid's order).
+            for (std::size_t a = 0, rest = i; a < axes.size(); ++a) {
+                member.varied.emplace_back(axes[a].field, values[a]);
+                member.position.push_back(rest % axes[a].values.size());
+                rest /= axes[a].values.size();
+            }
+            member.build(checked);
         }
     });
     return members;
@@ -439,13 +448,33 @@ std::vector<SpectralResult> solve_shared(const SpectralSolver& solver, const std
 std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request,
                                         const WorkShare* share) {
     check_request_settings(solver, request);
-    std::vector<const Material*> materials;
-    for (const auto& m : members) {
-        check_material(solver, m.material);
-        materials.push_back(&m.material);
+    // Overrides keep a material's kind: each base is checked before anything is solved.
+    for (std::size_t i = 0; i < members.size(); ++i) {
+        if (i == 0 || members[i].base != members[i - 1].base) check_material(solver, *members[i].base);
     }
     const auto effective = effective_request(request);
-    auto results = share ? solve_shared(solver, materials, effective, *share) : solver.solve_many(materials, effective);
+    // A solver that replays traces groups of the members together: it gets them all at once. The others get blocks
+    // of members, built as they are solved (4096 materials held at once were a third of a dipole sweep's time).
+    const std::size_t block = solver.capabilities().replay_fields.empty() ? sweep_block_members : std::max<std::size_t>(1, members.size());
+    const std::size_t blocks = (members.size() + block - 1) / block;
+    PartProgress progress(effective.spectral.on_progress, blocks);
+    std::vector<SpectralResult> results;
+    results.reserve(members.size());
+    std::vector<Material> built;  // a block's materials, built into the previous block's
+    for (std::size_t b = 0; b < blocks; ++b) {
+        const std::size_t begin = b * block, end = std::min(members.size(), begin + block);
+        built.resize(end - begin);
+        parallel_indices(built.size(), [&](std::size_t i) { members[begin + i].build(built[i]); });
+        std::vector<const Material*> materials;
+        for (const auto& m : built) materials.push_back(&m);
+        auto part = effective;
+        part.spectral = progress.part(effective.spectral, b);
+        auto solved = share ? solve_shared(solver, materials, part, *share) : solver.solve_many(materials, part);
+        progress.finish_part();
+        const bool complete = solved.size() == materials.size() && (solved.empty() || !solved.back().partial);
+        std::move(solved.begin(), solved.end(), std::back_inserter(results));
+        if (!complete) break;
+    }
     // Each member's overrides after the request's own: in its messages and its provenance.
     std::vector<std::vector<MaterialOverride>> overrides_of(results.size());
     parallel_indices(results.size(), [&](std::size_t i) {
@@ -457,15 +486,20 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
     if (!results.empty()) {
         std::vector<std::vector<std::size_t>> positions;
         for (const auto& m : members) positions.push_back(m.position);
-        solver.state_errors(materials, positions, effective, results);
+        solver.state_errors([&](std::size_t i) { return members[i].material(); }, positions, effective, results);
     }
     ModelSettingsCache model_settings;
     std::vector<std::shared_ptr<const ResultSettings>> settings_of;
-    for (std::size_t i = 0; i < results.size(); ++i) settings_of.push_back(model_settings(members[i].material));
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        // A member's overrides change its model's switches only when they name one (model.FIELD).
+        const auto& o = members[i].overrides;
+        const bool own_model = std::any_of(o.begin(), o.end(), [](const MaterialOverride& x) { return x.key.starts_with("model."); });
+        settings_of.push_back(model_settings(own_model ? members[i].material() : *members[i].base));
+    }
     parallel_indices(results.size(), [&](std::size_t i) {
         const auto& m = members[i];
-        record_provenance(results[i], solver, settings_of[i], m.base_toml ? m.base_toml : std::make_shared<const std::string>(to_toml(m.material)), overrides_of[i],
-                          m.varied);
+        record_provenance(results[i], solver, settings_of[i], m.base_toml ? m.base_toml : std::make_shared<const std::string>(to_toml(m.material())),
+                          overrides_of[i], m.varied);
     });
     return results;
 }

@@ -86,6 +86,10 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
 }
 
 void write_text_file(const std::filesystem::path& file, const std::string& text, bool overwrite) {
+    write_text_file(file, [&](std::ostream& out) { out << text; }, overwrite);
+}
+
+void write_text_file(const std::filesystem::path& file, const std::function<void(std::ostream& out)>& write, bool overwrite) {
     const bool replace = OutputClaims::may_replace(file).value_or(overwrite);
     if (std::filesystem::exists(file) && !replace) throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
     write_atomically(
@@ -93,7 +97,7 @@ void write_text_file(const std::filesystem::path& file, const std::string& text,
         [&](const std::filesystem::path& temporary) {
             std::ofstream out(temporary);
             if (!out) throw InputError(file.string() + ": cannot be written");
-            out << text;
+            write(out);
             out.close();
             if (!out) throw InputError(file.string() + ": write failed");
         },

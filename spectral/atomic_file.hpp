@@ -10,6 +10,7 @@
 // claimed twice in one command (-o same.exr --spectra same.exr) is refused.
 #include <filesystem>
 #include <functional>
+#include <iosfwd>
 #include <map>
 #include <optional>
 #include <string>
@@ -41,5 +42,7 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
 
 // `text` as `file`, atomically; InputError when it exists and may not be replaced, or it cannot be written.
 void write_text_file(const std::filesystem::path& file, const std::string& text, bool overwrite);
+// The same with the text written by `write` as it is made (a large text is never held whole).
+void write_text_file(const std::filesystem::path& file, const std::function<void(std::ostream& out)>& write, bool overwrite);
 
 }  // namespace skinspec

@@ -55,9 +55,9 @@ TEST_CASE("a diffusion sweep measures some members and every member states about
     for (std::size_t i = 0; i < results.size(); ++i) {
         INFO("member " << i);
         REQUIRE(results[i].stated_error);
-        CHECK_THAT(results[i].stated_error->meaning, Catch::Contains("at 25 of the sweep's 42 members"));
+        CHECK_THAT(*results[i].stated_error->meaning, Catch::Contains("at 25 of the sweep's 42 members"));
         // Its own error: the member solved alone (the statement the test above checks against adding-doubling).
-        const auto alone = solve_spectrum(dipole, members[i].material, request);
+        const auto alone = solve_spectrum(dipole, members[i].material(), request);
         const double own = alone.stated_error->R;
         const auto p = members[i].position;
         // 5 of 7 and 5 of 6 values measured (both ends and evenly between): measured members state exactly their own.

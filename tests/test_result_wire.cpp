@@ -21,7 +21,7 @@ SpectralResult solved() {
     result.warnings.push_back({"a kind", "epidermis", "450 nm", 0.25});
     result.settings["flag"] = true;
     result.settings["ratio"] = 0.1;
-    result.stated_error = StatedError{0.0123, "a meaning", 1.5};
+    result.stated_error = StatedError{0.0123, std::make_shared<const std::string>("a meaning"), 1.5};
     return result;
 }
 
@@ -57,7 +57,7 @@ TEST_CASE("results read back from bytes equal the results written, bit for bit",
     CHECK(r.warnings.back().value == 0.25);
     REQUIRE(r.stated_error);
     CHECK(same_bits(r.stated_error->R, 0.0123));
-    CHECK(r.stated_error->meaning == "a meaning");
+    CHECK(*r.stated_error->meaning == "a meaning");
     CHECK(r.stated_error->delta_e2000 == 1.5);
     CHECK(*r.provenance.material_toml == *original.provenance.material_toml);
     CHECK(r.provenance.overrides == original.provenance.overrides);

@@ -132,7 +132,7 @@ struct Provenance {
 // compared its colour with a reference, that colour difference.
 struct StatedError {
     double R = 0.0;
-    std::string meaning;
+    std::shared_ptr<const std::string> meaning;  // one text shared by the results it describes (a sweep's members)
     std::optional<double> delta_e2000;  // CIEDE2000 (D65, 2 degrees) from the reference named in `meaning`
 };
 

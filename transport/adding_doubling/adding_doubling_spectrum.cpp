@@ -52,7 +52,9 @@ SpectralResult adding_doubling_spectrum(const LayerStack& stack, const SpectralR
                     {"bottom", std::string(to_string(stack.bottom))},
                     {"quadrature_channels", std::uint64_t{options.channels}}};
     if (options.accuracy_check) {
-        out.stated_error = StatedError{accuracy, "twice the largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength", {}};
+        static const auto meaning = std::make_shared<const std::string>(
+            "twice the largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength");
+        out.stated_error = StatedError{accuracy, meaning, {}};
     }
     return out;
 }

@@ -78,10 +78,7 @@ void merge_thin(std::vector<SlabSpec> slabs, std::size_t i, double weight, std::
             ++i;
             continue;
         }
-        const bool last = i + 1 == slabs.size();
-        warnings.push_back({slabs[i].name, "merged", mfp,
-                            fmt::format("{} is {:.2g} transport mean free paths thick; merged with {} (weight {:.2g})", slabs[i].name, mfp,
-                                        last ? slabs[i - 1].name : slabs[i + 1].name, w)});
+        warnings.push_back({slabs[i].name, "merged", mfp});
         if (w < 1.0) merge_thin(slabs, i + 1, weight * (1.0 - w), out, warnings);
         weight *= w;
         i = merge_at(slabs, i);
@@ -92,14 +89,11 @@ void merge_thin(std::vector<SlabSpec> slabs, std::size_t i, double weight, std::
 void check_trust(const SlabSpec& s, bool finite, std::vector<TrustWarning>& warnings) {
     const double albedo = s.sigma_s_reduced_per_mm / (s.sigma_a_per_mm + s.sigma_s_reduced_per_mm);
     if (albedo < diffusion_min_reduced_albedo) {
-        warnings.push_back({s.name, "albedo", albedo,
-                            fmt::format("{}: reduced albedo {:.3g} is below {}", s.name, albedo, diffusion_min_reduced_albedo)});
+        warnings.push_back({s.name, "albedo", albedo});
     }
     const double mfp = s.thickness_mm / s.mean_free_path_mm();
     if (finite && mfp < diffusion_min_slab_mean_free_paths) {
-        warnings.push_back({s.name, "thin", mfp,
-                            fmt::format("{}: {:.3g} transport mean free paths thick, below {}", s.name, mfp,
-                                        diffusion_min_slab_mean_free_paths)});
+        warnings.push_back({s.name, "thin", mfp});
     }
 }
 

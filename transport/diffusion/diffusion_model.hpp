@@ -42,7 +42,6 @@ struct TrustWarning {
     std::string slab;
     std::string kind;   // "albedo", "thin", "merged"
     double value = 0;   // the albedo, or the thickness in mean free paths
-    std::string text;
 };
 
 struct WeightedStack {
