@@ -43,7 +43,7 @@ struct FitSpectrumOptions {
     double incidence_deg = 0.0;
     std::uint64_t rays = 20'000;
     std::uint64_t seed = 1;
-    std::size_t starts = 4;
+    std::size_t starts = SpectrumFitSettings{}.starts;
     unsigned threads = 0;
     SolverOptions solver;
     std::vector<std::string> walk_options_given;  // --rays, --seed as given (the exact model takes neither)
@@ -365,7 +365,7 @@ void add_fit_spectrum_command(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}));
     add_seed_option(*cmd, o->seed, "Random seed");
-    cmd->add_option("--starts", o->starts, "Local searches per spectrum, from the best points of a 64-point scan")
+    cmd->add_option("--starts", o->starts, fmt::format("Local searches per spectrum, from the best points of a {}-point scan", SpectrumFitSettings{}.scan_points))
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, std::size_t{64}));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));

@@ -150,7 +150,7 @@ void bind_fit(py::module_& m) {
     2-D input) with parameters and standard errors, RMS, the fitted spectrum and CIEDE2000 to the measured colour.)doc",
           py::arg("wavelengths"), py::arg("measured"), py::arg("material") = py::none(), py::kw_only(), py::arg("free") = py::none(),
           py::arg("bounds") = py::none(), py::arg("window") = py::none(), py::arg("weights") = py::none(), py::arg("rays") = 20'000,
-          py::arg("seed") = 1, py::arg("geometry") = "sci", py::arg("incidence_deg") = 0.0, py::arg("starts") = 4, py::arg("names") = py::none(),
+          py::arg("seed") = 1, py::arg("geometry") = "sci", py::arg("incidence_deg") = 0.0, py::arg("starts") = SpectrumFitSettings{}.starts, py::arg("names") = py::none(),
           py::arg("threads") = py::none(), py::arg("progress") = py::none());
 }
 
