@@ -367,7 +367,7 @@ void add_fit_spectrum_command(CLI::App& app) {
     add_seed_option(*cmd, o->seed, "Random seed");
     cmd->add_option("--starts", o->starts, fmt::format("Local searches per spectrum, from the best points of a {}-point scan", SpectrumFitSettings{}.scan_points))
         ->capture_default_str()
-        ->check(CLI::Range(std::size_t{1}, std::size_t{64}));
+        ->check(CLI::Range(std::size_t{1}, SpectrumFitSettings::scan_points));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--output", o->output, "Write the fits to FILE.csv (one row per spectrum) or FILE.json");
     cmd->add_option("--plot", o->plot, "Plot measured vs fitted to FILE.png|.svg (and the residuals to FILE-residuals.png|.svg)");

@@ -119,7 +119,7 @@ py::object fit_spectrum(const py::object& wavelengths, const py::object& measure
     settings.seed = whole_number(seed, 0, 9.223372036854775808e18, "seed");
     settings.geometry = parse_measurement_geometry(geometry, "geometry");
     settings.incidence_deg = one_number(incidence_deg, "incidence_deg");
-    settings.starts = whole_number(starts, 1, 1000, "starts");
+    settings.starts = whole_number(starts, 1, static_cast<double>(SpectrumFitSettings::scan_points), "starts");
     for (std::size_t w = 0; w < nm.size(); ++w) settings.wavelength_sources.push_back("wavelengths[" + std::to_string(w) + "]");
 
     const ThreadLimit limit(threads);

@@ -93,6 +93,12 @@ TEST_CASE("fit inputs: free fields, bounds and wavelengths are checked before an
     CHECK_NOTHROW(SpectrumFitter(base, grid(), s));
     s.geometry = MeasurementGeometry::zero_45;
     CHECK_THROWS_WITH(SpectrumFitter(base, grid(), s), Catch::Contains("biospec-adding-doubling computes hemispherical totals"));
+    // More local searches than scan points to start from: refused, not cut to the scan.
+    s.geometry = MeasurementGeometry::sci;
+    s.starts = SpectrumFitSettings::scan_points + 1;
+    CHECK_THROWS_WITH(SpectrumFitter(base, grid(), s), Catch::Contains("--starts 65 is outside [1, 64]"));
+    s.starts = 0;
+    CHECK_THROWS_WITH(SpectrumFitter(base, grid(), s), Catch::Contains("--starts 0 is outside [1, 64]"));
 }
 
 TEST_CASE("the replayed model's analytic Jacobian equals central differences", "[spectrum_fit]") {

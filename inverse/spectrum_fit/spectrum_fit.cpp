@@ -75,6 +75,10 @@ std::vector<ResidualBand> residual_bands(const std::vector<SpectrumFit>& fits) {
 SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>& wavelength_nm, const SpectrumFitSettings& settings)
     : base_(base), settings_(settings) {
     if (settings.free.empty()) throw InputError("--free: no free parameters");
+    if (settings.starts < 1 || settings.starts > SpectrumFitSettings::scan_points) {
+        throw InputError("--starts " + std::to_string(settings.starts) + " is outside [1, " + std::to_string(SpectrumFitSettings::scan_points) +
+                         "] (the local searches start from the best points of a " + std::to_string(SpectrumFitSettings::scan_points) + "-point scan)");
+    }
     if (!(settings.window_from_nm < settings.window_to_nm)) {
         throw InputError("--window " + format_number(settings.window_from_nm) + ":" + format_number(settings.window_to_nm) + ": FROM must be below TO");
     }
@@ -315,7 +319,7 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
     std::sort(scanned.begin(), scanned.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<double> best_x = scanned.front().second;
     double best = scanned.front().first;
-    const std::size_t starts = std::min(settings_.starts, scanned.size());
+    const std::size_t starts = settings_.starts;
     // A local search checks the stop request at every evaluation (NLopt's forced stop).
     struct Search {
         const decltype(objective_with_gradient)& objective;

@@ -48,7 +48,7 @@ struct SpectrumFitSettings {
     MeasurementGeometry geometry = MeasurementGeometry::sci;
     double incidence_deg = 0.0;
     BiospecOptions walk;
-    std::size_t scan_points = 64;  // quasi-random points over the bounds before the local searches
+    static constexpr std::size_t scan_points = 64;  // quasi-random points over the bounds before the local searches
     // Local searches, from the best scan points: 8 found the best of 16 within 5 % on 200 of 200 synthetic skins
     // (docs/SPECTRUM_FIT.md), 4 missed it on 3 (up to 2.2x the RMS).
     std::size_t starts = 8;
