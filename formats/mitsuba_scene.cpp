@@ -33,14 +33,26 @@ pugi::xml_node child(pugi::xml_node parent, const char* tag, std::initializer_li
     return node;
 }
 
-// Mitsuba's medium takes sigma_t and albedo: sigma_t = sigma_a + sigma_s, albedo = sigma_s / sigma_t.
-std::pair<std::vector<double>, std::vector<double>> extinction_albedo(const RendererLayer& l) {
-    std::vector<double> t, a;
+// Mitsuba's medium takes sigma_t and albedo: sigma_t = sigma_a + sigma_s, albedo = sigma_s / sigma_t. sigma_t is
+// written divided by its peak, which goes to the medium's `scale` (Mitsuba 3 homogeneous medium: "scale applied to
+// sigma_t"): Mitsuba's RGB values must lie in [0, 1] (a value above throws) and its *_rgb variants clamp spectra to
+// [0, 1], so 1/mm coefficients of 100 and more must be scaled to load at all.
+struct Extinction {
+    std::vector<double> sigma_t_relative;  // sigma_t / scale, at most 1
+    std::vector<double> albedo;
+    double scale = 1.0;  // [1/mm]
+};
+Extinction extinction_albedo(const RendererLayer& l) {
+    Extinction e;
+    std::vector<double> t;
     for (std::size_t i = 0; i < l.sigma_a_per_mm.size(); ++i) {
         t.push_back(l.sigma_a_per_mm[i] + l.sigma_s_per_mm[i]);
-        a.push_back(t.back() > 0.0 ? l.sigma_s_per_mm[i] / t.back() : 0.0);
+        e.albedo.push_back(t.back() > 0.0 ? l.sigma_s_per_mm[i] / t.back() : 0.0);
     }
-    return {t, a};
+    const double peak = t.empty() ? 0.0 : *std::max_element(t.begin(), t.end());
+    if (peak > 0.0) e.scale = peak;
+    for (const double v : t) e.sigma_t_relative.push_back(v / e.scale);
+    return e;
 }
 
 void spectrum_node(pugi::xml_node medium, const RendererMedia& media, const std::filesystem::path& scene, const RendererLayer& layer,
@@ -96,10 +108,11 @@ void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path
     if (!media.rgb) {
         std::filesystem::create_directories(spectra_folder(scene_file));
         for (const auto& l : media.layers) {
-            const auto [t, a] = extinction_albedo(l);
-            write_spd_file(spectrum_file_path(scene_file, l.name, "sigma_t"), media.wavelengths_nm, t,
-                           fmt::format("skinspec {}: {} layer {} extinction coefficient sigma_t = sigma_a + sigma_s [1/mm]", version, media.material, l.name));
-            write_spd_file(spectrum_file_path(scene_file, l.name, "albedo"), media.wavelengths_nm, a,
+            const auto e = extinction_albedo(l);
+            write_spd_file(spectrum_file_path(scene_file, l.name, "sigma_t"), media.wavelengths_nm, e.sigma_t_relative,
+                           fmt::format("skinspec {}: {} layer {} extinction coefficient sigma_t = sigma_a + sigma_s divided by the medium's scale {} [1/mm]",
+                                       version, media.material, l.name, format_number(e.scale)));
+            write_spd_file(spectrum_file_path(scene_file, l.name, "albedo"), media.wavelengths_nm, e.albedo,
                            fmt::format("skinspec {}: {} layer {} single-scattering albedo sigma_s / sigma_t [unitless]", version, media.material, l.name));
         }
     }
@@ -107,7 +120,7 @@ void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path
     double depth_mm = 0.0;
     for (const auto& l : media.layers) depth_mm += l.thickness_mm;
     doc.append_child(pugi::node_comment)
-        .set_value(fmt::format(" skinspec {}: {} as Mitsuba 3 media, a lit slab. Scene units mm; sigma_t in 1/mm. {} Phase functions at {} nm. "
+        .set_value(fmt::format(" skinspec {}: {} as Mitsuba 3 media, a lit slab. Scene units mm; sigma_t in 1/mm as written times the medium's scale. {} Phase functions at {} nm. "
                                "Layers top to bottom from z = 0 (total {} mm). ",
                                version, media.material,
                                media.rgb ? fmt::format("RGB media: the coefficients at {} nm taken as R, G, B.", joined(media.wavelengths_nm, ", "))
@@ -133,10 +146,10 @@ void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path
 
     for (const auto& l : media.layers) {
         auto medium = child(scene, "medium", {{"type", "homogeneous"}, {"id", l.name}});
-        const auto [t, a] = extinction_albedo(l);
-        spectrum_node(medium, media, scene_file, l, "sigma_t", t);
-        spectrum_node(medium, media, scene_file, l, "albedo", a);
-        child(medium, "float", {{"name", "scale"}, {"value", "1"}});
+        const auto e = extinction_albedo(l);
+        spectrum_node(medium, media, scene_file, l, "sigma_t", e.sigma_t_relative);
+        spectrum_node(medium, media, scene_file, l, "albedo", e.albedo);
+        child(medium, "float", {{"name", "scale"}, {"value", format_number(e.scale)}});
         if (l.phase.kind == RendererPhase::Kind::isotropic) {
             child(medium, "phase", {{"type", "isotropic"}});
         } else if (l.phase.kind == RendererPhase::Kind::tabulated) {

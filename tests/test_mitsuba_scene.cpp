@@ -1,11 +1,15 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+
+#include <pugixml.hpp>
 
 #include "formats/mitsuba_scene.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
 #include "scratch_folder.hpp"
 
 using namespace skinspec;
@@ -47,9 +51,20 @@ TEST_CASE("a Mitsuba 3 scene reads back as the media written (tabulated phases, 
     CHECK(back.wavelengths_nm == spectral.wavelengths_nm);
     for (const auto& f : mitsuba_scene_files(spectral, scratch("spectral.xml"))) CHECK(std::filesystem::exists(f));
 
+    // Mitsuba bounds RGB values to [0, 1] (it throws above) and clamps spectra there in its *_rgb variants: every
+    // sigma_t is written at most 1, its peak in the medium's scale.
+    for (const auto& l : spectral.layers) {
+        const auto [nm, t] = read_spd_file(spectrum_file_path(scratch("spectral.xml"), l.name, "sigma_t"));
+        CHECK(*std::max_element(t.begin(), t.end()) == Approx(1.0).epsilon(1e-15));
+    }
     const auto rgb = renderer_media(stack, MediaRequest{{650.0, 550.0, 450.0}, true, 550.0, PhaseExport::hg});
     write_mitsuba_scene(rgb, scratch("rgb.xml"));
     check_same_media(rgb, read_mitsuba_scene(scratch("rgb.xml")));
+    pugi::xml_document doc;
+    REQUIRE(doc.load_file(scratch("rgb.xml").c_str()));
+    for (const auto& value : doc.select_nodes("//rgb")) {
+        for (const auto part : split_fields(value.node().attribute("value").as_string())) CHECK(*parse_double(part) <= 1.0);
+    }
 
     auto exit = stack;
     exit.bottom = BottomBoundary::exit;
