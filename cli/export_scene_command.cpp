@@ -72,7 +72,7 @@ void run_export_scene(const SceneOptions& o, SceneRenderer renderer) {
         const auto& l = media.layers[k];
         const auto [lo_a, hi_a] = std::minmax_element(l.sigma_a_per_mm.begin(), l.sigma_a_per_mm.end());
         const auto [lo_s, hi_s] = std::minmax_element(l.sigma_s_per_mm.begin(), l.sigma_s_per_mm.end());
-        const std::string kind = l.phase.kind == RendererPhase::Kind::tabulated ? fmt::format("tabulated ({} points, mean cos {:.4f})", l.phase.values.size(), l.phase.g)
+        const std::string kind = l.phase.kind == RendererPhase::Kind::tabulated ? fmt::format("tabulated ({} points, mean cos {:.4f}, as interpolated {:.5f})", l.phase.values.size(), l.phase.g, tabulated_mean_cosine(l.phase.values))
                                  : l.phase.kind == RendererPhase::Kind::isotropic ? std::string("isotropic")
                                                                                    : fmt::format("HG g {:.4f}", l.phase.g);
         const auto& spread = exported.mean_cosine_spread[k];

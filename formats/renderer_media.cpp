@@ -34,6 +34,18 @@ std::vector<double> tabulated_values(const MeasuredProfile& profile, double wave
     return values;
 }
 
+// The table of `profile` with the fewest points (181, doubling the intervals) whose interpolated mean cosine is within
+// tabulated_mean_cosine_tolerance of `mean_cosine`.
+std::vector<double> tabulated_phase(const MeasuredProfile& profile, double wavelength_nm, double mean_cosine, const std::string& layer) {
+    constexpr std::size_t first_points = 181, most_points = 184'321;
+    for (std::size_t points = first_points; points <= most_points; points = 2 * points - 1) {
+        auto values = tabulated_values(profile, wavelength_nm, points);
+        if (std::abs(tabulated_mean_cosine(values) - mean_cosine) <= tabulated_mean_cosine_tolerance) return values;
+    }
+    throw InputError("layer '" + layer + "': no table of up to " + std::to_string(most_points) + " points holds its phase function's mean cosine " +
+                     format_number(mean_cosine) + " to " + format_number(tabulated_mean_cosine_tolerance));
+}
+
 RendererPhase phase_of(const LayerStack& stack, std::size_t k, const MediaRequest& request) {
     const auto o = stack.optics(k, request.phase_wavelength_nm, OpticsScope{true, false});
     const auto& name = stack.layers[k].name;
@@ -48,13 +60,26 @@ RendererPhase phase_of(const LayerStack& stack, std::size_t k, const MediaReques
         case PhaseFunctionKind::measured_stratum_corneum:
         case PhaseFunctionKind::measured_epidermis: {
             const auto& profile = *o.phase == PhaseFunctionKind::measured_epidermis ? MeasuredProfile::epidermis() : MeasuredProfile::stratum_corneum();
-            return {RendererPhase::Kind::tabulated, phase.g, tabulated_values(profile, request.phase_wavelength_nm, request.tabulated_points)};
+            return {RendererPhase::Kind::tabulated, phase.g, tabulated_phase(profile, request.phase_wavelength_nm, phase.g, name)};
         }
     }
     return phase;
 }
 
 }  // namespace
+
+double tabulated_mean_cosine(const std::vector<double>& values) {
+    // Exact integrals of the piecewise-linear p: over [a, b], int p = h (p_a + p_b) / 2 and
+    // int mu p = h (p_a (2a + b) + p_b (a + 2b)) / 6.
+    const double h = 2.0 / static_cast<double>(values.size() - 1);
+    double norm = 0.0, first_moment = 0.0;
+    for (std::size_t k = 0; k + 1 < values.size(); ++k) {
+        const double a = -1.0 + h * static_cast<double>(k), b = a + h;
+        norm += 0.5 * h * (values[k] + values[k + 1]);
+        first_moment += h * (values[k] * (2.0 * a + b) + values[k + 1] * (a + 2.0 * b)) / 6.0;
+    }
+    return first_moment / norm;
+}
 
 std::string_view to_string(PhaseExport phase) { return phase == PhaseExport::hg ? "hg" : "own"; }
 
@@ -66,7 +91,6 @@ RendererMedia renderer_media(const LayerStack& stack, const MediaRequest& reques
     if (!(request.phase_wavelength_nm > 0.0) || !std::isfinite(request.phase_wavelength_nm)) {
         throw InputError("--phase-wavelength " + format_number(request.phase_wavelength_nm) + " nm is outside (0, inf)");
     }
-    if (request.tabulated_points < 3) throw InputError("tabulated phase: " + std::to_string(request.tabulated_points) + " points is below 3");
     RendererMedia media;
     media.material = stack.name;
     media.wavelengths_nm = request.wavelengths_nm;

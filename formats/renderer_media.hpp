@@ -56,8 +56,14 @@ struct MediaRequest {
     bool rgb = false;
     double phase_wavelength_nm = 550.0;
     PhaseExport phase = PhaseExport::own;
-    std::size_t tabulated_points = 181;  // cos theta samples of a tabulated phase
 };
+
+// How closely a tabulated phase's mean cosine, as a renderer interpolates the table, holds the profile's: the table
+// is refined (181, 361, ... points over cos theta) until it does (181 points gave 0.9577 for 0.9591).
+inline constexpr double tabulated_mean_cosine_tolerance = 1e-4;
+// The mean cosine of p(cos theta) given at cos theta = -1 + 2 k / (n - 1) and interpolated linearly between (as
+// Mitsuba 3's tabphase reads it).
+double tabulated_mean_cosine(const std::vector<double>& values);
 
 // InputError for a layer without volumetric scattering, a wavelength outside the material's data or an RGB
 // export without exactly three wavelengths, and for Rayleigh scattering with PhaseExport::own.
