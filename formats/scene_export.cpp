@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "formats/mitsuba_scene.hpp"
 #include "formats/pbrt_scene.hpp"
 #include "skinspec/version.hpp"
@@ -11,6 +13,8 @@
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
+#include "transport/rte/rte_model.hpp"
 
 namespace skinspec {
 namespace {
@@ -54,6 +58,36 @@ std::string_view phase_kind(RendererPhase::Kind kind) {
 
 }  // namespace
 
+namespace {
+
+// The media's phase functions in the description's transport: per layer HG, isotropic, or for a table the
+// description's own phase function at the phase wavelength (the table holds its mean cosine to 1e-4).
+PhaseApproximationError phase_approximation_error(const LayerStack& stack, const RendererMedia& media) {
+    const auto at_phase_wavelength = rte_stack_from(stack, media.phase_wavelength_nm);
+    const AdOptions options{phase_error_channels, false};
+    AdCache cache;
+    PhaseApproximationError out;
+    for (const double nm : media.wavelengths_nm) {
+        const auto own = rte_stack_from(stack, nm);
+        auto written = own;
+        for (std::size_t k = 0; k < written.layers.size(); ++k) {
+            const auto& phase = media.layers[k].phase;
+            written.layers[k].phase = phase.kind == RendererPhase::Kind::henyey_greenstein ? PhaseFunction::henyey_greenstein(phase.g)
+                                      : phase.kind == RendererPhase::Kind::isotropic       ? PhaseFunction::isotropic()
+                                                                                           : at_phase_wavelength.layers[k].phase;
+        }
+        const auto r_of = [&](const RteStack& s) {
+            const auto r = solve_adding_doubling(s, AdIncidence{false, 0.0}, options, &cache);
+            return r.diffuse_reflectance + r.specular_reflectance;
+        };
+        const double difference = r_of(written) - r_of(own);
+        if (std::abs(difference) > std::abs(out.largest_R_difference)) out = {difference, nm};
+    }
+    return out;
+}
+
+}  // namespace
+
 std::string_view to_string(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? "pbrt" : "mitsuba"; }
 
 std::string_view renderer_title(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? "pbrt-v4" : "Mitsuba 3"; }
@@ -81,6 +115,7 @@ SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, S
         throw std::runtime_error("the written scene does not read back as the media given (difference " + format_number(out.read_back_difference) + ")");
     }
     out.mean_cosine_spread = mean_cosine_spread(stack, request.wavelengths_nm);
+    out.phase_error = phase_approximation_error(stack, out.media);
     return out;
 }
 
@@ -114,7 +149,13 @@ nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRende
             {"bottom_reflector", media.bottom_reflector},
             {"units", {{"thickness", "mm"}, {"sigma_a, sigma_s", "1/mm"}, {"phase", "1/sr"}}},
             {"layers", layers},
-            {"read_back_largest_relative_difference", exported.read_back_difference}};
+            {"read_back_largest_relative_difference", exported.read_back_difference},
+            {"phase_approximation", {{"largest_R_difference", exported.phase_error.largest_R_difference},
+                                     {"at_nm", exported.phase_error.at_nm},
+                                     {"meaning", fmt::format("R of the media as written minus R of the material's own description, both by "
+                                                             "adding-doubling ({} channels): the phase functions as the renderer takes them, "
+                                                             "at {} nm, in place of each layer's own at each wavelength",
+                                                             phase_error_channels, format_number(media.phase_wavelength_nm))}}}};
 }
 
 }  // namespace skinspec

@@ -21,11 +21,22 @@ std::string_view scene_extension(SceneRenderer renderer);  // ".pbrt", ".xml"
 // pbrt-v4's media are Henyey-Greenstein only, so HG is its default; Mitsuba 3 takes each layer's own.
 PhaseExport default_phase_export(SceneRenderer renderer);
 
+// What the renderer's media change in R against skinspec's own description: each layer's phase function as
+// written (HG of its mean cosine for pbrt-v4, a table at the phase wavelength for Mitsuba 3; not spectral in either)
+// in place of the description's at each wavelength, both solved by adding-doubling (exact transport at
+// phase_error_channels channels, the quadrature's own error far below).
+inline constexpr std::size_t phase_error_channels = 16;
+struct PhaseApproximationError {
+    double largest_R_difference = 0.0;  // R of the media as written - R of the description, largest in magnitude
+    double at_nm = 0.0;
+};
+
 struct SceneExport {
     RendererMedia media;
     std::vector<std::filesystem::path> files;                       // the scene, then its spectrum files
     std::vector<std::pair<double, double>> mean_cosine_spread;      // per layer over the exported wavelengths
     double read_back_difference = 0.0;                              // largest relative difference written vs read
+    PhaseApproximationError phase_error;
 };
 
 // Writes `stack` as `renderer`'s scene at `scene` and reads it back. InputError, before anything is written, for a
