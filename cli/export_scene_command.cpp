@@ -83,6 +83,7 @@ void run_export_scene(const SceneOptions& o, SceneRenderer renderer) {
     std::cout << fmt::format("bottom: {}; read back: largest relative difference {:.3g}\n",
                              media.bottom_reflector ? "Lambertian reflector (R = 1)" : "exit into index " + format_number(media.below_refractive_index),
                              exported.read_back_difference);
+    if (media.rgb && !rgb_caveat(renderer).empty()) std::cout << "RGB: " << rgb_caveat(renderer) << '\n';
     std::cout << fmt::format("phase functions as written (at {} nm, not spectral in the renderer): R {:+.4f} against the material's own "
                              "description at {} nm, the largest difference (adding-doubling, {} channels, both)\n",
                              format_number(media.phase_wavelength_nm), exported.phase_error.largest_R_difference, format_number(exported.phase_error.at_nm),

@@ -96,6 +96,16 @@ std::string_view scene_extension(SceneRenderer renderer) { return renderer == Sc
 
 PhaseExport default_phase_export(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? PhaseExport::hg : PhaseExport::own; }
 
+std::string_view rgb_caveat(SceneRenderer renderer) {
+    // pbrt-v4 renders spectrally: an "rgb" coefficient becomes its RGBUnboundedSpectrum, a smooth spectrum through the
+    // three values, not the skin's (issue 37's render of this export: red 0.32 against the spectral export's 0.354).
+    if (renderer == SceneRenderer::pbrt) {
+        return "pbrt-v4 renders spectrally and turns each RGB coefficient into a smooth spectrum of its own (RGBUnboundedSpectrum), "
+               "not the skin's: its colours differ from the spectral export's (red 10 % low when measured); use the spectral export for pbrt-v4";
+    }
+    return "";
+}
+
 SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, SceneRenderer renderer, const std::filesystem::path& scene,
                          bool overwrite) {
     SceneExport out;
@@ -143,6 +153,7 @@ nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRende
             {"files", files},
             {"wavelengths_nm", media.wavelengths_nm},
             {"rgb", media.rgb},
+            {"rgb_caveat", media.rgb ? std::string(rgb_caveat(renderer)) : std::string()},
             {"phase_wavelength_nm", media.phase_wavelength_nm},
             {"above_refractive_index", media.above_refractive_index},
             {"below_refractive_index", media.below_refractive_index},

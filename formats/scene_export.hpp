@@ -20,6 +20,8 @@ std::string_view renderer_title(SceneRenderer renderer);   // "pbrt-v4", "Mitsub
 std::string_view scene_extension(SceneRenderer renderer);  // ".pbrt", ".xml"
 // pbrt-v4's media are Henyey-Greenstein only, so HG is its default; Mitsuba 3 takes each layer's own.
 PhaseExport default_phase_export(SceneRenderer renderer);
+// What an RGB export approximates in `renderer`, beyond taking three wavelengths as R, G, B ("" when nothing more).
+std::string_view rgb_caveat(SceneRenderer renderer);
 
 // What the renderer's media change in R against skinspec's own description: each layer's phase function as
 // written (HG of its mean cosine for pbrt-v4, a table at the phase wavelength for Mitsuba 3; not spectral in either)
