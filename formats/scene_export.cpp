@@ -67,10 +67,14 @@ PhaseApproximationError phase_approximation_error(const LayerStack& stack, const
     const AdOptions options{phase_error_channels, false};
     AdCache cache;
     PhaseApproximationError out;
-    for (const double nm : media.wavelengths_nm) {
+    for (std::size_t i = 0; i < media.wavelengths_nm.size(); ++i) {
+        const double nm = media.wavelengths_nm[i];
         const auto own = rte_stack_from(stack, nm);
         auto written = own;
         for (std::size_t k = 0; k < written.layers.size(); ++k) {
+            constexpr double mm_per_cm = 10.0;
+            written.layers[k].mu_a_per_cm = media.layers[k].sigma_a_per_mm[i] * mm_per_cm;
+            written.layers[k].mu_s_per_cm = media.layers[k].sigma_s_per_mm[i] * mm_per_cm;
             const auto& phase = media.layers[k].phase;
             written.layers[k].phase = phase.kind == RendererPhase::Kind::henyey_greenstein ? PhaseFunction::henyey_greenstein(phase.g)
                                       : phase.kind == RendererPhase::Kind::isotropic       ? PhaseFunction::isotropic()

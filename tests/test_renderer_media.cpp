@@ -33,7 +33,9 @@ TEST_CASE("renderer media carry the layers' coefficients in 1/mm and thickness i
         for (std::size_t w = 0; w < 2; ++w) {
             const auto o = stack.optics(k, media.wavelengths_nm[w]);
             CHECK(l.sigma_a_per_mm[w] == Approx(o.mu_a_per_cm / 10.0).epsilon(1e-15));
-            CHECK(l.sigma_s_per_mm[w] == Approx(*o.mu_s_per_cm / 10.0).epsilon(1e-15));
+            // A table (one wavelength's phase) keeps the reduced scattering mu_s (1 - g) at each wavelength.
+            const double g_written = l.phase.kind == RendererPhase::Kind::tabulated ? l.phase.g : *o.g;
+            CHECK(l.sigma_s_per_mm[w] * (1.0 - g_written) == Approx(*o.mu_s_per_cm / 10.0 * (1.0 - *o.g)).epsilon(1e-14));
         }
     }
     CHECK(media.bottom_reflector);
