@@ -56,10 +56,6 @@ std::string_view phase_kind(RendererPhase::Kind kind) {
     return "henyey-greenstein";
 }
 
-}  // namespace
-
-namespace {
-
 // The media's phase functions in the description's transport: per layer HG, isotropic, or for a table the
 // description's own phase function at the phase wavelength (the table holds its mean cosine to 1e-4).
 PhaseApproximationError phase_approximation_error(const LayerStack& stack, const RendererMedia& media) {
