@@ -114,6 +114,33 @@ TEST_CASE("adding-doubling analytic limits", "[adding_doubling]") {
     }
 }
 
+TEST_CASE("transparent layers (glass slides) are exact: no NaN from the channels they trap", "[adding_doubling]") {
+    // A clear slide of 1.5 in air: incoherent plate, R = 2F / (1 + F), T = (1 - F) / (1 + F), F = 0.04 (Stokes). The
+    // channels between s = 1 and 1.5 are totally reflected on both faces: adding them as a layer divided by zero.
+    const double f = 0.04;
+    for (const AdIncidence inc : {AdIncidence{false, 0.0}, AdIncidence{true, 0.0}}) {
+        const auto plate = solve_adding_doubling(one_layer(1.5, 0.0, 0.0, 0.0, 0.1), inc);
+        if (!inc.diffuse) {
+            CHECK(plate.specular_reflectance + plate.diffuse_reflectance == Approx(2.0 * f / (1.0 + f)).epsilon(1e-12));
+            CHECK(plate.transmittance == Approx((1.0 - f) / (1.0 + f)).epsilon(1e-12));
+        }
+        CHECK(plate.specular_reflectance + plate.diffuse_reflectance + plate.transmittance == Approx(1.0).epsilon(1e-12));
+    }
+    // Slides on both faces of a pure absorber of index 1.4 (b = 1): the closed form of the incoherent stack. Faces:
+    // air|glass|sample, r = r1 + t1^2 r2 / (1 - r1 r2), t = t1 t2 / (1 - r1 r2); through the sample R = r + t^2 r e^-2b
+    // / (1 - r^2 e^-2b), T = t^2 e^-b / (1 - r^2 e^-2b).
+    const double r1 = 0.04, r2 = (0.1 / 2.9) * (0.1 / 2.9);
+    const double r = r1 + (1 - r1) * (1 - r1) * r2 / (1 - r1 * r2), t = (1 - r1) * (1 - r2) / (1 - r1 * r2), e = std::exp(-1.0);
+    auto slid = one_layer(1.4, 2.0, 0.0, 0.0, 0.5);
+    const RteLayer slide{1.5, 0.0, 0.0, 0.1, PhaseFunction::isotropic()};
+    slid.layers = {slide, slid.layers.front(), slide};
+    const auto stack = solve_adding_doubling(slid, {});
+    CHECK(stack.specular_reflectance + stack.diffuse_reflectance == Approx(r + t * t * r * e * e / (1 - r * r * e * e)).epsilon(1e-5));
+    CHECK(stack.transmittance == Approx(t * t * e / (1 - r * r * e * e)).epsilon(3e-6));
+    CHECK(stack.absorbed_layers[0] == 0.0);
+    CHECK(stack.absorbed_layers[2] == 0.0);
+}
+
 TEST_CASE("adding-doubling stress: extreme layers stay finite, in [0, 1] and energy-conserving", "[adding_doubling]") {
     for (const double g : {0.0, 0.9, 0.99}) {
         for (const double albedo : {0.0, 0.5, 1.0}) {

@@ -280,6 +280,30 @@ AdVector transmit(const AdElement& e, const AdVector& flux) {
     return AdVector::Zero(flux.size());
 }
 
+// Two diagonal elements (interfaces, a transparent layer's propagation), `upper` over `lower`, as one: adding with
+// diagonal operators (van de Hulst 1980, ch. 4; per channel R = r1 + t1^2 r2 / (1 - r1' r2), T = t1 t2 / (1 - r1' r2)).
+// A channel that crosses neither never reaches the denominator (it is 0 only under total reflection on both sides).
+AdElement added_diagonal(const AdElement& upper, const AdElement& lower) {
+    const auto size = upper.t_diagonal.size();
+    AdElement e{AdElement::Kind::interface, AdVector::Zero(size), AdVector::Zero(size), AdVector::Zero(size), {}, {}, {}, {}};
+    for (Eigen::Index k = 0; k < size; ++k) {
+        const double tu = upper.t_diagonal(k), tl = lower.t_diagonal(k);
+        const double bounce = 1.0 - upper.r_bottom_diagonal(k) * lower.r_top_diagonal(k);
+        e.r_top_diagonal(k) = upper.r_top_diagonal(k) + (tu > 0.0 ? tu * tu * lower.r_top_diagonal(k) / bounce : 0.0);
+        e.r_bottom_diagonal(k) = lower.r_bottom_diagonal(k) + (tl > 0.0 ? tl * tl * upper.r_bottom_diagonal(k) / bounce : 0.0);
+        e.t_diagonal(k) = tu > 0.0 && tl > 0.0 ? tu * tl / bounce : 0.0;
+    }
+    return e;
+}
+
+// A transparent layer of index n as a diagonal element: every channel that propagates in it crosses it unchanged.
+AdElement clear_propagation(const AdChannels& c, double n) {
+    const auto size = static_cast<Eigen::Index>(c.size());
+    AdElement e{AdElement::Kind::interface, AdVector::Zero(size), AdVector::Zero(size), AdVector::Zero(size), {}, {}, {}, {}};
+    for (std::size_t k = 0; k < c.size(); ++k) e.t_diagonal(static_cast<Eigen::Index>(k)) = c.s[k] < n ? 1.0 : 0.0;
+    return e;
+}
+
 Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std::size_t per_hemisphere, const AdLayerMaker& make_layer,
                     const std::atomic<bool>* cancel) {
     std::vector<double> indices{shape.above_refractive_index};
@@ -294,19 +318,37 @@ Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std
     std::vector<AdElement> elements;
     std::vector<int> layer_of;  // per element: layer index or -1
     double above = n0;
-    for (std::size_t k = 0; k < shape.layer_indices.size(); ++k) {
+    // A diagonal element (interface, transparent layer) under another is added into it.
+    const auto push_diagonal = [&](AdElement e) {
+        if (!elements.empty() && layer_of.back() < 0) {
+            elements.back() = added_diagonal(elements.back(), e);
+        } else {
+            elements.push_back(std::move(e));
+            layer_of.push_back(-1);
+        }
+    };
+    const std::size_t layers = shape.layer_indices.size();
+    for (std::size_t k = 0; k < layers; ++k) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return {};
         const double index = shape.layer_indices[k];
-        elements.push_back(fresnel_interface(channels, above, index));
-        layer_of.push_back(-1);
+        push_diagonal(fresnel_interface(channels, above, index));
+        above = index;
+        // A transparent layer with an interface under it: one with the interfaces around it (AdStackShape).
+        if (k < shape.transparent.size() && shape.transparent[k] && (k + 1 < layers || !shape.bottom_reflector)) {
+            push_diagonal(clear_propagation(channels, index));
+            continue;
+        }
         // The collimated beam's cosine in this layer (Snell: the same s); 1 for diffuse incidence.
         const double beam = incidence.diffuse || channels.s[channels.incident] >= index ? 1.0 : std::max(channels.cosine(channels.incident, index), 1e-6);
         elements.push_back(make_layer(channels, k, beam));
         layer_of.push_back(static_cast<int>(k));
-        above = index;
     }
-    elements.push_back(shape.bottom_reflector ? lambertian_reflector(channels, above) : fresnel_interface(channels, above, shape.below_refractive_index));
-    layer_of.push_back(-1);
+    if (shape.bottom_reflector) {
+        elements.push_back(lambertian_reflector(channels, above));
+        layer_of.push_back(-1);
+    } else {
+        push_diagonal(fresnel_interface(channels, above, shape.below_refractive_index));
+    }
 
     AdVector incident = AdVector::Zero(n);
     if (incidence.diffuse) {

@@ -75,6 +75,11 @@ struct AdStackShape {
     std::vector<bool> absorbing;  // per layer: false gives exactly A = 0
     bool bottom_reflector = false;
     double below_refractive_index = 1.0;
+    // Per layer (empty: none): neither absorbs nor scatters (a glass slide). Such a layer between two interfaces is
+    // added with them into one diagonal interface (exact): kept as a layer, the channels it traps by total internal
+    // reflection on both sides (s between its neighbours' indices and its own) never lose flux, and adding divided
+    // by zero there (NaN for a slide of index 1.5 between air and a sample of 1.4).
+    std::vector<bool> transparent;
 };
 
 // Layer k's element for the channels, given the collimated beam's cosine in it (1 for diffuse incidence).

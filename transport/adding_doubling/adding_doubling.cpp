@@ -116,10 +116,11 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     }
     AdCache own;
     auto& phases = cache ? *cache : own;
-    AdStackShape shape{stack.above_refractive_index, {}, {}, stack.bottom_reflector, stack.below_refractive_index};
+    AdStackShape shape{stack.above_refractive_index, {}, {}, stack.bottom_reflector, stack.below_refractive_index, {}};
     for (const auto& l : stack.layers) {
         shape.layer_indices.push_back(l.refractive_index);
         shape.absorbing.push_back(l.mu_a_per_cm != 0.0);
+        shape.transparent.push_back(l.mu_a_per_cm == 0.0 && l.mu_s_per_cm == 0.0);
     }
     return solve_stack(shape, incidence, options, [&](const AdChannels& channels, std::size_t k, double beam_cosine) {
         const auto& layer = stack.layers[k];
