@@ -28,6 +28,7 @@
 #include "cli/profile_command.hpp"
 #include "cli/fit_profile_command.hpp"
 #include "cli/fit_spectrum_command.hpp"
+#include "cli/iad_command.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 
@@ -87,6 +88,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_profile_command(app);
     skinspec::cli::add_fit_profile_command(app);
     skinspec::cli::add_fit_spectrum_command(app);
+    skinspec::cli::add_iad_command(app);
     skinspec::cli::add_bench_command(app);
     skinspec::cli::add_stress_command(app);
     skinspec::cli::add_export_command(app);

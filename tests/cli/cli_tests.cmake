@@ -102,3 +102,7 @@ set_tests_properties("cli: profile of marble written for fit-profile" PROPERTIES
 # Jensen et al. 2001's marble, R band: sigma_s' 2.19, sigma_a 0.0021 /mm; the profile is per incident power, the fit per power entering.
 skinspec_cli_test("fit-profile recovers marble from a skinspec profile" 0 "R +2\\.19000 \\+- [0-9.e-]+ +0\\.002100 \\+-" fit-profile --profile ${CMAKE_CURRENT_BINARY_DIR}/marble_profile.csv --eta 1.5)
 set_tests_properties("cli: fit-profile recovers marble from a skinspec profile" PROPERTIES FIXTURES_REQUIRED marble_profile)
+skinspec_cli_test("iad one measurement as iad's README inverts it" 0 "0\\.4671[0-9]* +3\\.930[0-9]* +0\\.0000" iad -r 0.4 -t 0.1)
+skinspec_cli_test("iad two spheres file" 0 "500 nm +0\\.25328 +0\\.25328 +0\\.51525 +0\\.51525 +0\\.1000[0-9]* +1\\.0000.*600 nm .* 0\\.4000[0-9]* +1\\.0000" iad iad_two_spheres.rxt)
+skinspec_cli_test("iad uncertainties" 0 "mu_a/mm +\\+- +mu_s'/mm +\\+-" iad iad_two_spheres.rxt --r-uncertainty 0.002 --t-uncertainty 0.002)
+skinspec_cli_test("iad skips what no slab produces when asked" 0 "skipped: .*iad_unreachable.rxt:7: M_R = 0.01, M_T = 0.4 cannot be produced" iad iad_unreachable.rxt --skip-unreachable)

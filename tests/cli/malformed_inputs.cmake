@@ -196,3 +196,8 @@ skinspec_malformed_input("a JSON that is no spectral result" 2 "not a skinspec s
 # fit-spectrum --mode: the walk (replayed) or the exact model; the exact model traces no rays.
 skinspec_malformed_input("fit with a solver that is not the BioSpec model" 2 "--mode: fit-spectrum fits with biospec \\(the walk's paths, replayed\\) or biospec-adding-doubling \\(the model solved exactly\\), not 'dipole'" - fit-spectrum fit_short.csv --mode dipole)
 skinspec_malformed_input("fit exactly with a ray count" 2 "--rays: --mode biospec-adding-doubling solves the model exactly at every evaluation and traces no rays" - fit-spectrum fit_short.csv --mode biospec-adding-doubling --rays 1000)
+skinspec_malformed_input("iad unreachable" 2 "1 of 2 measurements are unreachable \\(nothing written.*iad_unreachable.rxt:7: M_R = 0.01" "${out}/iad.csv" iad iad_unreachable.rxt --output ${out}/iad.csv)
+skinspec_malformed_input("iad reflectance over one" 2 "the options: M_R = 1.5 is outside \\[0, 1\\]" - iad -r 1.5 -t 0.1)
+skinspec_malformed_input("iad sample index" 2 "sample_index = 0.5 is outside \\[1, 4\\]" - iad -r 0.3 -t 0.1 --sample-index 0.5)
+skinspec_malformed_input("iad file and options" 2 "give the measurements in .* or as options, not both" - iad iad_two_spheres.rxt -r 0.3)
+skinspec_malformed_input("iad no measurement" 2 "give an iad measurement file \\(.rxt\\) or at least --reflectance" - iad)
