@@ -1,19 +1,15 @@
 #include "cli/iad_command.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <iostream>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "cli/common_options.hpp"
 #include "cli/progress.hpp"
@@ -29,6 +25,7 @@ namespace skinspec::cli {
 namespace {
 
 using Json = nlohmann::ordered_json;
+
 
 struct IadOptions {
     std::string input;
@@ -49,35 +46,12 @@ std::string option_name(std::string_view key) {
     return "--" + name;
 }
 
-// The rows to solve: the file's, or the one given with -r/-t/-u; every --SETUP-FIELD given applies to all of them.
-std::vector<SlabMeasurement> measurements_of(const IadOptions& o, SlabSetup& header) {
-    std::vector<SlabMeasurement> rows;
-    if (!o.input.empty()) {
-        if (o.m_r || o.m_t || o.m_u) throw InputError("--reflectance/--transmittance/--unscattered: give the measurements in " + o.input + " or as options, not both");
-        auto file = read_rxt(o.input);
-        header = file.setup;
-        rows = std::move(file.rows);
-    } else {
-        if (!o.m_r) throw InputError("give an iad measurement file (.rxt) or at least --reflectance (-r)");
-        rows.push_back({std::nullopt, o.m_r, o.m_t, o.m_u, header, "the options"});
-    }
-    for (const auto& f : setup_fields()) {
-        const auto given = o.setup.find(std::string(f.key));
-        if (given == o.setup.end()) continue;
-        header.*(f.member) = given->second;
-        for (auto& r : rows) r.setup.*(f.member) = given->second;
-    }
-    validate(header, o.input.empty() ? "the options" : o.input);
-    for (const auto& r : rows) check_measurement(r);
-    return rows;
-}
-
 std::string cell(const std::optional<double>& v) { return v ? fmt::format("{:.9g}", *v) : std::string(); }
 
-std::string csv_of(const std::vector<IadRow>& rows, const SlabSetup& header, const IadOptions& o, bool partial) {
+std::string csv_of(const std::vector<IadRow>& rows, const SlabSetup& header, const std::string& input, const IadOptions& o, bool partial) {
     std::string out = fmt::format("# skinspec {} iad result (docs/IAD.md){}\n# units:", version, partial ? ", partial (stopped)" : "");
     for (const auto& f : iad_result_fields()) out += fmt::format(" {} [{}];", f.key, f.unit);
-    out += fmt::format("\n# input {}, channels {}, tolerance {}", o.input.empty() ? "options" : o.input, o.settings.channels, o.settings.tolerance);
+    out += fmt::format("\n# input {}, channels {}, tolerance {}", input, o.settings.channels, o.settings.tolerance);
     if (o.uncertainty.given()) out += fmt::format(", measurement uncertainties M_R {} M_T {} M_U {}", o.uncertainty.m_r, o.uncertainty.m_t, o.uncertainty.m_u);
     out += "\n# setup:";
     for (const auto& f : setup_fields()) out += fmt::format(" {} {};", f.key, format_number(header.*(f.member)));
@@ -93,23 +67,6 @@ std::string csv_of(const std::vector<IadRow>& rows, const SlabSetup& header, con
         out += '\n';
     }
     return out;
-}
-
-Json json_of(const std::vector<IadRow>& rows, const SlabSetup& header, const IadOptions& o, bool partial, double seconds) {
-    Json setup = Json::object(), list = Json::array();
-    for (const auto& f : setup_fields()) setup[std::string(f.key)] = header.*(f.member);
-    for (const auto& r : rows) {
-        Json j{{"source", r.measurement.source}, {"unknowns", std::string(to_string(r.result.unknowns))}};
-        for (const auto& f : iad_result_fields()) {
-            const auto v = f.value(r);
-            j[std::string(f.key)] = v ? Json(*v) : Json(nullptr);
-        }
-        list.push_back(std::move(j));
-    }
-    Json uncertainty = o.uncertainty.given() ? Json{{"m_r", o.uncertainty.m_r}, {"m_t", o.uncertainty.m_t}, {"m_u", o.uncertainty.m_u}} : Json(nullptr);
-    return Json{{"skinspec_version", version}, {"schema", "skinspec-iad/1"},     {"input", o.input.empty() ? "options" : o.input},
-                {"setup", setup},              {"channels", o.settings.channels}, {"tolerance", o.settings.tolerance},
-                {"measurement_uncertainty", uncertainty}, {"partial", partial}, {"seconds", seconds}, {"rows", list}};
 }
 
 std::string table_of(const std::vector<IadRow>& rows, bool uncertain) {
@@ -133,8 +90,9 @@ std::string table_of(const std::vector<IadRow>& rows, bool uncertain) {
 }
 
 void run_iad(const IadOptions& o) {
-    SlabSetup header;
-    const auto measurements = measurements_of(o, header);
+    const auto input = iad_input(o.input.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.input), o.m_r, o.m_t, o.m_u, o.setup);
+    const auto& header = input.setup;
+    const auto& measurements = input.rows;
     if (!o.output.empty()) check_output_path(o.output, o.force, {".csv", ".json"});
 
     std::optional<tbb::global_control> threads;
@@ -143,36 +101,15 @@ void run_iad(const IadOptions& o) {
     auto settings = o.settings;
     settings.cancel = &InterruptGuard::cancel_flag();
     const auto start = std::chrono::steady_clock::now();
-    std::vector<std::optional<IadResult>> results(measurements.size());
-    tbb::enumerable_thread_specific<SlabInverter> inverters([&] { return SlabInverter(settings); });
+    IadRun run;
     {
         ProgressBar bar("iad", "rows");
-        std::atomic<std::size_t> done{0};
-        std::mutex report;
-        tbb::parallel_for(std::size_t{0}, measurements.size(), [&](std::size_t i) {
-            if (settings.cancel->load()) return;
-            auto result = inverters.local().invert(measurements[i], o.uncertainty);
-            if (result.cancelled) return;
-            results[i] = std::move(result);
-            const std::lock_guard lock(report);
-            bar(Progress{0, 0, ++done, measurements.size()});
-        });
+        run = invert_rows(measurements, o.uncertainty, settings, [&](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); });
         bar.clear();
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    std::vector<IadRow> rows;
-    std::vector<std::string> unreachable;
-    std::size_t evaluations = 0;
-    for (std::size_t i = 0; i < measurements.size(); ++i) {
-        if (!results[i]) continue;
-        evaluations += results[i]->evaluations;
-        if (!results[i]->reachable) {
-            unreachable.push_back(results[i]->unreachable);
-            continue;
-        }
-        rows.push_back({measurements[i], std::move(*results[i])});
-    }
+    const auto& rows = run.rows;
+    const auto& unreachable = run.unreachable;
     if (!unreachable.empty() && !o.skip_unreachable) {
         std::string list;
         for (std::size_t i = 0; i < std::min<std::size_t>(unreachable.size(), 5); ++i) list += "\n  " + unreachable[i];
@@ -181,14 +118,14 @@ void run_iad(const IadOptions& o) {
     }
     const bool partial = InterruptGuard::interrupted();
     for (const auto& u : unreachable) std::cerr << "skinspec: skipped: " << u << '\n';
-    const Json doc = o.json || o.output.ends_with(".json") ? json_of(rows, header, o, partial, seconds) : Json{};
+    const Json doc = o.json || o.output.ends_with(".json") ? iad_json(run, header, input.name, o.settings, o.uncertainty, partial, seconds) : Json{};
     std::cout << (o.json ? doc.dump(2) + "\n" : table_of(rows, o.uncertainty.given()));
     if (!o.output.empty()) {
-        write_text_file(o.output, o.output.ends_with(".json") ? doc.dump(2) + "\n" : csv_of(rows, header, o, partial), true);
+        write_text_file(o.output, o.output.ends_with(".json") ? doc.dump(2) + "\n" : csv_of(rows, header, input.name, o, partial), true);
         std::cerr << "wrote " << o.output << '\n';
     }
     std::cerr << fmt::format("{} of {} rows inverted in {:.3f} s ({:.1f} ms per row, {} forward solutions, {} channels)\n", rows.size(), measurements.size(),
-                             seconds, rows.empty() ? 0.0 : 1e3 * seconds / static_cast<double>(rows.size()), evaluations, o.settings.channels);
+                             seconds, rows.empty() ? 0.0 : 1e3 * seconds / static_cast<double>(rows.size()), run.evaluations, o.settings.channels);
     if (partial) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": the " << rows.size() << " rows finished were written, marked partial\n";
         std::exit(InterruptGuard::exit_code());

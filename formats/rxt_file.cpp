@@ -5,6 +5,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "inverse/iad/inverse_adding_doubling.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/input_file.hpp"
 #include "spectral/text_fields.hpp"
@@ -174,6 +175,29 @@ RxtFile read_rxt(const std::filesystem::path& file) {
     auto in = open_input_file(file, "iad measurement file");
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     return parse_rxt(text, file.string());
+}
+
+IadInput iad_input(const std::optional<std::filesystem::path>& file, std::optional<double> m_r, std::optional<double> m_t, std::optional<double> m_u,
+                   const std::map<std::string, double>& setup) {
+    IadInput in;
+    if (file) {
+        if (m_r || m_t || m_u) throw InputError("reflectance/transmittance/unscattered: give the measurements in " + file->string() + " or as options, not both");
+        auto f = read_rxt(*file);
+        in = {f.setup, std::move(f.rows), file->string()};
+    } else {
+        if (!m_r) throw InputError("give an iad measurement file (.rxt) or at least the reflectance M_R (-r)");
+        in.name = "options";
+        in.rows.push_back({std::nullopt, m_r, m_t, m_u, in.setup, "the options"});
+    }
+    for (const auto& [key, value] : setup) {
+        const auto f = std::find_if(setup_fields().begin(), setup_fields().end(), [&](const SetupField& x) { return x.key == key; });
+        if (f == setup_fields().end()) throw InputError("'" + key + "' is not a setup field (skinspec iad --help lists them)");
+        in.setup.*(f->member) = value;
+        for (auto& r : in.rows) r.setup.*(f->member) = value;
+    }
+    validate(in.setup, in.name);
+    for (const auto& r : in.rows) check_measurement(r);
+    return in;
 }
 
 }  // namespace skinspec

@@ -10,6 +10,9 @@
 // n N d D B i S R T c C f g w W; M is iad's other letter for S); w also sets W unless a W column is given.
 // A slide of thickness 0 or index 0 or 1 is no slide. Every problem is an InputError naming file and line.
 #include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "inverse/iad/slab_measurement.hpp"
@@ -23,5 +26,16 @@ struct RxtFile {
 
 RxtFile read_rxt(const std::filesystem::path& file);
 RxtFile parse_rxt(std::string_view text, const std::string& name);
+
+// What `skinspec iad` and skinspec.iad solve: the rows of `file`, or (no file) the one row m_r [m_t [m_u]] in the
+// default setup; `setup` (a setup field's key -> value, inverse/iad/slab_measurement.hpp) applies to every row and to
+// the header. InputError for both a file and measurements, neither, an unknown key, or any row check_measurement refuses.
+struct IadInput {
+    SlabSetup setup;
+    std::vector<SlabMeasurement> rows;
+    std::string name;  // the file, or "options"
+};
+IadInput iad_input(const std::optional<std::filesystem::path>& file, std::optional<double> m_r, std::optional<double> m_t, std::optional<double> m_u,
+                   const std::map<std::string, double>& setup);
 
 }  // namespace skinspec

@@ -36,6 +36,7 @@ void bind_phase_study(py::module_& m);
 void bind_profile_fit(py::module_& m);
 void bind_swatch(py::module_& m);
 void bind_exports(py::module_& m);
+void bind_iad(py::module_& m);
 
 // A Python-side material: the resolved Material and the overrides set on it since it was loaded (recorded in
 // the provenance of every result computed from it).

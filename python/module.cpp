@@ -20,4 +20,5 @@ PYBIND11_MODULE(_skinspec, m) {
     skinspec::python::bind_profile_fit(m);
     skinspec::python::bind_swatch(m);
     skinspec::python::bind_exports(m);
+    skinspec::python::bind_iad(m);
 }

@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -21,6 +26,7 @@ constexpr std::size_t max_iterations = 100;
 constexpr std::size_t kept_grids = 8;
 constexpr double fd_step = 1e-5;
 constexpr std::size_t starts = 3;
+constexpr std::size_t rows_per_run = 16;
 
 bool same_setup(const SlabSetup& a, const SlabSetup& b) {
     return std::all_of(setup_fields().begin(), setup_fields().end(), [&](const SetupField& f) { return a.*(f.member) == b.*(f.member); });
@@ -182,7 +188,7 @@ void check_measurement(const SlabMeasurement& m) {
     if (m.m_u && *m.m_u > 0.0 && !(m.m_t && *m.m_t > 0.0)) throw InputError(m.source + ": M_U without M_T: give the total transmission too");
 }
 
-IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncertainty& uncertainty) {
+IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncertainty& uncertainty, const IadResult* previous) {
     auto& s = *state_;
     const auto& setup = m.setup;
     check_measurement(m);
@@ -206,18 +212,26 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
         out.cancelled = true;
         return out;
     }
-    const auto residuals_at = [&](const std::vector<double>& at) { return target.residuals(s.predict(problem.optics(at), setup)); };
+    struct Point {
+        std::vector<double> x;
+        PredictedMeasurement predicted;
+        std::vector<double> r;
+    };
+    const auto evaluate = [&](const std::vector<double>& at) {
+        const auto p = s.predict(problem.optics(at), setup);
+        return Point{at, p, target.residuals(p)};
+    };
     // Forward-difference Jacobian, stepping inwards at a bound. Adding-doubling's R and T jump by ~1e-6 relative where
     // the layer's doublings change (depths 2^k / 256: the thin layer's error), so the step is 1e-5, not 1e-7.
-    const auto jacobian = [&](const std::vector<double>& at, const std::vector<double>& r0) {
-        Eigen::MatrixXd j(static_cast<Eigen::Index>(r0.size()), static_cast<Eigen::Index>(at.size()));
-        for (std::size_t k = 0; k < at.size(); ++k) {
-            auto step = at;
-            double h = fd_step * std::max(1.0, std::abs(at[k]));
+    const auto jacobian = [&](const Point& at) {
+        Eigen::MatrixXd j(static_cast<Eigen::Index>(at.r.size()), static_cast<Eigen::Index>(at.x.size()));
+        for (std::size_t k = 0; k < at.x.size(); ++k) {
+            auto step = at.x;
+            double h = fd_step * std::max(1.0, std::abs(at.x[k]));
             if (step[k] + h > problem.hi[k]) h = -h;
             step[k] += h;
-            const auto r1 = residuals_at(step);
-            for (std::size_t i = 0; i < r0.size(); ++i) j(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (r1[i] - r0[i]) / h;
+            const auto r1 = evaluate(step).r;
+            for (std::size_t i = 0; i < at.r.size(); ++i) j(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (r1[i] - at.r[i]) / h;
         }
         return j;
     };
@@ -227,12 +241,12 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
         return c;
     };
     // Levenberg-Marquardt in the box (the step projected onto it) from x.
-    const auto search = [&](std::vector<double> x) {
-        auto r = residuals_at(x);
+    const auto search = [&](const std::vector<double>& start) {
+        auto at = evaluate(start);
         double lambda = 1e-3;
-        for (std::size_t it = 0; it < max_iterations && largest(r) > 1e-3 * s.settings.tolerance && !cancelled(); ++it) {
-            const auto j = jacobian(x, r);
-            const Eigen::Map<const Eigen::VectorXd> rv(r.data(), static_cast<Eigen::Index>(r.size()));
+        for (std::size_t it = 0; it < max_iterations && largest(at.r) > 1e-3 * s.settings.tolerance && !cancelled(); ++it) {
+            const auto j = jacobian(at);
+            const Eigen::Map<const Eigen::VectorXd> rv(at.r.data(), static_cast<Eigen::Index>(at.r.size()));
             const Eigen::MatrixXd jtj = j.transpose() * j;
             const Eigen::VectorXd jtr = j.transpose() * rv;
             bool improved = false;
@@ -240,44 +254,49 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
                 Eigen::MatrixXd a = jtj;
                 a.diagonal() += lambda * (jtj.diagonal().array() + 1e-12).matrix();
                 const Eigen::VectorXd dx = a.ldlt().solve(-jtr);
-                auto trial = x;
-                for (std::size_t k = 0; k < x.size(); ++k) trial[k] = std::clamp(x[k] + dx(static_cast<Eigen::Index>(k)), problem.lo[k], problem.hi[k]);
-                if (trial == x) break;
-                const auto rt = residuals_at(trial);
-                if (cost(rt) < cost(r)) {
-                    x = trial;
-                    r = rt;
+                auto trial = at.x;
+                for (std::size_t k = 0; k < trial.size(); ++k) trial[k] = std::clamp(trial[k] + dx(static_cast<Eigen::Index>(k)), problem.lo[k], problem.hi[k]);
+                if (trial == at.x) break;
+                auto next = evaluate(trial);
+                if (cost(next.r) < cost(at.r)) {
+                    // Settled when the cost stops falling (an unreachable measurement creeps along a bound).
+                    improved = cost(next.r) < (1.0 - 1e-6) * cost(at.r);
+                    at = std::move(next);
                     lambda = std::max(lambda / 10.0, 1e-12);
-                    improved = true;
                     break;
                 }
                 lambda *= 10.0;
             }
             if (!improved) break;
         }
-        return std::pair{x, cost(r)};
+        return at;
     };
-    // From the grid points closest to the measurement, the best three, until one fits.
+    // Starts: the previous row's result (a spectrum's neighbours are close), then the grid points closest to the
+    // measurement, the best three, until one fits.
+    std::vector<std::vector<double>> starts_list;
+    if (previous && previous->reachable && previous->unknowns == unknowns) {
+        const auto& o = previous->optics;
+        if (unknowns == IadUnknowns::albedo_thickness) starts_list.push_back({o.albedo, std::log(o.optical_thickness)});
+        else if (unknowns == IadUnknowns::albedo_anisotropy) starts_list.push_back({o.albedo, std::clamp(o.g, -g_bound, g_bound)});
+        else starts_list.push_back({o.albedo});
+    }
     std::vector<std::size_t> order(grid.points.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cost(target.residuals(grid.predicted[i])) < cost(target.residuals(grid.predicted[j])); });
-    std::vector<double> x;
-    double best_cost = inf;
-    for (std::size_t k = 0; k < std::min<std::size_t>(starts, order.size()); ++k) {
-        const auto [found, c] = search(grid.points[order[k]]);
+    for (std::size_t k = 0; k < std::min<std::size_t>(starts, order.size()); ++k) starts_list.push_back(grid.points[order[k]]);
+    std::optional<Point> best;
+    for (const auto& start : starts_list) {
+        auto found = search(start);
         if (cancelled()) {
             out.cancelled = true;
             return out;
         }
-        if (c < best_cost) {
-            x = found;
-            best_cost = c;
-        }
-        if (target.largest_difference(s.predict(problem.optics(x), setup)) <= s.settings.tolerance) break;
+        if (!best || cost(found.r) < cost(best->r)) best = std::move(found);
+        if (target.largest_difference(best->predicted) <= s.settings.tolerance) break;
     }
 
-    out.optics = problem.optics(x);
-    out.fitted = s.predict(out.optics, setup);
+    out.optics = problem.optics(best->x);
+    out.fitted = best->predicted;
     out.residual = target.largest_difference(out.fitted);
     out.reachable = out.residual <= s.settings.tolerance;
     const double d = setup.sample_thickness_mm;
@@ -292,7 +311,7 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
     if (unknowns == IadUnknowns::albedo_anisotropy) out.fitted_m_u = unscattered(out.optics.optical_thickness, setup).t;
     if (!out.reachable) {
         out.unreachable = fmt::format(
-            "{}: M_R = {}{} cannot be produced by a slab of index {} {}with g {}: the closest is M_R = {:.5f}{} (a = {:.6g}, b = {})",
+            "{}: M_R = {}{} cannot be produced by a slab of index {} {}with g {}: the closest (relative to each measurement) is M_R = {:.5f}{} (a = {:.6g}, b = {})",
             m.source, format_number(*m.m_r), target.m_t ? ", M_T = " + format_number(*target.m_t) : std::string(), format_number(setup.sample_index),
             setup.slide_index != 1.0 && setup.slide_thickness_mm > 0.0 ? "between slides of index " + format_number(setup.slide_index) + " " : "",
             unknowns == IadUnknowns::albedo_anisotropy ? "in (-0.99, 0.99)" : "= " + format_number(setup.g), out.fitted.m_r,
@@ -359,6 +378,60 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
     }
     out.evaluations = s.evaluations - evaluations_before;
     return out;
+}
+
+IadRun invert_rows(const std::vector<SlabMeasurement>& rows, const MeasurementUncertainty& uncertainty, const IadSettings& settings,
+                   const std::function<void(std::size_t, std::size_t)>& progress) {
+    for (const auto& r : rows) check_measurement(r);
+    std::vector<std::optional<IadResult>> results(rows.size());
+    tbb::enumerable_thread_specific<SlabInverter> inverters([&] { return SlabInverter(settings); });
+    std::size_t done = 0;
+    std::mutex report;
+    const auto cancelled = [&] { return settings.cancel && settings.cancel->load(); };
+    const std::size_t runs = (rows.size() + rows_per_run - 1) / rows_per_run;
+    tbb::parallel_for(std::size_t{0}, runs, [&](std::size_t run) {
+        auto& inverter = inverters.local();
+        const IadResult* previous = nullptr;
+        for (std::size_t i = run * rows_per_run; i < std::min(rows.size(), (run + 1) * rows_per_run) && !cancelled(); ++i) {
+            auto result = inverter.invert(rows[i], uncertainty, previous);
+            if (result.cancelled) return;
+            results[i] = std::move(result);
+            previous = &*results[i];
+            const std::lock_guard lock(report);
+            ++done;
+            if (progress) progress(done, rows.size());
+        }
+    });
+    IadRun out;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (!results[i]) {
+            ++out.unfinished;
+            continue;
+        }
+        out.evaluations += results[i]->evaluations;
+        if (results[i]->reachable) out.rows.push_back({rows[i], std::move(*results[i])});
+        else out.unreachable.push_back(results[i]->unreachable);
+    }
+    return out;
+}
+
+nlohmann::ordered_json iad_json(const IadRun& run, const SlabSetup& setup, const std::string& input, const IadSettings& settings,
+                                const MeasurementUncertainty& uncertainty, bool partial, double seconds) {
+    using Json = nlohmann::ordered_json;
+    Json setup_json = Json::object(), list = Json::array();
+    for (const auto& f : setup_fields()) setup_json[std::string(f.key)] = setup.*(f.member);
+    for (const auto& r : run.rows) {
+        Json j{{"source", r.measurement.source}, {"unknowns", std::string(to_string(r.result.unknowns))}};
+        for (const auto& f : iad_result_fields()) {
+            const auto v = f.value(r);
+            j[std::string(f.key)] = v ? Json(*v) : Json(nullptr);
+        }
+        list.push_back(std::move(j));
+    }
+    const Json measured = uncertainty.given() ? Json{{"m_r", uncertainty.m_r}, {"m_t", uncertainty.m_t}, {"m_u", uncertainty.m_u}} : Json(nullptr);
+    return Json{{"skinspec_version", version}, {"schema", "skinspec-iad/1"}, {"input", input}, {"setup", setup_json}, {"channels", settings.channels},
+                {"tolerance", settings.tolerance}, {"measurement_uncertainty", measured}, {"partial", partial}, {"seconds", seconds},
+                {"rows", list}, {"unreachable", run.unreachable}};
 }
 
 const std::vector<IadField>& iad_result_fields() {

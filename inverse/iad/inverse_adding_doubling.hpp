@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "inverse/iad/integrating_sphere.hpp"
 #include "inverse/iad/slab_measurement.hpp"
 #include "inverse/iad/slab_reflectances.hpp"
@@ -68,8 +70,9 @@ public:
     ~SlabInverter();
     SlabInverter(SlabInverter&&) noexcept;
     SlabInverter& operator=(SlabInverter&&) noexcept;
-    // check_measurement first; an M_U above what a clear sample transmits is refused too (InputError).
-    IadResult invert(const SlabMeasurement& m, const MeasurementUncertainty& uncertainty);
+    // check_measurement first; an M_U above what a clear sample transmits is refused too (InputError). `previous`: the
+    // result of a neighbouring row (a spectrum's previous wavelength), tried as the first start.
+    IadResult invert(const SlabMeasurement& m, const MeasurementUncertainty& uncertainty, const IadResult* previous = nullptr);
     // The forward model at `optics`: what the spheres would report (and the unscattered transmission).
     PredictedMeasurement predict(const SlabOptics& optics, const SlabSetup& setup);
 
@@ -94,5 +97,23 @@ struct IadField {
     std::string_view doc;
 };
 const std::vector<IadField>& iad_result_fields();
+
+// Every row solved: the rows fitted (in order) and, for those no slab produces, why (SlabInverter::invert's text).
+struct IadRun {
+    std::vector<IadRow> rows;
+    std::vector<std::string> unreachable;
+    std::size_t unfinished = 0;   // rows not solved before settings.cancel
+    std::size_t evaluations = 0;  // forward solutions
+};
+// In parallel runs of consecutive rows, each row starting from the one before it (a spectrum's neighbours are close):
+// the runs are fixed, so the results do not depend on the thread count. `progress(done, total)` after each row,
+// serialised. check_measurement on every row first.
+IadRun invert_rows(const std::vector<SlabMeasurement>& rows, const MeasurementUncertainty& uncertainty, const IadSettings& settings,
+                   const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// The document `skinspec iad --json` prints and skinspec.iad returns (schema skinspec-iad/1): the setup (the header
+// of `input` with the options), the settings, every row's iad_result_fields (null where unset) and the unreachable.
+nlohmann::ordered_json iad_json(const IadRun& run, const SlabSetup& setup, const std::string& input, const IadSettings& settings,
+                                const MeasurementUncertainty& uncertainty, bool partial, double seconds);
 
 }  // namespace skinspec

@@ -200,4 +200,4 @@ skinspec_malformed_input("iad unreachable" 2 "1 of 2 measurements are unreachabl
 skinspec_malformed_input("iad reflectance over one" 2 "the options: M_R = 1.5 is outside \\[0, 1\\]" - iad -r 1.5 -t 0.1)
 skinspec_malformed_input("iad sample index" 2 "sample_index = 0.5 is outside \\[1, 4\\]" - iad -r 0.3 -t 0.1 --sample-index 0.5)
 skinspec_malformed_input("iad file and options" 2 "give the measurements in .* or as options, not both" - iad iad_two_spheres.rxt -r 0.3)
-skinspec_malformed_input("iad no measurement" 2 "give an iad measurement file \\(.rxt\\) or at least --reflectance" - iad)
+skinspec_malformed_input("iad no measurement" 2 "give an iad measurement file \\(.rxt\\) or at least the reflectance M_R" - iad)
