@@ -59,6 +59,7 @@ def main():
     p.add_argument("--skinspec", default=os.path.join(os.path.dirname(__file__), "..", "build", "skinspec"))
     p.add_argument("--channels", type=int, default=24, help="skinspec --channels (default 24, skinspec's)")
     p.add_argument("--quadrature", type=int, default=32, help="iad -q (default 32: its default 8 is ~5e-4 off in R, 1e-2 in mu_s' at g = 0.9)")
+    p.add_argument("--threads", type=int, default=0, help="skinspec --threads (default: all cores; iad uses one)")
     p.add_argument("--no-baffles", action="store_true",
                    help="spheres without baffles (iad -H 0): where iad's one-sphere M_R and skinspec's agree (docs/IAD.md)")
     p.add_argument("files", nargs="+")
@@ -68,7 +69,8 @@ def main():
     for rxt in a.files:
         with tempfile.TemporaryDirectory() as work:
             theirs, t_iad = iad_rows(a.iad, rxt, a.quadrature, ["-H", "0"] if a.no_baffles else [], work)
-            ours, t_ours, why = skinspec_rows(a.skinspec, rxt, a.channels, ["--r-baffle", "0", "--t-baffle", "0"] if a.no_baffles else [], work)
+            extra = (["--r-baffle", "0", "--t-baffle", "0"] if a.no_baffles else []) + (["--threads", str(a.threads)] if a.threads else [])
+            ours, t_ours, why = skinspec_rows(a.skinspec, rxt, a.channels, extra, work)
         if ours is None:
             print(f"{os.path.basename(rxt):28} skinspec refused: {why}")
             continue

@@ -1,8 +1,11 @@
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 
+#include "inverse/iad/inverse_adding_doubling.hpp"
 #include "inverse/iad/slab_measurement.hpp"
 #include "spectral/input_error.hpp"
 
@@ -50,4 +53,12 @@ TEST_CASE("a setup outside its ranges is refused naming the field, value and ran
     s = {};
     s.r_standard = 0.0;
     CHECK_THROWS_WITH(validate(s, "x"), Catch::Contains("r_standard = 0 is outside (0, 1]"));
+}
+
+TEST_CASE("every setup field and result field is documented in docs/IAD.md", "[iad]") {
+    std::ifstream in(std::string(SKINSPEC_TEST_REFERENCE_DIR) + "/../../docs/IAD.md");
+    const std::string doc{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    REQUIRE_FALSE(doc.empty());
+    for (const auto& f : setup_fields()) CHECK(doc.find(std::string(f.key)) != std::string::npos);
+    for (const auto& f : iad_result_fields()) CHECK(doc.find(std::string(f.key)) != std::string::npos);
 }
