@@ -207,11 +207,6 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
     out.unknowns = unknowns;
     const auto cancelled = [&] { return s.settings.cancel && s.settings.cancel->load(); };
 
-    const auto& grid = s.grid(problem, setup);
-    if (cancelled()) {
-        out.cancelled = true;
-        return out;
-    }
     struct Point {
         std::vector<double> x;
         PredictedMeasurement predicted;
@@ -271,28 +266,33 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
         }
         return at;
     };
-    // Starts: the previous row's result (a spectrum's neighbours are close), then the grid points closest to the
-    // measurement, the best three, until one fits.
-    std::vector<std::vector<double>> starts_list;
+    // Starts: the previous row's result (a spectrum's neighbours are close); unless it fits, the grid points closest to
+    // the measurement, the best three, until one fits (the grid is computed once per setup, when first needed).
+    std::optional<Point> best;
+    const auto fits_from = [&](const std::vector<double>& start) {
+        auto found = search(start);
+        if (!best || cost(found.r) < cost(best->r)) best = std::move(found);
+        return target.largest_difference(best->predicted) <= s.settings.tolerance;
+    };
+    bool fitted = false;
     if (previous && previous->reachable && previous->unknowns == unknowns) {
         const auto& o = previous->optics;
-        if (unknowns == IadUnknowns::albedo_thickness) starts_list.push_back({o.albedo, std::log(o.optical_thickness)});
-        else if (unknowns == IadUnknowns::albedo_anisotropy) starts_list.push_back({o.albedo, std::clamp(o.g, -g_bound, g_bound)});
-        else starts_list.push_back({o.albedo});
+        if (unknowns == IadUnknowns::albedo_thickness) fitted = fits_from({o.albedo, std::log(o.optical_thickness)});
+        else if (unknowns == IadUnknowns::albedo_anisotropy) fitted = fits_from({o.albedo, std::clamp(o.g, -g_bound, g_bound)});
+        else fitted = fits_from({o.albedo});
     }
-    std::vector<std::size_t> order(grid.points.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cost(target.residuals(grid.predicted[i])) < cost(target.residuals(grid.predicted[j])); });
-    for (std::size_t k = 0; k < std::min<std::size_t>(starts, order.size()); ++k) starts_list.push_back(grid.points[order[k]]);
-    std::optional<Point> best;
-    for (const auto& start : starts_list) {
-        auto found = search(start);
-        if (cancelled()) {
-            out.cancelled = true;
-            return out;
+    if (!fitted && !cancelled()) {
+        const auto& grid = s.grid(problem, setup);
+        std::vector<std::size_t> order(grid.points.size());
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cost(target.residuals(grid.predicted[i])) < cost(target.residuals(grid.predicted[j])); });
+        for (std::size_t k = 0; k < std::min<std::size_t>(starts, order.size()) && !cancelled(); ++k) {
+            if (fits_from(grid.points[order[k]])) break;
         }
-        if (!best || cost(found.r) < cost(best->r)) best = std::move(found);
-        if (target.largest_difference(best->predicted) <= s.settings.tolerance) break;
+    }
+    if (cancelled() || !best) {
+        out.cancelled = true;
+        return out;
     }
 
     out.optics = problem.optics(best->x);
