@@ -1,6 +1,7 @@
 #include "formats/rxt_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <iterator>
 #include <sstream>
@@ -40,6 +41,12 @@ std::vector<Token> tokens_of(std::string_view text) {
     return out;
 }
 
+// The header's numbers in iad's order (its manual, "The header").
+constexpr std::array header_keys{"sample_index",      "slide_index",        "sample_thickness_mm", "slide_thickness_mm", "beam_diameter_mm",
+                                 "r_standard",        "spheres",            "r_sphere_mm",         "r_sample_port_mm",   "r_entrance_port_mm",
+                                 "r_detector_port_mm", "r_wall",            "t_sphere_mm",         "t_sample_port_mm",   "t_third_port_mm",
+                                 "t_detector_port_mm", "t_wall"};
+
 // Letters iad knows that skinspec does not take, and why.
 std::string unsupported_letter(char c) {
     switch (c) {
@@ -61,36 +68,20 @@ RxtFile parse_rxt(std::string_view text, const std::string& name) {
     const auto last_line = [&] { return tokens.empty() ? std::size_t{1} : tokens.back().line; };
     if (text.substr(0, 4) != "IAD1") throw InputError(name + ":1: not an iad measurement file (it must start with IAD1)");
     ++next;  // the magic word
-    const auto number = [&](const char* what) {
-        if (next >= tokens.size()) throw InputError(where(last_line()) + "the header ends before " + what);
+    const auto number = [&](std::string_view key) {
+        if (next >= tokens.size()) throw InputError(where(last_line()) + "the header ends before " + std::string(key));
         const auto& t = tokens[next++];
         const auto v = parse_double(t.text);
-        if (!v) throw InputError(where(t.line) + what + ": '" + t.text + "' is not a number");
+        if (!v) throw InputError(where(t.line) + std::string(key) + ": '" + t.text + "' is not a number");
         return *v;
     };
     RxtFile out;
     auto& s = out.setup;
-    s.sample_index = number("the sample's refractive index");
-    s.slide_index = number("the slides' refractive index");
-    s.sample_thickness_mm = number("the sample thickness [mm]");
-    s.slide_thickness_mm = number("the slide thickness [mm]");
-    s.beam_diameter_mm = number("the beam diameter [mm]");
+    for (const auto* key : header_keys) s.*(setup_field(key)->member) = number(key);
     if (s.slide_thickness_mm == 0.0 || s.slide_index == 0.0 || s.slide_index == 1.0) {
         s.slide_index = 1.0;
         s.slide_thickness_mm = 0.0;
     }
-    s.r_standard = number("the reflectance of the reflection standard");
-    s.spheres = number("the number of spheres");
-    s.r_sphere_mm = number("the reflection sphere's diameter [mm]");
-    s.r_sample_port_mm = number("the reflection sphere's sample port [mm]");
-    s.r_entrance_port_mm = number("the reflection sphere's entrance port [mm]");
-    s.r_detector_port_mm = number("the reflection sphere's detector port [mm]");
-    s.r_wall = number("the reflection sphere's wall reflectance");
-    s.t_sphere_mm = number("the transmission sphere's diameter [mm]");
-    s.t_sample_port_mm = number("the transmission sphere's sample port [mm]");
-    s.t_third_port_mm = number("the transmission sphere's third port [mm]");
-    s.t_detector_port_mm = number("the transmission sphere's detector port [mm]");
-    s.t_wall = number("the transmission sphere's wall reflectance");
     if (next >= tokens.size()) throw InputError(where(last_line()) + "no data legend (a column count or letters such as 'r t') after the header");
 
     // The legend: a column count (one token: data may follow on the same line), or letters, the rest of the line
@@ -190,8 +181,8 @@ IadInput iad_input(const std::optional<std::filesystem::path>& file, std::option
         in.rows.push_back({std::nullopt, m_r, m_t, m_u, in.setup, "the options"});
     }
     for (const auto& [key, value] : setup) {
-        const auto f = std::find_if(setup_fields().begin(), setup_fields().end(), [&](const SetupField& x) { return x.key == key; });
-        if (f == setup_fields().end()) throw InputError("'" + key + "' is not a setup field (skinspec iad --help lists them)");
+        const auto* f = setup_field(key);
+        if (!f) throw InputError("'" + key + "' is not a setup field (skinspec iad --help lists them)");
         in.setup.*(f->member) = value;
         for (auto& r : in.rows) r.setup.*(f->member) = value;
     }

@@ -9,11 +9,7 @@
 namespace skinspec {
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr FieldRange fraction{0.0, 1.0, false, false};
-constexpr FieldRange positive{0.0, inf, true, true};
-constexpr FieldRange non_negative{0.0, inf, false, true};
-constexpr FieldRange refractive_index{1.0, 4.0, false, false};
+using field_ranges::fraction, field_ranges::inf, field_ranges::non_negative, field_ranges::positive, field_ranges::refractive_index;
 constexpr FieldRange anisotropy{-1.0, 1.0, false, false};
 constexpr FieldRange fold_ratio{0.0, 1.0, true, false};
 constexpr FieldRange power_law_exponent{-10.0, 10.0, false, false};

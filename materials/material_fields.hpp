@@ -4,6 +4,7 @@
 // checks, `skinspec materials keys`, the --set help and docs/MATERIALS.md (kept in step by a test) all use
 // them, so a new chromophore concentration or layer property is one entry here (and, for a chromophore, one
 // absorption term in materials/tissue_layer.cpp with its data file).
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +24,15 @@ struct FieldRange {
     bool contains(double v) const;
     std::string text() const;  // "[0, 1]", "(0, inf)"
 };
+
+// Ranges several tables share (materials and the iad setup, inverse/iad/slab_measurement.cpp).
+namespace field_ranges {
+inline constexpr double inf = std::numeric_limits<double>::infinity();
+inline constexpr FieldRange fraction{0.0, 1.0, false, false};
+inline constexpr FieldRange positive{0.0, inf, true, true};
+inline constexpr FieldRange non_negative{0.0, inf, false, true};
+inline constexpr FieldRange refractive_index{1.0, 4.0, false, false};
+}  // namespace field_ranges
 
 // A number field of `Owner` (a layer, its optional scattering groups, or the stack).
 template <class Owner>

@@ -60,7 +60,7 @@ TEST_CASE("an iad file without slides: thickness 0 or index 1 is no slide", "[ia
 
 TEST_CASE("a bad iad file is refused naming file, line and what is wrong", "[iad]") {
     CHECK_THROWS_WITH(parse_rxt("IAD2 1.4", "x.rxt"), Catch::Contains("x.rxt:1: not an iad measurement file"));
-    CHECK_THROWS_WITH(parse_rxt("IAD1 1.4 1.5 2", "x.rxt"), Catch::Contains("x.rxt:1: the header ends before the slide thickness"));
+    CHECK_THROWS_WITH(parse_rxt("IAD1 1.4 1.5 2", "x.rxt"), Catch::Contains("x.rxt:1: the header ends before slide_thickness_mm"));
     CHECK_THROWS_WITH(parse_rxt(header + "r q\n0.3 8\n", "x.rxt"), Catch::Contains("x.rxt:11: data legend 'rq': column letter 'q' sets iad's quadrature points"));
     CHECK_THROWS_WITH(parse_rxt(header + "r t\n0.3 0.4\n0.5\n", "x.rxt"), Catch::Contains("x.rxt:13: the last row has 1 numbers, the legend 2"));
     CHECK_THROWS_WITH(parse_rxt(header + "r t\n0.3 abc\n", "x.rxt"), Catch::Contains("x.rxt:12: 'abc' is not a number"));

@@ -1,7 +1,6 @@
 #include "inverse/iad/slab_measurement.hpp"
 
 #include <cmath>
-#include <limits>
 
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
@@ -9,11 +8,8 @@
 namespace skinspec {
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr FieldRange fraction{0.0, 1.0, false, false};
-constexpr FieldRange positive{0.0, inf, true, true};
-constexpr FieldRange non_negative{0.0, inf, false, true};
-constexpr FieldRange index_range{1.0, 4.0, false, false};
+using field_ranges::fraction, field_ranges::non_negative, field_ranges::positive;
+constexpr FieldRange index_range = field_ranges::refractive_index;
 constexpr FieldRange switch_range{0.0, 1.0, false, false};
 
 SpherePorts ports(double sphere_mm, double sample_mm, double third_mm, double detector_mm) {
@@ -61,6 +57,13 @@ const std::vector<SetupField>& setup_fields() {
         {"t_baffle", '\0', "1", switch_range, &S::t_baffle, "transmission sphere: 1 with a baffle between sample and detector, 0 without"},
     };
     return fields;
+}
+
+const SetupField* setup_field(std::string_view key) {
+    for (const auto& f : setup_fields()) {
+        if (f.key == key) return &f;
+    }
+    return nullptr;
 }
 
 const SetupField* setup_field_by_letter(char letter) {

@@ -55,6 +55,7 @@ struct SetupField {
     std::string_view doc;
 };
 const std::vector<SetupField>& setup_fields();
+const SetupField* setup_field(std::string_view key);  // nullptr: no such field
 const SetupField* setup_field_by_letter(char letter);
 
 // InputError naming `where`, the field, the value and its range for anything outside the table's ranges, a sphere
