@@ -90,7 +90,9 @@ std::string table_of(const std::vector<IadRow>& rows, bool uncertain) {
 }
 
 void run_iad(const IadOptions& o) {
-    const auto input = iad_input(o.input.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.input), o.m_r, o.m_t, o.m_u, o.setup);
+    const auto one = [](const std::optional<double>& v) { return v ? std::vector<double>{*v} : std::vector<double>{}; };
+    const auto input = iad_input(o.input.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.input), {one(o.m_r), one(o.m_t), one(o.m_u), {}},
+                                 o.setup);
     const auto& header = input.setup;
     const auto& measurements = input.rows;
     if (!o.output.empty()) check_output_path(o.output, o.force, {".csv", ".json"});

@@ -168,17 +168,28 @@ RxtFile read_rxt(const std::filesystem::path& file) {
     return parse_rxt(text, file.string());
 }
 
-IadInput iad_input(const std::optional<std::filesystem::path>& file, std::optional<double> m_r, std::optional<double> m_t, std::optional<double> m_u,
-                   const std::map<std::string, double>& setup) {
+IadInput iad_input(const std::optional<std::filesystem::path>& file, const GivenMeasurements& given, const std::map<std::string, double>& setup) {
     IadInput in;
+    const bool any = !given.m_r.empty() || !given.m_t.empty() || !given.m_u.empty();
     if (file) {
-        if (m_r || m_t || m_u) throw InputError("reflectance/transmittance/unscattered: give the measurements in " + file->string() + " or as options, not both");
+        if (any) throw InputError("reflectance/transmittance/unscattered: give the measurements in " + file->string() + " or as options, not both");
         auto f = read_rxt(*file);
         in = {f.setup, std::move(f.rows), file->string()};
     } else {
-        if (!m_r) throw InputError("give an iad measurement file (.rxt) or at least the reflectance M_R (-r)");
+        if (given.m_r.empty()) throw InputError("give an iad measurement file (.rxt) or at least the reflectance M_R (-r)");
+        const std::size_t n = given.m_r.size();
+        for (const auto& [what, list] : {std::pair{"transmittance M_T", &given.m_t}, std::pair{"unscattered M_U", &given.m_u},
+                                         std::pair{"wavelengths", &given.wavelength_nm}}) {
+            if (!list->empty() && list->size() != n) {
+                throw InputError(std::string(what) + ": " + std::to_string(list->size()) + " values for " + std::to_string(n) + " reflectances M_R");
+            }
+        }
         in.name = "options";
-        in.rows.push_back({std::nullopt, m_r, m_t, m_u, in.setup, "the options"});
+        const auto at = [](const std::vector<double>& v, std::size_t i) { return v.empty() ? std::nullopt : std::optional(v[i]); };
+        for (std::size_t i = 0; i < n; ++i) {
+            in.rows.push_back({at(given.wavelength_nm, i), given.m_r[i], at(given.m_t, i), at(given.m_u, i), in.setup,
+                               n == 1 ? std::string("the options") : "measurement " + std::to_string(i)});
+        }
     }
     for (const auto& [key, value] : setup) {
         const auto* f = setup_field(key);

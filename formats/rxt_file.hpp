@@ -27,15 +27,21 @@ struct RxtFile {
 RxtFile read_rxt(const std::filesystem::path& file);
 RxtFile parse_rxt(std::string_view text, const std::string& name);
 
-// What `skinspec iad` and skinspec.iad solve: the rows of `file`, or (no file) the one row m_r [m_t [m_u]] in the
-// default setup; `setup` (a setup field's key -> value, inverse/iad/slab_measurement.hpp) applies to every row and to
-// the header. InputError for both a file and measurements, neither, an unknown key, or any row check_measurement refuses.
+// Measurements given directly (options, or arrays from Python): one row per M_R; M_T, M_U and the wavelengths empty
+// or one per M_R.
+struct GivenMeasurements {
+    std::vector<double> m_r, m_t, m_u, wavelength_nm;
+};
+
+// What `skinspec iad` and skinspec.iad solve: the rows of `file`, or (no file) the given measurements in the default
+// setup; `setup` (a setup field's key -> value, inverse/iad/slab_measurement.hpp) applies to every row and to the header.
+// InputError for both a file and measurements, neither, lists of other lengths, an unknown key, or any row
+// check_measurement refuses.
 struct IadInput {
     SlabSetup setup;
     std::vector<SlabMeasurement> rows;
     std::string name;  // the file, or "options"
 };
-IadInput iad_input(const std::optional<std::filesystem::path>& file, std::optional<double> m_r, std::optional<double> m_t, std::optional<double> m_u,
-                   const std::map<std::string, double>& setup);
+IadInput iad_input(const std::optional<std::filesystem::path>& file, const GivenMeasurements& given, const std::map<std::string, double>& setup);
 
 }  // namespace skinspec

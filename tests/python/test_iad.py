@@ -39,3 +39,18 @@ def test_iad_unreachable_is_refused_or_skipped():
         skinspec.iad(path)
     doc = skinspec.iad(path, skip_unreachable=True)
     assert len(doc["rows"]) == 1 and len(doc["unreachable"]) == 1
+
+
+def test_iad_over_a_spectrum_from_arrays():
+    # The phantom of iad_two_spheres.rxt given as arrays: the same rows as the file gives.
+    import numpy as np
+    nm = np.array([500.0, 550.0, 600.0])
+    doc = skinspec.iad(r=np.array([0.253276, 0.196363, 0.141110]), t=np.array([0.515253, 0.425187, 0.315967]), wavelengths=nm,
+                       sample_index=1.4, slide_index=1.5, slide_thickness_mm=1.0, spheres=2, r_standard=0.98)
+    from_file = skinspec.iad(TWO_SPHERES)
+    assert [r["wavelength_nm"] for r in doc["rows"]] == [500.0, 550.0, 600.0]
+    for a, b in zip(doc["rows"], from_file["rows"]):
+        assert a["mu_a_per_mm"] == pytest.approx(b["mu_a_per_mm"], abs=1e-12)
+        assert a["mu_s_reduced_per_mm"] == pytest.approx(b["mu_s_reduced_per_mm"], abs=1e-12)
+    with pytest.raises(skinspec.InputError, match="transmittance M_T: 2 values for 3 reflectances M_R"):
+        skinspec.iad(r=[0.2, 0.2, 0.2], t=[0.4, 0.4])
