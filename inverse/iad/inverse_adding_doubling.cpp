@@ -157,13 +157,9 @@ double largest(const std::vector<double>& r) {
     return m;
 }
 
-// The optical thickness whose unscattered transmission is M_U (monotonic in b: bisection in ln b).
-double thickness_from_unscattered(double m_u, const SlabSetup& setup, const std::string& source) {
-    const double clear = unscattered(b_min, setup).t;
-    if (m_u >= clear) {
-        throw InputError(source + ": M_U = " + format_number(m_u) + " is at or above the unscattered transmission of a clear sample between these faces (" +
-                         fmt::format("{:.6g}", clear) + "): no attenuation can produce it");
-    }
+// The optical thickness whose unscattered transmission is M_U (monotonic in b: bisection in ln b); check_measurement
+// has made sure a clear sample transmits more.
+double thickness_from_unscattered(double m_u, const SlabSetup& setup) {
     double lo = std::log(b_min), hi = std::log(b_max);
     for (int i = 0; i < 200 && hi - lo > 1e-13; ++i) {
         const double mid = 0.5 * (lo + hi);
@@ -186,6 +182,13 @@ void check_measurement(const SlabMeasurement& m) {
     in_unit("M_U", m.m_u);
     if (!m.m_r) throw InputError(m.source + ": no M_R: the reflection is needed (M_T or M_U alone leave the albedo free)");
     if (m.m_u && *m.m_u > 0.0 && !(m.m_t && *m.m_t > 0.0)) throw InputError(m.source + ": M_U without M_T: give the total transmission too");
+    if (m.m_u && *m.m_u > 0.0) {
+        const double clear = unscattered(b_min, m.setup).t;
+        if (*m.m_u >= clear) {
+            throw InputError(m.source + ": M_U = " + format_number(*m.m_u) + " is at or above the unscattered transmission of a clear sample between these faces (" +
+                             fmt::format("{:.6g}", clear) + "): no attenuation can produce it");
+        }
+    }
 }
 
 IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncertainty& uncertainty, const IadResult* previous) {
@@ -198,7 +201,7 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
     if (!m.m_t || *m.m_t == 0.0) unknowns = IadUnknowns::albedo_only;
     else if (m.m_u && *m.m_u > 0.0) {
         unknowns = IadUnknowns::albedo_anisotropy;
-        b = thickness_from_unscattered(*m.m_u, setup, m.source);
+        b = thickness_from_unscattered(*m.m_u, setup);
     }
     const auto problem = make_problem(unknowns, b, setup.g);
     const Target target{*m.m_r, unknowns == IadUnknowns::albedo_only ? std::nullopt : m.m_t};

@@ -58,7 +58,7 @@ struct IadResult {
 };
 
 // InputError (naming m.source) for a setup outside its ranges or measurements that determine nothing: M_T or M_U
-// without M_R, M_U without M_T, a value outside [0, 1]. invert() checks this first; a command checks
+// without M_R, M_U without M_T, a value outside [0, 1], an M_U above what a clear sample between the faces transmits. invert() checks this first; a command checks
 // every row before solving any.
 void check_measurement(const SlabMeasurement& m);
 
@@ -70,7 +70,7 @@ public:
     ~SlabInverter();
     SlabInverter(SlabInverter&&) noexcept;
     SlabInverter& operator=(SlabInverter&&) noexcept;
-    // check_measurement first; an M_U above what a clear sample transmits is refused too (InputError). `previous`: the
+    // check_measurement first. `previous`: the
     // result of a neighbouring row (a spectrum's previous wavelength), tried as the first start.
     IadResult invert(const SlabMeasurement& m, const MeasurementUncertainty& uncertainty, const IadResult* previous = nullptr);
     // The forward model at `optics`: what the spheres would report (and the unscattered transmission).
