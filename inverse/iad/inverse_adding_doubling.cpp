@@ -335,7 +335,10 @@ IadResult SlabInverter::invert(const SlabMeasurement& m, const MeasurementUncert
             if (v.size() > 2) rows.push_back(unscattered(o.optical_thickness, setup).t);
             return rows;
         };
-        const auto rows0 = rows_at(vars);
+        // At the solution: the forward solution the search ended on (not solved again).
+        std::vector<double> rows0{out.fitted.m_r};
+        if (vars.size() > 1) rows0.push_back(out.fitted.m_t);
+        if (vars.size() > 2) rows0.push_back(*out.fitted_m_u);
         const auto n = static_cast<Eigen::Index>(vars.size());
         Eigen::MatrixXd j(n, n);
         for (Eigen::Index k = 0; k < n; ++k) {
