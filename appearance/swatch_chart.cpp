@@ -47,7 +47,8 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
     const auto base_material = std::make_shared<const Material>(load_material(request.material, request.overrides));
     const auto base_toml = std::make_shared<const std::string>(to_toml(*base_material));
     const auto axes = sweep_axes(request.sweeps);
-    const auto material_of = [&](std::size_t i) { return with_overrides(*base_material, sweep_overrides(axes, parameters[i])); };
+    const auto fields = swept_fields(axes);
+    const auto material_of = [&](std::size_t i) { return with_overrides(*base_material, sweep_overrides({fields, parameters[i]})); };
     SolverRequest base;
     base.switches = request.switches;
     base.overrides = request.overrides;
@@ -110,11 +111,7 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         if (request.cancel && request.cancel->load()) break;
         const std::size_t begin = c * chunk, end = std::min(parameters.size(), begin + chunk);
         std::vector<SweepMember> members;
-        for (std::size_t i = begin; i < end; ++i) {
-            std::vector<std::pair<std::string, double>> varied;
-            for (std::size_t s = 0; s < request.sweeps.size(); ++s) varied.emplace_back(request.sweeps[s].field, parameters[i][s]);
-            members.push_back({base_material, sweep_overrides(axes, parameters[i]), std::move(varied), base_toml, {}});
-        }
+        for (std::size_t i = begin; i < end; ++i) members.push_back({base_material, {fields, parameters[i]}, base_toml, {}});
         auto results = solve_sweep(solver, members, base);
         if (share) {
             const bool complete = results.size() == members.size() && !results.back().partial;

@@ -53,7 +53,8 @@ int main() {
     const auto preset = load_material("biospec-moderately");
     const auto base = std::make_shared<const Material>(preset);
     std::vector<SweepMember> members;
-    for (const auto& values : sweep_grid({sweep.axis()})) members.push_back({base, sweep_overrides({sweep.axis()}, values), {{sweep.field, values[0]}}});
+    const auto fields = swept_fields({sweep.axis()});
+    for (const auto& values : sweep_grid({sweep.axis()})) members.push_back({base, {fields, values}, nullptr, {}});
     solve_spectrum(walk, preset, request);  // warm-up: tables loaded
 
     SpectralResult one, lightest;

@@ -56,9 +56,9 @@ Json override_value(const std::string& text) {
 // `same_as`: the index of an earlier result whose material_toml is the same text (a sweep's base), written in its place.
 Json provenance_json(const Provenance& p, std::optional<std::size_t> same_as) {
     Json overrides = Json::array();
-    for (const auto& [key, value] : p.overrides) overrides.push_back(Json{{"key", key}, {"value", override_value(value)}});
+    for (const auto& [key, value] : all_overrides(p)) overrides.push_back(Json{{"key", key}, {"value", override_value(value)}});
     Json varied = Json::object();
-    for (const auto& [field, value] : p.varied) varied[field] = value;
+    for (std::size_t i = 0; i < p.varied.size(); ++i) varied[p.varied.field(i)] = p.varied.values[i];
     Json j{{"solver", p.solver}, {"skinspec_version", p.version}, {"overrides", overrides}, {"varied", varied}};
     if (same_as) j["material_toml_same_as"] = *same_as;
     else j["material_toml"] = *p.material_toml;
@@ -160,7 +160,7 @@ std::optional<ColorSummary> reflectance_color(const SpectralResult& result, Illu
     return summarize_color(weights.integrate(r), weights, illuminant, observer, {}, uncertainty);
 }
 
-Json to_json(const std::vector<ReportedSpectrum>& spectra) {
+Json to_json(const ReportedSpectra& spectra) {
     Json results = Json::array();
     // A sweep's members share their base material: its text is written once, in the first result that has it.
     std::vector<std::pair<const std::string*, std::size_t>> first_with;  // (material TOML, result index)
@@ -175,7 +175,7 @@ Json to_json(const std::vector<ReportedSpectrum>& spectra) {
     return Json{{"skinspec_version", version}, {"schema", "skinspec-spectral-result/1"}, {"results", results}};
 }
 
-void write_csv(std::ostream& out, const std::vector<ReportedSpectrum>& spectra) {
+void write_csv(std::ostream& out, const ReportedSpectra& spectra) {
     std::string head = fmt::format("# skinspec {} spectral result (docs/RESULTS_SCHEMA.md)\n", version);
     head += "# units: wavelength_nm [nm]";
     for (const auto& q : result_quantities()) {
@@ -211,8 +211,9 @@ void write_csv(std::ostream& out, const std::vector<ReportedSpectrum>& spectra) 
         }
         const auto& p = r.provenance;
         fmt::format_to(to, "# provenance {}: solver {}, skinspec {}, overrides", r.material, p.solver, p.version);
-        if (p.overrides.empty()) fmt::format_to(to, " none");
-        for (const auto& [key, value] : p.overrides) fmt::format_to(to, " {}={}", key, value);
+        const auto overrides = all_overrides(p);
+        if (overrides.empty()) fmt::format_to(to, " none");
+        for (const auto& [key, value] : overrides) fmt::format_to(to, " {}={}", key, value);
         if (const auto& e = r.stated_error) {
             // Its meaning is written when it differs from the result before.
             const auto& before = previous ? previous->stated_error : std::nullopt;
@@ -236,7 +237,7 @@ void write_csv(std::ostream& out, const std::vector<ReportedSpectrum>& spectra) 
     const auto columns = scalar_columns(first);
     const bool uncertain = first.has_uncertainty;
     std::string header = "material";
-    for (const auto& [field, value] : first.provenance.varied) header += "," + field;
+    for (std::size_t f = 0; f < first.provenance.varied.size(); ++f) header += "," + first.provenance.varied.field(f);
     header += first.bands.empty() ? ",wavelength_nm" : ",band";
     for (const auto& c : columns) header += "," + c.name + (uncertain ? "," + c.name + "_stderr" : "");
     header += uncertain ? ",rays,converged\n" : "\n";
@@ -247,7 +248,7 @@ void write_csv(std::ostream& out, const std::vector<ReportedSpectrum>& spectra) 
         for (std::size_t i = 0; i < r.wavelengths.size(); ++i) {
             const auto& w = r.wavelengths[i];
             fmt::format_to(to, "{}", r.material);
-            for (const auto& [field, value] : r.provenance.varied) fmt::format_to(to, ",{:.9g}", value);
+            for (const double value : r.provenance.varied.values) fmt::format_to(to, ",{:.9g}", value);
             if (r.bands.empty()) fmt::format_to(to, ",{:g}", w.wavelength_nm);
             else fmt::format_to(to, ",{}", r.bands[i]);
             for (const auto& c : columns) {
@@ -261,7 +262,7 @@ void write_csv(std::ostream& out, const std::vector<ReportedSpectrum>& spectra) 
     });
 }
 
-std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
+std::string to_table(const ReportedSpectra& spectra) {
     std::string out;
     if (spectra.empty()) return out;
     const auto& first = spectra.front().result;
@@ -276,13 +277,13 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
     if (spectra.size() > 1) {
         // Side by side: total reflectance of every material.
         out += key_header;
-        for (const auto& s : spectra) out += fmt::format("  {:>22}", s.result.material.substr(0, 22));
+        for (const auto& r : spectra.results) out += fmt::format("  {:>22}", r.material.substr(0, 22));
         out += '\n';
         const auto rows = first.wavelengths.size();
         for (std::size_t i = 0; i < rows; ++i) {
             out += key(first, i);
-            for (const auto& s : spectra) {
-                if (i < s.result.wavelengths.size()) out += fmt::format("  {:>22}", "R " + estimate(s.result.wavelengths[i].reflectance));
+            for (const auto& r : spectra.results) {
+                if (i < r.wavelengths.size()) out += fmt::format("  {:>22}", "R " + estimate(r.wavelengths[i].reflectance));
             }
             out += '\n';
         }
@@ -299,7 +300,8 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
         }
     }
     out += '\n';
-    for (const auto& s : spectra) {
+    for (std::size_t k = 0; k < spectra.size(); ++k) {
+        const auto s = spectra[k];
         std::uint64_t rays = 0, truncated = 0;
         bool all_converged = true;
         for (const auto& w : s.result.wavelengths) {
@@ -339,24 +341,24 @@ std::string to_table(const std::vector<ReportedSpectrum>& spectra) {
     return out;
 }
 
-void write_sweep_table(std::ostream& out, const std::vector<ReportedSpectrum>& spectra) {
+void write_sweep_table(std::ostream& out, const ReportedSpectra& spectra) {
     if (spectra.empty()) return;
     const auto& first = spectra.front().result;
     std::string header = fmt::format("{:<22}", "material");
-    for (const auto& [field, value] : first.provenance.varied) header += fmt::format("  {:>30}", field.substr(0, 30));
+    for (std::size_t f = 0; f < first.provenance.varied.size(); ++f) header += fmt::format("  {:>30}", first.provenance.varied.field(f).substr(0, 30));
     // A sweep at one wavelength (or band) has no colours to show: its R is the column that tells the members apart.
     const bool one_row = first.quantities.reflectance &&
-                         std::all_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.wavelengths.size() == 1; });
+                         std::all_of(spectra.results.begin(), spectra.results.end(), [](const auto& r) { return r.wavelengths.size() == 1; });
     if (one_row) {
         header += fmt::format("  {:>20}", first.bands.empty() ? fmt::format("R at {:g} nm", first.wavelengths.front().wavelength_nm) : "R, band " + first.bands.front());
     }
     header += fmt::format("  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", "sRGB", "Lab", "ITA deg (category)", "dE00 +-", "worst stderr", "rays");
     out << header;
     write_in_order(out, spectra.size(), [&](std::size_t i, fmt::memory_buffer& text) {
-        const auto& s = spectra[i];
+        const auto s = spectra[i];
         auto to = std::back_inserter(text);
         fmt::format_to(to, "{:<22}", std::string_view(s.result.material).substr(0, 22));
-        for (const auto& [field, value] : s.result.provenance.varied) fmt::format_to(to, "  {:>30.6g}", value);
+        for (const double value : s.result.provenance.varied.values) fmt::format_to(to, "  {:>30.6g}", value);
         if (one_row) {
             const auto& r = s.result.wavelengths.front().reflectance;
             if (s.result.has_uncertainty) fmt::format_to(to, "  {:>20}", fmt::format("{:.4f} +- {:.4f}", r.value, r.stderr));
@@ -375,18 +377,18 @@ void write_sweep_table(std::ostream& out, const std::vector<ReportedSpectrum>& s
         fmt::format_to(to, "  {:>9}  {:<22}  {:<24}  {:>9}  {:>12}  {:>10}\n", s.color ? s.color->srgb_hex : "-", lab, tone, spread,
                        s.result.has_uncertainty ? fmt::format("{:.4f}", worst) : std::string("-"), s.result.has_uncertainty ? rays : 0);
     });
-    const bool partial = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.partial; });
+    const bool partial = std::any_of(spectra.results.begin(), spectra.results.end(), [](const auto& r) { return r.partial; });
     out << fmt::format("{} results (rays per result: traced once and shared where replayed){}\n", spectra.size(), partial ? "; PARTIAL (interrupted)" : "");
     if (!first.wavelengths.empty() && first.bands.empty() && !spectra.front().color) out << "no colours (sRGB, Lab: -): " + color_span_problem(wavelengths_of(first)) + "\n";
 }
 
-void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& spectra) {
+void write_plot(const std::string& file, const ReportedSpectra& spectra) {
     std::vector<PlotCurve> curves;
-    const bool any_t = std::any_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.result.quantities.transmittance; });
+    const bool any_t = std::any_of(spectra.results.begin(), spectra.results.end(), [](const auto& r) { return r.quantities.transmittance; });
     // Curves take their skin's colour; without colours (a short range, one wavelength) each its own colour and marker.
-    const bool coloured = std::all_of(spectra.begin(), spectra.end(), [](const auto& s) { return s.color.has_value(); });
+    const bool coloured = std::all_of(spectra.colors.begin(), spectra.colors.end(), [](const auto& c) { return c != nullptr; });
     for (std::size_t k = 0; k < spectra.size(); ++k) {
-        const auto& s = spectra[k];
+        const auto s = spectra[k];
         const auto style = distinct_series_style(k);
         const auto curve = [&](const char* quantity, auto get, bool dashed) {
             PlotCurve c{(any_t ? quantity + std::string(" ") : std::string()) + result_label(s.result), {}, {}, {}, coloured ? s.color->srgb : style.colour, dashed, coloured ? 0 : style.marker};
@@ -403,7 +405,8 @@ void write_plot(const std::string& file, const std::vector<ReportedSpectrum>& sp
     const bool uncertain = !spectra.empty() && spectra.front().result.has_uncertainty;
     std::string varied;
     if (!spectra.empty()) {
-        for (const auto& [field, value] : spectra.front().result.provenance.varied) varied += (varied.empty() ? "" : ", ") + field;
+        const auto& swept = spectra.front().result.provenance.varied;
+        for (std::size_t f = 0; f < swept.size(); ++f) varied += (varied.empty() ? "" : ", ") + swept.field(f);
     }
     write_line_plot(file,
                     "skinspec " + (spectra.empty() ? std::string() : spectra.front().result.model) +

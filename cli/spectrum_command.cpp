@@ -19,6 +19,7 @@
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/parallel_indices.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -96,11 +97,11 @@ void run_spectrum(const SpectrumOptions& o) {
 
     // Every material (and every combination of the sweeps) is loaded and checked against the solver before
     // any ray is traced.
-    std::vector<std::vector<SweepMember>> members_per_name;
+    std::vector<SweepMembers> members_per_name;
     for (const auto& name : names) {
         auto members = sweep_members(solver, request, axes, o.layers, load_material(name, request.overrides));
-        const bool bands = std::holds_alternative<HomogeneousMaterial>(*members.front().base);
-        if (!members_per_name.empty() && bands != std::holds_alternative<HomogeneousMaterial>(*members_per_name.front().front().base)) {
+        const bool bands = std::holds_alternative<HomogeneousMaterial>(*members.base(0));
+        if (!members_per_name.empty() && bands != std::holds_alternative<HomogeneousMaterial>(*members_per_name.front().base(0))) {
             throw InputError("material '" + name + "' has " + (bands ? "bands" : "wavelengths") + ", the materials before it " +
                              (bands ? "wavelengths" : "bands") + ": run them separately");
         }
@@ -108,23 +109,26 @@ void run_spectrum(const SpectrumOptions& o) {
         members_per_name.push_back(std::move(members));
     }
 
-    std::vector<ReportedSpectrum> spectra;
+    ReportedSpectra spectra;
     std::size_t results_expected = 0;
     for (const auto& members : members_per_name) results_expected += members.size();
-    spectra.reserve(results_expected);
+    spectra.results.reserve(results_expected);
     for (std::size_t m = 0; m < names.size(); ++m) {
         if (InterruptGuard::interrupted() && !process_work_share()) break;  // every rank takes part in every gather
-        ProgressBar bar(material_name(*members_per_name[m].front().base));
+        ProgressBar bar(material_name(*members_per_name[m].base(0)));
         if (is_root_process()) spectral.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
-        auto results = solve_sweep(solver, members_per_name[m], request, process_work_share());
+        solve_sweep(solver, members_per_name[m], request, spectra.results, process_work_share());
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         bar.clear();
-        for (auto& result : results) {
-            auto color = result.bands.empty() ? reflectance_color(result, illuminant, observer) : std::nullopt;
-            spectra.push_back({std::move(result), std::move(color), seconds / static_cast<double>(members_per_name[m].size())});
-        }
+        spectra.seconds.resize(spectra.results.size(), seconds / static_cast<double>(members_per_name[m].size()));
     }
+    spectra.colors.resize(spectra.results.size());
+    parallel_indices(spectra.size(), [&](std::size_t i) {
+        const auto& result = spectra.results[i];
+        auto color = result.bands.empty() ? reflectance_color(result, illuminant, observer) : std::nullopt;
+        if (color) spectra.colors[i] = std::make_shared<const ColorSummary>(std::move(*color));
+    });
 
     // With several processes (mpirun), rank 0 has every result and reports; the others are done.
     if (!is_root_process()) return;

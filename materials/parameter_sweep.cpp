@@ -93,9 +93,23 @@ std::vector<std::vector<double>> sweep_grid(const std::vector<SweepAxis>& axes) 
     return grid;
 }
 
-std::vector<MaterialOverride> sweep_overrides(const std::vector<SweepAxis>& axes, const std::vector<double>& values) {
+bool SweptValues::operator==(const SweptValues& other) const {
+    if (values != other.values) return false;
+    for (std::size_t i = 0; i < size(); ++i) {
+        if (field(i) != other.field(i)) return false;
+    }
+    return true;
+}
+
+std::shared_ptr<const std::vector<std::string>> swept_fields(const std::vector<SweepAxis>& axes) {
+    std::vector<std::string> fields;
+    for (const auto& a : axes) fields.push_back(a.field);
+    return std::make_shared<const std::vector<std::string>>(std::move(fields));
+}
+
+std::vector<MaterialOverride> sweep_overrides(const SweptValues& swept) {
     std::vector<MaterialOverride> out;
-    for (std::size_t s = 0; s < axes.size() && s < values.size(); ++s) out.push_back({axes[s].field, format_number(values[s]), "--vary", values[s]});
+    for (std::size_t s = 0; s < swept.size(); ++s) out.push_back({swept.field(s), format_number(swept.values[s]), "--vary", swept.values[s]});
     return out;
 }
 

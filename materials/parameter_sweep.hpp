@@ -2,11 +2,13 @@
 // Sweeps over material fields: "FIELD=FIRST:LAST:STEPS[:log]" (at most two form a grid), used by `spectrum
 // --vary` and `swatch --vary`.
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "materials/material_file.hpp"
+#include "materials/swept_values.hpp"
 
 namespace skinspec {
 
@@ -36,7 +38,10 @@ ParameterSweep parse_sweep(std::string_view text);
 
 // Every combination of the axes' values, the first axis varying fastest (columns, then rows).
 std::vector<std::vector<double>> sweep_grid(const std::vector<SweepAxis>& axes);
-// The overrides of one combination (values written exactly, shortest round-trip form).
-std::vector<MaterialOverride> sweep_overrides(const std::vector<SweepAxis>& axes, const std::vector<double>& values);
+
+// The swept fields' names of `axes`, to share among the members.
+std::shared_ptr<const std::vector<std::string>> swept_fields(const std::vector<SweepAxis>& axes);
+// The overrides that make a combination: FIELD=VALUE each, as "--vary" (values exact, shortest round-trip form).
+std::vector<MaterialOverride> sweep_overrides(const SweptValues& swept);
 
 }  // namespace skinspec

@@ -39,9 +39,9 @@ py::object stated_error_object(const std::optional<StatedError>& e) {
 
 py::dict provenance_dict(const SpectralResult& r) {
     py::dict varied;
-    for (const auto& [field, value] : r.provenance.varied) varied[py::str(field)] = value;
+    for (std::size_t f = 0; f < r.provenance.varied.size(); ++f) varied[py::str(r.provenance.varied.field(f))] = r.provenance.varied.values[f];
     return py::dict(py::arg("solver") = r.provenance.solver, py::arg("material") = r.material, py::arg("model") = r.model,
-                    py::arg("material_toml") = *r.provenance.material_toml, py::arg("overrides") = r.provenance.overrides,
+                    py::arg("material_toml") = *r.provenance.material_toml, py::arg("overrides") = all_overrides(r.provenance),
                     py::arg("varied") = varied, py::arg("settings") = settings_dict(all_settings(r)), py::arg("warnings") = warnings_list(r.warnings),
                     py::arg("stated_error") = stated_error_object(r.stated_error),
                     py::arg("version") = r.provenance.version);

@@ -135,7 +135,7 @@ public:
     // to model_error_nodes_* values of each axis; a member between measured ones states the largest of theirs (the
     // error changes steeply with pigment: interpolating it understated it by up to 44 % at 5 of 16 values).
     void state_errors(const std::function<Material(std::size_t)>& material_of, const std::vector<std::vector<std::size_t>>& positions,
-                      const SolverRequest& request, std::vector<SpectralResult>& results) const override {
+                      const SolverRequest& request, std::span<SpectralResult> results) const override {
         const auto& rows = results.front().wavelengths;
         if (rows.empty() || !std::holds_alternative<LayerStack>(material_of(0))) return;
         const auto at = spread(rows.size(), model_error_wavelengths);

@@ -66,6 +66,7 @@ public:
         return *this;
     }
     Writer& operator()(const std::shared_ptr<const std::string>& s) { return (*this)(s ? *s : std::string()); }
+    Writer& operator()(const SweptValues& v) { return (*this)(v.fields ? *v.fields : std::vector<std::string>())(v.values); }
     Writer& operator()(const std::shared_ptr<const ResultSettings>& s) {
         (*this)(static_cast<std::uint8_t>(s != nullptr));
         if (s) (*this)(*s);
@@ -154,6 +155,13 @@ public:
         std::string text;
         (*this)(text);
         s = text.empty() ? nullptr : std::make_shared<const std::string>(std::move(text));
+        return *this;
+    }
+    Reader& operator()(SweptValues& v) {
+        std::vector<std::string> fields;
+        (*this)(fields)(v.values);
+        if (fields.size() != v.values.size()) throw InputError("result bytes: " + std::to_string(fields.size()) + " swept fields with " + std::to_string(v.values.size()) + " values");
+        v.fields = fields.empty() ? nullptr : std::make_shared<const std::vector<std::string>>(std::move(fields));
         return *this;
     }
     Reader& operator()(std::shared_ptr<const ResultSettings>& s) {

@@ -133,7 +133,7 @@ std::vector<SpectralResult> SpectralSolver::solve_many(const std::vector<const M
 }
 
 void SpectralSolver::state_errors(const std::function<Material(std::size_t)>&, const std::vector<std::vector<std::size_t>>&, const SolverRequest&,
-                                  std::vector<SpectralResult>&) const {}
+                                  std::span<SpectralResult>) const {}
 
 std::vector<std::vector<std::size_t>> SpectralSolver::solve_groups(const std::vector<const Material*>& materials, const SolverRequest&) const {
     std::vector<std::vector<std::size_t>> groups;
@@ -307,7 +307,7 @@ SolverRequest effective_request(const SolverRequest& request) {
 
 // Nothing non-finite or unphysical leaves a solver: every requested value finite and within its quantity's range
 // (a Monte Carlo estimate may stray outside by 5 of its standard errors, plus rounding), or the request is refused.
-void check_result_values(const SpectralSolver& solver, const SpectralResult& result, const std::vector<MaterialOverride>& overrides) {
+void check_result_values(const SpectralSolver& solver, const SpectralResult& result, const std::function<std::vector<MaterialOverride>()>& given) {
     const auto quantities = quantities_of(result);
     for (const auto& w : result.wavelengths) {
         for (const auto* q : quantities) {
@@ -315,7 +315,7 @@ void check_result_values(const SpectralSolver& solver, const SpectralResult& res
                 const double slack = 1e-9 + (result.has_uncertainty ? 5.0 * e.stderr : 0.0);
                 if (std::isfinite(e.value) && std::isfinite(e.stderr) && e.stderr >= 0.0 && e.value >= -slack && e.value <= q->upper_bound() + slack) continue;
                 std::string inputs;
-                for (const auto& o : overrides) inputs += (inputs.empty() ? "" : ", ") + o.origin + " " + o.key + "=" + o.value;
+                for (const auto& o : given()) inputs += (inputs.empty() ? "" : ", ") + o.origin + " " + o.key + "=" + o.value;
                 const std::string at = result.bands.empty() ? format_number(w.wavelength_nm) + " nm" : "a band";
                 throw InputError("solver '" + std::string(solver.name()) + "' computed " + std::string(q->key) + " = " + format_number(e.value) +
                                  (result.has_uncertainty ? " +- " + format_number(e.stderr) : std::string()) + " at " + at + " for '" + result.material +
@@ -351,8 +351,7 @@ private:
 };
 
 void record_provenance(SpectralResult& result, const SpectralSolver& solver, std::shared_ptr<const ResultSettings> model_settings,
-                       std::shared_ptr<const std::string> material_toml, const std::vector<MaterialOverride>& overrides,
-                       std::vector<std::pair<std::string, double>> varied) {
+                       std::shared_ptr<const std::string> material_toml, const std::vector<MaterialOverride>& overrides, SweptValues varied) {
     result.provenance.solver = std::string(solver.name());
     result.model_settings = std::move(model_settings);
     result.provenance.material_toml = std::move(material_toml);
@@ -368,15 +367,34 @@ SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& mate
     const auto effective = effective_request(request);
     std::vector<SpectralResult> one{solver.solve(material, effective)};
     keep_requested(one.front(), request);
-    check_result_values(solver, one.front(), request.overrides);
+    check_result_values(solver, one.front(), [&] { return request.overrides; });
     solver.state_errors([&](std::size_t) { return material; }, {{}}, effective, one);
     auto result = std::move(one.front());
     record_provenance(result, solver, ModelSettingsCache()(material), std::make_shared<const std::string>(to_toml(material)), request.overrides, {});
     return result;
 }
 
-std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
-                                       const std::vector<std::string>& layers, const Material& base) {
+SweepMembers::SweepMembers(std::vector<SweepMember> list) : list_(std::move(list)) {}
+
+SweepMembers::SweepMembers(std::shared_ptr<const Material> base, std::shared_ptr<const std::string> base_toml, std::vector<SweepAxis> axes)
+    : base_(std::move(base)), base_toml_(std::move(base_toml)), axes_(std::move(axes)), fields_(swept_fields(axes_)), lattice_size_(1) {
+    for (const auto& a : axes_) lattice_size_ *= a.values.size();
+}
+
+SweepMember SweepMembers::operator[](std::size_t i) const {
+    if (!list_.empty()) return list_[i];
+    SweepMember m{base_, {axes_.empty() ? nullptr : fields_, {}}, base_toml_, {}};
+    // Its index on each axis: the first axis fastest (sweep_grid's order).
+    for (std::size_t a = 0, rest = i; a < axes_.size(); ++a) {
+        m.position.push_back(rest % axes_[a].values.size());
+        m.varied.values.push_back(axes_[a].values[m.position.back()]);
+        rest /= axes_[a].values.size();
+    }
+    return m;
+}
+
+SweepMembers sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
+                           const std::vector<std::string>& layers, const Material& base) {
     auto cut = std::make_shared<Material>(base);
     if (!layers.empty()) {
         if (const auto* stack = std::get_if<LayerStack>(&base)) *cut = stack->sub_stack(layers);
@@ -384,30 +402,20 @@ std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const Solve
     }
     // Overrides keep the material's kind and every member sets the same fields: the request is checked once.
     check_request(solver, *cut, request);
-    const auto grid = sweep_grid(axes);
-    if (!grid.empty()) check_overrides(solver, sweep_overrides(axes, grid.front()));
-    const auto base_toml = std::make_shared<const std::string>(to_toml(*cut));
-    std::vector<SweepMember> members(grid.size());
-    // A block of members at a time, each built into one material to be checked (and dropped): the first refusal of
-    // the lowest block is the lowest member's.
-    const std::size_t blocks = (grid.size() + sweep_block_members - 1) / sweep_block_members;
-    parallel_indices(blocks, [&](std::size_t b) {
-        Material checked;
-        for (std::size_t i = b * sweep_block_members; i < std::min(grid.size(), (b + 1) * sweep_block_members); ++i) {
-            const auto& values = grid[i];
-            auto& member = members[i];
-            member.base = cut;
-            member.overrides = sweep_overrides(axes, values);
-            member.base_toml = base_toml;
-            // Its index on each axis: the first axis fastest (sweep_grid's order).
-            for (std::size_t a = 0, rest = i; a < axes.size(); ++a) {
-                member.varied.emplace_back(axes[a].field, values[a]);
-                member.position.push_back(rest % axes[a].values.size());
-                rest /= axes[a].values.size();
-            }
-            member.build(checked);
-        }
-    });
+    SweepMembers members(cut, std::make_shared<const std::string>(to_toml(*cut)), axes);
+    if (members.size() == 0) return members;
+    check_overrides(solver, members[0].overrides());
+    // The corners are built and checked here: every range a material checks is an interval and the one joint bound
+    // (melanosome + blood fraction <= 1) is linear, so a sweep's extremes are its corners. solve_sweep builds every
+    // member again (refusing as the reader does) before it traces any ray of a replaying solver's sweep.
+    std::vector<std::size_t> corners{0};
+    for (std::size_t a = 0, stride = 1; a < axes.size(); stride *= axes[a].values.size(), ++a) {
+        const std::size_t far = (axes[a].values.size() - 1) * stride, n = corners.size();
+        for (std::size_t c = 0; c < n && far > 0; ++c) corners.push_back(corners[c] + far);
+    }
+    std::sort(corners.begin(), corners.end());
+    Material checked;
+    for (const auto i : corners) members[i].build(checked);
     return members;
 }
 
@@ -445,26 +453,42 @@ std::vector<SpectralResult> solve_shared(const SpectralSolver& solver, const std
 
 }  // namespace
 
-std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request,
+std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const SweepMembers& members, const SolverRequest& request,
                                         const WorkShare* share) {
+    std::vector<SpectralResult> results;
+    solve_sweep(solver, members, request, results, share);
+    return results;
+}
+
+void solve_sweep(const SpectralSolver& solver, const SweepMembers& members, const SolverRequest& request, std::vector<SpectralResult>& results,
+                 const WorkShare* share) {
     check_request_settings(solver, request);
     // Overrides keep a material's kind: each base is checked before anything is solved.
     for (std::size_t i = 0; i < members.size(); ++i) {
-        if (i == 0 || members[i].base != members[i - 1].base) check_material(solver, *members[i].base);
+        if (i == 0 || members.base(i) != members.base(i - 1)) check_material(solver, *members.base(i));
     }
     const auto effective = effective_request(request);
     // A solver that replays traces groups of the members together: it gets them all at once. The others get blocks
-    // of members, built as they are solved (4096 materials held at once were a third of a dipole sweep's time).
+    // of members, made and built as they are solved (4096 materials held at once were a third of a dipole sweep's
+    // time).
     const std::size_t block = solver.capabilities().replay_fields.empty() ? sweep_block_members : std::max<std::size_t>(1, members.size());
     const std::size_t blocks = (members.size() + block - 1) / block;
     PartProgress progress(effective.spectral.on_progress, blocks);
-    std::vector<SpectralResult> results;
-    results.reserve(members.size());
-    std::vector<Material> built;  // a block's materials, built into the previous block's
+    const std::size_t first = results.size();
+    results.reserve(first + members.size());
+    std::vector<std::vector<std::size_t>> positions;
+    positions.reserve(members.size());
+    ModelSettingsCache model_settings;
+    std::vector<SweepMember> made;  // a block's members
+    std::vector<Material> built;    // their materials, built into the previous block's
     for (std::size_t b = 0; b < blocks; ++b) {
         const std::size_t begin = b * block, end = std::min(members.size(), begin + block);
+        made.resize(end - begin);
         built.resize(end - begin);
-        parallel_indices(built.size(), [&](std::size_t i) { members[begin + i].build(built[i]); });
+        parallel_indices(built.size(), [&](std::size_t i) {
+            made[i] = members[begin + i];
+            made[i].build(built[i]);
+        });
         std::vector<const Material*> materials;
         for (const auto& m : built) materials.push_back(&m);
         auto part = effective;
@@ -472,36 +496,33 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std:
         auto solved = share ? solve_shared(solver, materials, part, *share) : solver.solve_many(materials, part);
         progress.finish_part();
         const bool complete = solved.size() == materials.size() && (solved.empty() || !solved.back().partial);
+        // Each member's values after the request's own overrides: in its messages and its provenance. A member's
+        // values change its model's switches only when they name one (model.FIELD).
+        std::vector<std::shared_ptr<const ResultSettings>> settings_of;
+        for (std::size_t i = 0; i < solved.size(); ++i) {
+            const auto& v = made[i].varied;
+            bool own_model = false;
+            for (std::size_t f = 0; f < v.size(); ++f) own_model = own_model || v.field(f).starts_with("model.");
+            settings_of.push_back(model_settings(own_model ? built[i] : *made[i].base));
+        }
+        parallel_indices(solved.size(), [&](std::size_t i) {
+            auto& m = made[i];
+            keep_requested(solved[i], request);
+            check_result_values(solver, solved[i], [&] {
+                auto given = request.overrides;
+                for (auto& o : m.overrides()) given.push_back(std::move(o));
+                return given;
+            });
+            record_provenance(solved[i], solver, settings_of[i], m.base_toml ? m.base_toml : std::make_shared<const std::string>(to_toml(built[i])),
+                              request.overrides, std::move(m.varied));
+        });
+        for (std::size_t i = 0; i < solved.size(); ++i) positions.push_back(std::move(made[i].position));
         std::move(solved.begin(), solved.end(), std::back_inserter(results));
         if (!complete) break;
     }
-    // Each member's overrides after the request's own: in its messages and its provenance.
-    std::vector<std::vector<MaterialOverride>> overrides_of(results.size());
-    parallel_indices(results.size(), [&](std::size_t i) {
-        overrides_of[i] = request.overrides;
-        overrides_of[i].insert(overrides_of[i].end(), members[i].overrides.begin(), members[i].overrides.end());
-        keep_requested(results[i], request);
-        check_result_values(solver, results[i], overrides_of[i]);
-    });
-    if (!results.empty()) {
-        std::vector<std::vector<std::size_t>> positions;
-        for (const auto& m : members) positions.push_back(m.position);
-        solver.state_errors([&](std::size_t i) { return members[i].material(); }, positions, effective, results);
+    if (results.size() > first) {
+        solver.state_errors([&](std::size_t i) { return members[i].material(); }, positions, effective, std::span(results).subspan(first));
     }
-    ModelSettingsCache model_settings;
-    std::vector<std::shared_ptr<const ResultSettings>> settings_of;
-    for (std::size_t i = 0; i < results.size(); ++i) {
-        // A member's overrides change its model's switches only when they name one (model.FIELD).
-        const auto& o = members[i].overrides;
-        const bool own_model = std::any_of(o.begin(), o.end(), [](const MaterialOverride& x) { return x.key.starts_with("model."); });
-        settings_of.push_back(model_settings(own_model ? members[i].material() : *members[i].base));
-    }
-    parallel_indices(results.size(), [&](std::size_t i) {
-        const auto& m = members[i];
-        record_provenance(results[i], solver, settings_of[i], m.base_toml ? m.base_toml : std::make_shared<const std::string>(to_toml(m.material())),
-                          overrides_of[i], m.varied);
-    });
-    return results;
 }
 
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {

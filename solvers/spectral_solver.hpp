@@ -84,7 +84,7 @@ public:
     // (a sweep's members are not held at once); `positions`: per material, its index on each sweep axis
     // (SweepMember::position; empty: unrelated materials, each measured), one per material. Default: nothing.
     virtual void state_errors(const std::function<Material(std::size_t)>& material_of, const std::vector<std::vector<std::size_t>>& positions,
-                              const SolverRequest& request, std::vector<SpectralResult>& results) const;
+                              const SolverRequest& request, std::span<SpectralResult> results) const;
 };
 
 // For solve_groups implementations that replay absorption: the layered materials that trace alike (equal path
@@ -133,30 +133,56 @@ void check_request(const SpectralSolver& solver, const Material& material, const
 // check_request, solve, and the provenance (material TOML, overrides, switches, seed, version) filled in.
 SpectralResult solve_spectrum(const SpectralSolver& solver, const Material& material, const SolverRequest& request);
 
-// One member of a sweep: its base material and the overrides that make it (after the request's own), the swept
-// field values, recorded in its result's provenance with the base's text (one text shared by every member, so
-// that an output carries the base once and each member's overrides), and its index on each sweep axis. Its
-// material is built when it is solved (material()): a 64 x 64 sweep's stored copies were a third of its time.
+// One member of a sweep: its base material, the swept values that make it (applied as --vary FIELD=VALUE, after the
+// request's own overrides) and recorded in its result's provenance with the base's text (one text shared by every
+// member, so that an output carries the base once and each member's values), and its index on each sweep axis.
 struct SweepMember {
     std::shared_ptr<const Material> base;
-    std::vector<MaterialOverride> overrides;
-    std::vector<std::pair<std::string, double>> varied;
+    SweptValues varied;
     std::shared_ptr<const std::string> base_toml;  // unset: the member's own material is recorded
     std::vector<std::size_t> position;  // its index on each axis of the sweep (empty: not on a lattice)
-    Material material() const { return with_overrides(*base, overrides); }
-    void build(Material& into) const { assign_with_overrides(into, *base, overrides); }  // material() into `into`
+    std::vector<MaterialOverride> overrides() const { return sweep_overrides(varied); }
+    Material material() const { return with_overrides(*base, overrides()); }
+    void build(Material& into) const { assign_with_overrides(into, *base, overrides()); }  // material() into `into`
 };
+
+// A sweep's members, made one at a time when they are solved: a list given whole, or a lattice (every combination
+// of the axes' values on one base) that holds only its axes (a 64 x 64 sweep's 4096 stored members were 7 MB and
+// a tenth of its time).
+class SweepMembers {
+public:
+    SweepMembers(std::vector<SweepMember> list);  // NOLINT(google-explicit-constructor): a list is members
+    SweepMembers(std::shared_ptr<const Material> base, std::shared_ptr<const std::string> base_toml, std::vector<SweepAxis> axes);
+    std::size_t size() const { return list_.empty() ? lattice_size_ : list_.size(); }
+    // Member i; a lattice's in sweep_grid order (the first axis fastest).
+    SweepMember operator[](std::size_t i) const;
+    const std::shared_ptr<const Material>& base(std::size_t i) const { return list_.empty() ? base_ : list_[i].base; }
+
+private:
+    std::vector<SweepMember> list_;
+    std::shared_ptr<const Material> base_;
+    std::shared_ptr<const std::string> base_toml_;
+    std::vector<SweepAxis> axes_;
+    std::shared_ptr<const std::vector<std::string>> fields_;
+    std::size_t lattice_size_ = 0;
+};
+
 // The members of a sweep over `axes`, one per combination of their values (sweep_grid order; no axis: one
-// member): `base` cut to the sub-stack of `layers` when given, each combination's overrides on it. Every member
-// is built and checked against the solver here, so that every input is refused before any ray is traced.
-std::vector<SweepMember> sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
-                                       const std::vector<std::string>& layers, const Material& base);
+// member): `base` cut to the sub-stack of `layers` when given, each combination's overrides on it. The request and
+// the sweep's corners (its extremes) are checked against the solver here, so that a bad input is refused before
+// anything is solved.
+SweepMembers sweep_members(const SpectralSolver& solver, const SolverRequest& request, const std::vector<SweepAxis>& axes,
+                           const std::vector<std::string>& layers, const Material& base);
 // Every member checked first, then solved together (solve_many: replayed where the solver can), the members of a
-// solver that does not replay built and solved a block at a time. With `share` (several processes, e.g. MPI
+// solver that does not replay made, built and solved a block at a time. With `share` (several processes, e.g. MPI
 // ranks), each process solves its share of the solver's groups and the first process gets every result, equal bit
 // for bit to a one-process run; the others get none.
-std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const std::vector<SweepMember>& members, const SolverRequest& request,
+std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const SweepMembers& members, const SolverRequest& request,
                                         const WorkShare* share = nullptr);
+// The same, appended to `results` (what is there stays): a command gathers several sweeps' results in one list, each
+// solved in place (moving a 64 x 64 sweep's results from list to list was fresh memory and a tenth of its time).
+void solve_sweep(const SpectralSolver& solver, const SweepMembers& members, const SolverRequest& request, std::vector<SpectralResult>& results,
+                 const WorkShare* share = nullptr);
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 
 }  // namespace skinspec

@@ -22,6 +22,7 @@ SpectralResult solved() {
     result.settings["flag"] = true;
     result.settings["ratio"] = 0.1;
     result.stated_error = StatedError{0.0123, std::make_shared<const std::string>("a meaning"), 1.5};
+    result.provenance.varied = {std::make_shared<const std::vector<std::string>>(std::vector<std::string>{"dermis.blood_fraction"}), {0.01}};
     return result;
 }
 
@@ -61,6 +62,7 @@ TEST_CASE("results read back from bytes equal the results written, bit for bit",
     CHECK(r.stated_error->delta_e2000 == 1.5);
     CHECK(*r.provenance.material_toml == *original.provenance.material_toml);
     CHECK(r.provenance.overrides == original.provenance.overrides);
+    CHECK(r.provenance.varied == original.provenance.varied);
     CHECK(results_from_bytes(results_to_bytes({})).empty());
 }
 

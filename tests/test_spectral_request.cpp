@@ -25,6 +25,7 @@ TEST_CASE("a result is labelled by its material and a sweep member's swept value
     SpectralResult result;
     result.material = "biospec-lightly";
     CHECK(result_label(result) == "biospec-lightly");
-    result.provenance.varied = {{"epidermis.melanosome_fraction", 0.068}, {"papillary_dermis.blood_fraction", 0.002}};
+    result.provenance.varied = {std::make_shared<const std::vector<std::string>>(std::vector<std::string>{"epidermis.melanosome_fraction", "papillary_dermis.blood_fraction"}),
+                                {0.068, 0.002}};
     CHECK(result_label(result) == "biospec-lightly: 0.068, 0.002");
 }

@@ -128,8 +128,8 @@ TEST_CASE("a sweep replays what only absorbs and traces anew what changes paths,
     for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{{"epidermis.melanosome_fraction", "0.02"},
                                                                                      {"epidermis.thickness_cm", "0.02"},
                                                                                      {"epidermis.melanosome_fraction", "0.1"}}) {
-        const std::vector<MaterialOverride> o{{key, value, "--vary"}};
-        members.push_back({std::make_shared<const Material>(load_material("biospec-moderately")), o, {{key, std::stod(value)}}});
+        const auto field = std::make_shared<const std::vector<std::string>>(std::vector<std::string>{key});
+        members.push_back({std::make_shared<const Material>(load_material("biospec-moderately")), {field, {std::stod(value)}}, nullptr, {}});
     }
     auto request = one_wavelength(2000);
     const auto results = solve_sweep(walk, members, request);
@@ -138,8 +138,8 @@ TEST_CASE("a sweep replays what only absorbs and traces anew what changes paths,
         // Each equals its own run (replayed or not), and records its varied field.
         const auto alone = solve_spectrum(walk, members[i].material(), request);
         CHECK(results[i].wavelengths.front().reflectance.value == Approx(alone.wavelengths.front().reflectance.value).margin(1e-12));
-        REQUIRE(results[i].provenance.varied.size() == 1);
-        CHECK(results[i].provenance.varied.front() == members[i].varied.front());
+        CHECK(results[i].provenance.varied == members[i].varied);
+        CHECK(all_overrides(results[i].provenance).back().second == std::vector<std::string>{"0.02", "0.02", "0.1"}[i]);
     }
     CHECK(std::get<std::uint64_t>(results[0].settings.at("absorption_sets_traced_together")) == 2);
     CHECK(std::get<std::uint64_t>(results[1].settings.at("absorption_sets_traced_together")) == 1);
@@ -155,19 +155,22 @@ TEST_CASE("sweep members: every combination, the first axis fastest, each checke
     const auto base = load_material("biospec-moderately");
     const auto members = sweep_members(walk, request, axes, {}, base);
     REQUIRE(members.size() == 6);
-    CHECK(members[1].varied == std::vector<std::pair<std::string, double>>{{"epidermis.melanosome_fraction", 0.02}, {"dermis.blood_fraction", 0.002}});
-    CHECK(members[3].varied.back().second == 0.01);
+    CHECK(*members[1].varied.fields == std::vector<std::string>{"epidermis.melanosome_fraction", "dermis.blood_fraction"});
+    CHECK(members[1].varied.values == std::vector<double>{0.02, 0.002});
+    CHECK(members[3].varied.values.back() == 0.01);
+    // The members share one list of the swept fields' names.
+    CHECK(members[1].varied.fields == members[4].varied.fields);
     CHECK(members[1].position == std::vector<std::size_t>{1, 0});
     CHECK(members[5].position == std::vector<std::size_t>{2, 1});
     CHECK(std::get<double>(material_field(members[5].material(), "epidermis.melanosome_fraction")) == 0.04);
-    CHECK(members[5].overrides.front().value == "0.04");
+    CHECK(members[5].overrides().front().value == "0.04");
     // One base text for the whole sweep; each result records it with its member's overrides.
     CHECK(members[0].base_toml == members[5].base_toml);
     CHECK(*members[0].base_toml == to_toml(base));
-    CHECK(with_overrides(parse_material(*members[5].base_toml, "base"), members[5].overrides) == members[5].material());
+    CHECK(with_overrides(parse_material(*members[5].base_toml, "base"), members[5].overrides()) == members[5].material());
     CHECK(sweep_members(walk, request, {}, {}, base).size() == 1);
     const auto cut = sweep_members(walk, request, {}, {"stratum_corneum", "epidermis"}, base);
-    CHECK(std::get<LayerStack>(cut.front().material()).layers.size() == 2);
+    CHECK(std::get<LayerStack>(cut[0].material()).layers.size() == 2);
     CHECK_THROWS_WITH(sweep_members(walk, request, {{"epidermis.melanosome_fraction", {0.01, 2.0}}}, {}, base), Catch::Contains("= 2 is outside [0, 1]"));
     auto t_request = request;
     t_request.spectral.quantities.angular = true;
@@ -252,7 +255,7 @@ TEST_CASE("a two-member sweep equals two direct runs for every field of every la
             const auto request = solver->capabilities().uncertainty ? one_wavelength(4000) : SolverRequest{};
             auto single = request;
             single.spectral.wavelengths = WavelengthGrid::list({550.0});
-            const std::vector<SweepMember> members{{std::make_shared<const Material>(base), {}, {}}, {std::make_shared<const Material>(*other), {}, {}}};
+            const std::vector<SweepMember> members{{std::make_shared<const Material>(base), {}, nullptr, {}}, {std::make_shared<const Material>(*other), {}, nullptr, {}}};
             INFO(solver->name() << " " << key << ": " << material_field(*other, key).index());
             std::vector<SpectralResult> swept;
             try {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "materials/material_fields.hpp"
+#include "materials/parameter_sweep.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/named_choice.hpp"
 #include "spectral/text_fields.hpp"
@@ -51,8 +52,14 @@ std::vector<double> default_angular_bin_edges_deg() {
 
 std::string result_label(const SpectralResult& result) {
     auto label = result.material;
-    for (std::size_t i = 0; i < result.provenance.varied.size(); ++i) label += fmt::format("{}{:g}", i == 0 ? ": " : ", ", result.provenance.varied[i].second);
+    for (std::size_t i = 0; i < result.provenance.varied.size(); ++i) label += fmt::format("{}{:g}", i == 0 ? ": " : ", ", result.provenance.varied.values[i]);
     return label;
+}
+
+std::vector<std::pair<std::string, std::string>> all_overrides(const Provenance& provenance) {
+    auto all = provenance.overrides;
+    for (auto& o : sweep_overrides(provenance.varied)) all.emplace_back(std::move(o.key), std::move(o.value));
+    return all;
 }
 
 void check_incidence_deg(double incidence_deg) {

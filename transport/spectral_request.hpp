@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "materials/model_options.hpp"
+#include "materials/swept_values.hpp"
 #include "spectral/wavelength_grid.hpp"
 
 namespace skinspec {
@@ -122,10 +123,13 @@ struct Provenance {
     std::string solver;
     // The material as `materials save` writes it, before `overrides` (a sweep's members share their base's text).
     std::shared_ptr<const std::string> material_toml;
-    std::vector<std::pair<std::string, std::string>> overrides;  // every --set / --vary KEY=VALUE, in order
-    std::vector<std::pair<std::string, double>> varied;         // the swept fields' values (--vary)
+    std::vector<std::pair<std::string, std::string>> overrides;  // the request's own --set KEY=VALUE, in order
+    SweptValues varied;  // a sweep member's fields and values (--vary), applied after `overrides`
     std::string version;
 };
+// Every KEY=VALUE a result was computed with, in the order applied: the request's own, then the swept values as
+// --vary wrote them (exact, shortest round-trip form).
+std::vector<std::pair<std::string, std::string>> all_overrides(const Provenance& provenance);
 
 // A deterministic solver's statement of its own error on a request: `R`, an absolute error of R taken as common to
 // every wavelength (colour uncertainties propagate it fully correlated), what it means, and, when the solver
