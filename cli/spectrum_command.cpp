@@ -123,15 +123,15 @@ void run_spectrum(const SpectrumOptions& o) {
         bar.clear();
         spectra.seconds.resize(spectra.results.size(), seconds / static_cast<double>(members_per_name[m].size()));
     }
+
+    // With several processes (mpirun), rank 0 has every result and reports; the others are done.
+    if (!is_root_process()) return;
     spectra.colors.resize(spectra.results.size());
     parallel_indices(spectra.size(), [&](std::size_t i) {
         const auto& result = spectra.results[i];
         auto color = result.bands.empty() ? reflectance_color(result, illuminant, observer) : std::nullopt;
         if (color) spectra.colors[i] = std::make_shared<const ColorSummary>(std::move(*color));
     });
-
-    // With several processes (mpirun), rank 0 has every result and reports; the others are done.
-    if (!is_root_process()) return;
     // One summary per material, over all of its sweep's members.
     for (std::size_t i = 0, j = 0; i < spectra.size(); i = j) {
         std::vector<ResultWarning> warnings;
