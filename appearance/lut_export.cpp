@@ -14,15 +14,6 @@
 namespace skinspec {
 namespace {
 
-std::string value_list(const ParameterSweep& sweep) {
-    std::string out;
-    for (const double v : sweep.values()) {
-        if (!out.empty()) out += ',';
-        out += format_number(v);
-    }
-    return out;
-}
-
 // Channel name of a reflectance sample in the OpenEXR spectral layout of Fichet, Pacanowski & Wilkie 2021
 // (JCGT 10(3), Sec. 3): "T." + wavelength with a comma as decimal separator + "nm".
 std::string spectral_channel(double nm) {
@@ -84,6 +75,15 @@ ChartLayout preview_layout(const ParameterSweep& u, const ParameterSweep& v) {
 }
 
 }  // namespace
+
+std::string value_list(const ParameterSweep& sweep) {
+    std::string out;
+    for (const double v : sweep.values()) {
+        if (!out.empty()) out += ',';
+        out += format_number(v);
+    }
+    return out;
+}
 
 ParameterSweep lut_axis(const std::string& field, const std::string& text, const std::string& option) {
     try {

@@ -16,6 +16,9 @@ namespace skinspec {
 inline constexpr const char* lut_melanin_field = "epidermis.melanosome_fraction";
 inline constexpr const char* lut_blood_field = "dermis.blood_fraction";
 
+// A sweep's values as the textures' metadata write them: "0.01,0.0137,...", each exact (shortest round trip).
+std::string value_list(const ParameterSweep& sweep);
+
 // `field`=`text` as a sweep; InputError naming `option` and the form FIRST:LAST:STEPS[:log].
 ParameterSweep lut_axis(const std::string& field, const std::string& text, const std::string& option);
 

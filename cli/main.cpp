@@ -27,6 +27,7 @@
 #include "cli/mcml_command.hpp"
 #include "cli/profile_command.hpp"
 #include "cli/fit_profile_command.hpp"
+#include "cli/fit_image_command.hpp"
 #include "cli/fit_spectrum_command.hpp"
 #include "cli/iad_command.hpp"
 #include "skinspec/version.hpp"
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
     skinspec::cli::add_profile_command(app);
     skinspec::cli::add_fit_profile_command(app);
     skinspec::cli::add_fit_spectrum_command(app);
+    skinspec::cli::add_fit_image_command(app);
     skinspec::cli::add_iad_command(app);
     skinspec::cli::add_bench_command(app);
     skinspec::cli::add_stress_command(app);

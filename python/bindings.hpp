@@ -37,6 +37,7 @@ void bind_profile_fit(py::module_& m);
 void bind_swatch(py::module_& m);
 void bind_exports(py::module_& m);
 void bind_iad(py::module_& m);
+void bind_image_fit(py::module_& m);
 
 // A Python-side material: the resolved Material and the overrides set on it since it was loaded (recorded in
 // the provenance of every result computed from it).
@@ -92,10 +93,11 @@ py::object result_object(const char* type_name, const py::dict& fields);
 using Work = std::function<void(const CancelFlag& cancel, const std::function<void(const Progress&)>& report)>;
 void run_interruptible(const Work& work, const py::object& on_progress);
 
-// A swatch request from skinspec.swatch's keywords (set: a dict of overrides; seed, max_rays: None for the defaults).
+// A swatch request from skinspec.swatch's keywords (set: a dict of overrides; seed, max_rays: None for the defaults;
+// the solver's switches as keywords).
 SwatchRequest swatch_request_argument(const std::string& material, const py::object& set, double delta_e, const std::string& illuminant,
                                       const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays,
-                                      const std::string& geometry);
+                                      const std::string& geometry, const py::kwargs& switches);
 // compute_swatch under run_interruptible, with `threads` and `progress` as the functions take them.
 SwatchChart compute_swatch_interruptible(const SwatchRequest& request, const py::object& threads, const py::object& progress);
 // The chart as skinspec.swatch returns it: (rows, columns, ...) numpy arrays; colours in the linear `space`.

@@ -87,8 +87,8 @@ py::object export_lut(const std::string& material, const py::object& output, con
                       const py::object& set, double delta_e, const std::string& illuminant, const std::string& observer, const std::string& solver,
                       const py::object& seed, const py::object& max_rays, const std::string& geometry, const std::string& space, bool half,
                       const py::object& spectra, const py::object& preview, const std::string& display, const std::string& view,
-                      const py::object& threads, const py::object& progress, bool overwrite) {
-    auto request = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry);
+                      const py::object& threads, const py::object& progress, bool overwrite, const py::kwargs& switches) {
+    auto request = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry, switches);
     const auto u = lut_axis(lut_melanin_field, melanin, "melanin");
     const auto v = lut_axis(lut_blood_field, blood, "blood");
     request.sweeps = {u, v};
@@ -130,7 +130,8 @@ void bind_exports(py::module_& m) {
     {field: value} overrides; delta_e: each texel's CIEDE2000 uncertainty target; solver, seed, max_rays, geometry
     (default "sce"): as skinspec.swatch; space: the texture's linear working space; half: half float; spectra: also
     the reflectance spectra (.exr, one channel per wavelength, or .csv); preview: also a display-referred image with
-    labelled axes (.png, .tif) in `display` / `view`; overwrite: replace existing files. Returns skinspec.swatch's
+    labelled axes (.png, .tif) in `display` / `view`; overwrite: replace existing files; the solver's switches as
+    keywords (e.g. channels=16). Returns skinspec.swatch's
     arrays (rows = blood, columns = melanin) with the command's --json summary (rays, worst_delta_e_uncertainty,
     seconds) and the files written.)doc",
           py::arg("material"), py::arg("output"), py::kw_only(), py::arg("melanin") = "0.01:0.42:64:log",

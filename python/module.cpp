@@ -21,4 +21,5 @@ PYBIND11_MODULE(_skinspec, m) {
     skinspec::python::bind_swatch(m);
     skinspec::python::bind_exports(m);
     skinspec::python::bind_iad(m);
+    skinspec::python::bind_image_fit(m);
 }

@@ -18,8 +18,8 @@ namespace {
 py::dict swatch(const std::string& material, const py::object& vary, const py::object& set, double delta_e, const std::string& illuminant,
                 const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays, const std::string& geometry,
                 const std::string& space, const py::object& output, bool half, const std::string& display, const std::string& view, int patch_size,
-                bool overwrite, const py::object& threads, const py::object& progress) {
-    auto request = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry);
+                bool overwrite, const py::object& threads, const py::object& progress, const py::kwargs& switches) {
+    auto request = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry, switches);
     if (vary.is_none()) request.sweeps = default_swatch_sweeps(load_material(request.material, request.overrides));
     else {
         for (const auto& text : name_list(vary, "vary")) request.sweeps.push_back(parse_sweep(text));
@@ -108,9 +108,10 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
 
 SwatchRequest swatch_request_argument(const std::string& material, const py::object& set, double delta_e, const std::string& illuminant,
                                       const std::string& observer, const std::string& solver, const py::object& seed, const py::object& max_rays,
-                                      const std::string& geometry) {
+                                      const std::string& geometry, const py::kwargs& switches) {
     SwatchRequest request;
     request.material = material;
+    request.switches = solver_switches(switches);
     if (!set.is_none()) {
         if (!py::isinstance<py::dict>(set)) throw InputError("set: expected a dict {field: value}");
         for (const auto& [key, value] : set.cast<py::dict>()) {
@@ -217,8 +218,9 @@ void bind_swatch(py::module_& m) {
     {field: value} overrides; delta_e: each patch's CIEDE2000 uncertainty target; space: the colour space of the
     "rgb" array (linear working-space values, white = 1); output: also the chart image, one path or a list (.exr
     linear in `space`; .png, .tif display-referred through display / view, with labelled axes), patch_size in pixels,
-    checked before any work. Returns a dict of (rows, columns, ...) numpy arrays: parameters, XYZ, Lab, rgb,
-    reflectance and its stderr per wavelength, delta_e2000_uncertainty, ita_deg, category; and the files written.)doc",
+    checked before any work; the solver's switches as keywords (e.g. channels=16). Returns a dict of (rows, columns,
+    ...) numpy arrays: parameters, XYZ, Lab, rgb, reflectance and its stderr per wavelength, delta_e2000_uncertainty,
+    ita_deg, category; and the files written.)doc",
           py::arg("material") = "biospec-moderately", py::arg("vary") = py::none(), py::kw_only(), py::arg("set") = py::none(),
           py::arg("delta_e") = SwatchRequest{}.delta_e, py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("solver") = "biospec",
           py::arg("seed") = py::none(), py::arg("max_rays") = py::none(), py::arg("geometry") = "sci", py::arg("space") = "ACEScg",

@@ -191,6 +191,14 @@ void write_linear_image(const std::filesystem::path& file, const LinearImage& im
     write_scene_linear(DataImage{image.width, image.height, 3, image.rgb, true, {}}, file, working_space, half_float, metadata, cm);
 }
 
+void write_display_image(const std::filesystem::path& file, const LinearImage& image, std::string_view working_space, std::string_view display,
+                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm) {
+    auto pixels = image.rgb;
+    cm.display_view_pixels(pixels, cm.canonical_space(working_space, "--space"), display, view);
+    for (auto& p : pixels) p = std::clamp(p, 0.0f, 1.0f);  // display-referred: the display cannot show more
+    write_display_referred(DataImage{image.width, image.height, 3, std::move(pixels), false, {}}, file, display, metadata);
+}
+
 void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
                          const std::vector<std::string>& labels, std::string_view working_space, std::string_view display,
                          std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm, const ChartAxes& axes) {

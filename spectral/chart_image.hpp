@@ -85,6 +85,9 @@ void write_image_grid(const std::filesystem::path& file, const std::vector<Linea
 // One scene-linear image in `working_space` as OpenEXR (chromaticities, colour space, metadata).
 void write_linear_image(const std::filesystem::path& file, const LinearImage& image, std::string_view working_space, bool half_float,
                         const ImageMetadata& metadata, const ColorManagement& cm);
+// One scene-linear image in `working_space`, display-referred through the OCIO display/view, as PNG or TIFF.
+void write_display_image(const std::filesystem::path& file, const LinearImage& image, std::string_view working_space, std::string_view display,
+                         std::string_view view, const ImageMetadata& metadata, const ColorManagement& cm);
 // `patches` are linear RGB in `working_space`, row-major, columns x rows.
 void write_linear_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
                         std::string_view working_space, bool half_float, const ImageMetadata& metadata,

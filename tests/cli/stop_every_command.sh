@@ -42,6 +42,8 @@ run() {
         echo "ok   $name: SIG$signal, exit $rc after $ms ms"
     fi
 }
+"$program" export lut --mode multipole --geometry sci --melanin 0.01:0.1:2 --blood 0.01:0.02:2 --space "Linear Rec.709" -o albedo.exr > /dev/null 2>&1
+run "fit-image" HUP - - fit-image albedo.exr --mode biospec --delta-e 0.05 -o maps.exr
 run "spectrum" INT spectrum.json '"partial": true' spectrum --preset biospec-lightly --wavelengths 400:700:1 --stderr 0.0002 --output spectrum.json
 run "swatch" TERM swatch.png - swatch --delta-e 0.05 -o swatch.png
 run "swatch --lit" HUP - - swatch --lit spot --pixels 1024 --wavelengths 400:700:2 -o lit.png

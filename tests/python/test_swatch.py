@@ -64,3 +64,14 @@ def test_swatch_writes_the_chart_files(tmp_path):
     with pytest.raises(skinspec.InputError, match="--patch-size 8 is outside"):
         skinspec.swatch("biospec-lightly", ["epidermis.melanosome_fraction=0.02:0.2:3"], output=tmp_path / "small.png", patch_size=8)
     assert not os.path.exists(tmp_path / "small.png")
+
+
+def test_swatch_takes_the_solver_switches():
+    # Honoured, not ignored: the switch reaches the solver, which checks it (and refuses a switch it does not take).
+    with pytest.raises(skinspec.InputError, match=r"channels = 2 is outside \[4, 256\]"):
+        skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="biospec-adding-doubling", channels=2)
+    with pytest.raises(skinspec.InputError, match="does not take the switch 'channels'"):
+        skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="dipole", channels=8)
+    coarse = skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="biospec-adding-doubling", geometry="sce", channels=8)
+    fine = skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="biospec-adding-doubling", geometry="sce", channels=32)
+    assert coarse["delta_e2000_uncertainty"][0, 0] > fine["delta_e2000_uncertainty"][0, 0]
