@@ -23,7 +23,7 @@ OIIO::ImageBuf wrap(DataImage& image) {
     return OIIO::ImageBuf(OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT), image.values.data());
 }
 
-std::string read(const std::string& file, DataImage& out) {
+std::string read(const std::string& file, double max_bytes, DataImage& out) {
     // ImageInput, not ImageBuf: an ImageBuf reads through OIIO's shared image cache, which keeps the first spec it
     // saw for a file name; a file rewritten with another size under the same name then overflowed the pixel
     // buffer (found by fuzz_fit_images, docs/STABILITY.md).
@@ -31,6 +31,13 @@ std::string read(const std::string& file, DataImage& out) {
     if (!in) return "cannot be read as an image (" + OIIO::geterror() + ")";
     const auto spec = in->spec();
     if (spec.width < 2 || spec.height < 2 || spec.nchannels < 1) return "image smaller than 2 x 2 pixels";
+    // The header's size, before allocating: a small file may declare a huge image.
+    const double bytes = static_cast<double>(spec.width) * spec.height * spec.nchannels * sizeof(float);
+    if (bytes > max_bytes) {
+        return "image of " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels x " + std::to_string(spec.nchannels) +
+               " channels needs " + std::to_string(static_cast<long long>(bytes / 1e6)) + " MB as floats, more than the " +
+               std::to_string(static_cast<long long>(max_bytes / 1e6)) + " MB available";
+    }
     out = DataImage{spec.width, spec.height, spec.nchannels,
                     std::vector<float>(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels),
                     spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF, spec.channelnames};

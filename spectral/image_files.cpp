@@ -4,6 +4,7 @@
 #include <dlfcn.h>
 
 #include "spectral/input_error.hpp"
+#include "spectral/memory_budget.hpp"
 
 namespace skinspec {
 namespace {
@@ -52,7 +53,7 @@ const ImageModuleFunctions& module() {
 DataImage read_data_image(const std::filesystem::path& file) {
     if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
     DataImage out;
-    if (const auto error = module().read(file.string(), out); !error.empty()) throw InputError(file.string() + ": " + error);
+    if (const auto error = module().read(file.string(), available_memory_bytes(), out); !error.empty()) throw InputError(file.string() + ": " + error);
     return out;
 }
 

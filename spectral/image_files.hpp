@@ -44,7 +44,8 @@ struct PixelRect {
 };
 
 // The stored values of any image OpenImageIO reads, as floats, no colour conversion (irradiance maps, masks);
-// InputError when missing, unreadable or smaller than 2 x 2 pixels.
+// InputError when missing, unreadable, smaller than 2 x 2 pixels or larger than the memory available (its header says
+// how large, so the refusal comes before the pixels are allocated).
 DataImage read_data_image(const std::filesystem::path& file);
 // Writes `image` to `file` as it is: the caller makes the write atomic (spectral/atomic_file.hpp). The format is
 // chosen by `file`'s extension; `reported_name` is the name errors give.
@@ -57,11 +58,12 @@ void render_text(DataImage& image, int x, int y, const std::string& text, int fo
 // text (empty: none), so that no exception crosses the module boundary.
 struct ImageModuleFunctions {
     int interface_version;
-    std::string (*read)(const std::string& file, DataImage& out);
+    // Refuses (as text) an image whose float pixels would take more than `max_bytes`, before allocating them.
+    std::string (*read)(const std::string& file, double max_bytes, DataImage& out);
     std::string (*write)(const std::string& file, const DataImage& image, PixelFormat format, const ImageAttributes& attributes);
     std::string (*render_text)(DataImage& image, int x, int y, const std::string& text, int font_px, const std::string& font,
                                const std::array<float, 3>& colour);
 };
-inline constexpr int image_module_interface_version = 1;
+inline constexpr int image_module_interface_version = 2;
 
 }  // namespace skinspec

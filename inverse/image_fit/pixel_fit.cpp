@@ -175,6 +175,11 @@ void check_pixel_fit_settings(const PixelFitSettings& settings, std::size_t chan
     }
 }
 
+double pixel_fit_bytes_per_pixel(std::size_t channels) {
+    // The raw fits, the residual list of the noise estimate, the final fits, an edit's copy of the values and its mark.
+    return static_cast<double>(sizeof(RawFit) + sizeof(double) + sizeof(PixelFit) + channels * sizeof(float) + sizeof(char));
+}
+
 ImageFit fit_image_pixels(const AlbedoLut& lut, const std::vector<float>& values, int width, int height, const PixelFitSettings& settings) {
     const std::size_t k = lut.channel_count();
     check_image_size(values.size(), width, height, k);

@@ -61,6 +61,9 @@ void check_pixel_fit_settings(const PixelFitSettings& settings, std::size_t chan
 // InputError unless `values` are width x height pixels of `channels` values each (width, height > 0).
 void check_image_size(std::size_t values, int width, int height, std::size_t channels);
 
+// Bytes fit_image_pixels and edited_values hold per pixel of `channels` values (for a memory check before the work).
+double pixel_fit_bytes_per_pixel(std::size_t channels);
+
 // `values`: width x height pixels, lut.channel_count() interleaved values each (white = 1). InputError as
 // check_image_size and check_pixel_fit_settings.
 ImageFit fit_image_pixels(const AlbedoLut& lut, const std::vector<float>& values, int width, int height, const PixelFitSettings& settings);

@@ -11,6 +11,7 @@
 #include "spectral/chart_image.hpp"
 #include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/memory_budget.hpp"
 #include "spectral/text_fields.hpp"
 
 namespace skinspec {
@@ -65,6 +66,10 @@ SkinImage read_skin_image(const std::filesystem::path& file, const SkinImageRequ
 SkinImageFit fit_skin_image(const SkinImageRequest& request, const SkinImage& image) {
     check_skin_image_request(request);
     check_image_size(image.values.size(), image.width, image.height, channel_count(request));
+    // Before the table: the fit and its edit, the albedo copy, the maps (six floats) and the writer's copy of them.
+    const double pixels = static_cast<double>(image.width) * image.height;
+    check_memory(pixels * (pixel_fit_bytes_per_pixel(channel_count(request)) + static_cast<double>((channel_count(request) + 12) * sizeof(float))),
+                 fmt::format("fitting an image of {} x {} pixels", image.width, image.height), "fit a crop of it, or a smaller copy");
     const auto start = std::chrono::steady_clock::now();
     const auto since_start = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     SkinImageFit out;

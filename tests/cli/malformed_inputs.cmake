@@ -214,3 +214,5 @@ skinspec_malformed_input("fit-image refuses overwrite" 2 "existing_output.png: e
 skinspec_malformed_input("fit-image bands file" 2 "not_increasing.csv line 4: wavelength 550 nm is not above the previous 600 nm" "${out}/fi1.exr" fit-image grey18.csv -o ${out}/fi1.exr --bands not_increasing.csv)
 skinspec_malformed_input("fit-image space with bands" 2 "--space describes an RGB image's colour" "${out}/fi1.exr" fit-image grey18.csv -o ${out}/fi1.exr --bands grey18.csv --space ACEScg --noise 0.01)
 skinspec_malformed_input("fit-image view without display image" 2 "--view applies to a PNG or TIFF --edited image only" "${out}/fi1.exr" fit-image grey18.csv -o ${out}/fi1.exr --view Raw)
+# A small file whose header declares 100000 x 100000 pixels: refused from the header, before any pixel is allocated.
+skinspec_malformed_input("fit-image huge declared size" 2 "huge_header.ppm: image of 100000 x 100000 pixels x 3 channels needs 120000 MB as floats, more than the [0-9]+ MB available" "${out}/fi1.exr" fit-image huge_header.ppm -o ${out}/fi1.exr --noise 0.01)
