@@ -114,7 +114,7 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
                                      100.0 * r.min_relative_diffuse_error, 100.0 * r.max_relative_diffuse_error, r.delta_e_ab, r.delta_e2000,
                                      r.stated_delta_e2000 ? fmt::format("{:.2f}", *r.stated_delta_e2000) : std::string(), extrapolated);
         }
-        std::cout << "  (uncertainty: a walk's largest standard error of R; adding-doubling's stated accuracy, twice the change with twice the channels;\n"
+        std::cout << "  (uncertainty: a walk's largest standard error of R; adding-doubling's stated accuracy, twice the change with every segment's channels doubled;\n"
                      "   *: the volumetric description against the BioSpec one, the gap between the two descriptions of the same preset)\n";
     }
     if (!report.walk_agreement.empty()) {

@@ -86,7 +86,7 @@ TEST_CASE("adding-doubling reproduces Prahl's slabs within 1e-4", "[adding_doubl
         CHECK(r.diffuse_reflectance == Approx(slab.diffuse_reflectance).margin(1e-4));
         CHECK(r.transmittance == Approx(slab.total_transmittance).margin(1e-4));
         CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-9));
-        // The stated accuracy (twice the change with twice the channels) covers the error against the reference.
+        // The stated accuracy (twice the change with every segment's channels doubled) covers the error against the reference.
         CHECK(std::abs(r.diffuse_reflectance - slab.diffuse_reflectance) <= r.accuracy + 5e-6);
         CHECK(std::abs(r.transmittance - slab.total_transmittance) <= r.accuracy + 5e-6);
         CHECK(r.accuracy < 2e-4);

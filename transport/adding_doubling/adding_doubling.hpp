@@ -29,7 +29,7 @@ struct AdIncidence {
 
 struct AdOptions {
     std::size_t channels = 24;        // quadrature channels per hemisphere in the densest medium (about)
-    bool accuracy_check = true;       // also solve with twice the channels: AdResult::accuracy (8x the work)
+    bool accuracy_check = true;       // also solve with every segment's channels doubled: AdResult::accuracy (~8x the work)
     const std::atomic<bool>* cancel = nullptr;  // checked at every doubling and adding step (256 channels: ~0.1 s apart)
 };
 
@@ -38,7 +38,7 @@ struct AdResult {
     double diffuse_reflectance = 0.0;   // everything else leaving the top
     double transmittance = 0.0;         // leaving the bottom, unscattered included (0 over a reflector)
     std::vector<double> absorbed_layers;  // per layer (vector solves on the factors the adding keeps: nearly free)
-    double accuracy = 0.0;              // twice the largest change of R_d, T or A with twice the channels
+    double accuracy = 0.0;              // twice the largest change of R_d, T or A with every segment's channels doubled
     std::size_t channels = 0;
     bool cancelled = false;             // stopped by AdOptions::cancel: the values are no solution
 };

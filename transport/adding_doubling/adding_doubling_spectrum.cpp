@@ -53,7 +53,7 @@ SpectralResult adding_doubling_spectrum(const LayerStack& stack, const SpectralR
                     {"quadrature_channels", std::uint64_t{options.channels}}};
     if (options.accuracy_check) {
         static const auto meaning = std::make_shared<const std::string>(
-            "twice the largest change of R_diffuse, T or A with twice the channels, at the first, middle and last wavelength");
+            "twice the largest change of R_diffuse, T or A with every segment's channels doubled, at the first, middle and last wavelength");
         out.stated_error = StatedError{accuracy, meaning, {}};
     }
     return out;
