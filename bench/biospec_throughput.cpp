@@ -3,12 +3,16 @@
 //  2. the time of a full 400-700 nm / 10 nm spectrum at standard error <= 0.002 per wavelength on 2 threads.
 // Each figure is the best of `repeats` runs (this machine's timings vary 10-30 % from run to run), with the
 // median beside it. Also the instruction set the walk's packets run on.
-// Usage: skinspec_bench_biospec [rays] [repeats]   (default 4,000,000 rays for the throughput runs, 5 repeats)
+// Usage: skinspec_bench_biospec [rays] [repeats] [instruction set]   (default 4,000,000 rays for the throughput runs,
+// 5 repeats, the best instruction set the machine has; e.g. AVX2 measures an AVX2 machine's code path on an AVX-512 one)
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 #include <thread>
+
+#include <hwy/targets.h>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -40,6 +44,21 @@ Timing repeated(int repeats, const std::function<void()>& run) {
 int main(int argc, char** argv) {
     const std::uint64_t rays = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 4'000'000;
     const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
+    if (argc > 3) {
+        std::string names;
+        bool found = false;
+        for (const auto target : hwy::SupportedAndGeneratedTargets()) {
+            names += std::string(names.empty() ? "" : ", ") + hwy::TargetName(target);
+            if (std::string(hwy::TargetName(target)) == argv[3]) {
+                hwy::SetSupportedTargetsForTest(target);
+                found = true;
+            }
+        }
+        if (!found) {
+            fmt::print(stderr, "instruction set '{}' is not one this machine runs (allowed: {})\n", argv[3], names);
+            return 2;
+        }
+    }
     fmt::print("packets on {} (best of {} runs, median in brackets)\n", biospec_packet_target(), repeats);
     const auto stack = std::get<LayerStack>(load_material("biospec-moderately"));
     SpectralRequest request;
