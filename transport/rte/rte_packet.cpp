@@ -123,27 +123,35 @@ std::uint64_t RteStepImpl(const RtePacketModel& model, RtePacket& p) {
             dz = hn::IfThenElse(bounce, hn::Neg(hn::Sqrt(hn::Sub(one, u_bounce))), dz);
         }
         const MF fresnel = hn::AndNot(bounce, hits);
-        const VF eta = hn::IfThenElse(down, eta_down.at(k), eta_up.at(k));
-        const VF m = hn::IfThenElse(down, inverse_eta_down.at(k), inverse_eta_up.at(k));
-        VF cos_t;
-        MF total;
-        const VF reflectance = FresnelReflectance(hn::Abs(dz), eta, m, cos_t, total);
-        const MF outer = hn::And(fresnel, hn::Or(hn::And(down, at_last), hn::AndNot(down, at_first)));
-        // Split outer boundaries: the transmitted part escapes and the reflected part goes on.
-        const MF split = model.split ? hn::AndNot(total, outer) : none;
-        const MF test = hn::AndNot(hn::Or(total, split), hn::And(fresnel, reflectance > zero));
-        MF reflected = hn::And(fresnel, total);
-        if (!hn::AllFalse(df, test)) reflected = hn::Or(reflected, hn::And(test, random.uniform(test) < reflectance));
-        const MF refracted = hn::AndNot(hn::Or(reflected, split), fresnel);
-        const MF escapes = hn::Or(split, hn::And(refracted, outer));
-        const MF moves_on = hn::AndNot(outer, refracted);
-        const VF kept = hn::IfThenElseZero(split, reflectance);
-        dx = hn::IfThenElse(moves_on, hn::Mul(eta, dx), dx);
-        dy = hn::IfThenElse(moves_on, hn::Mul(eta, dy), dy);
-        dz = hn::IfThenElse(hn::Or(reflected, split), hn::Neg(dz), hn::IfThenElse(moves_on, hn::CopySign(cos_t, dz), dz));
+        // Most steps of a scattering medium end in an interaction: a vector with no lane at an interface skips the
+        // Fresnel work (it draws no random number either, so every path is unchanged).
         const auto imask = [&](MF mask) { return ToInt(mask); };
-        VI next_k = hn::IfThenElse(imask(hn::And(moves_on, down)), hn::Add(k, hn::Set(di, 1)), k);
-        next_k = hn::IfThenElse(imask(hn::AndNot(down, moves_on)), hn::Sub(k, hn::Set(di, 1)), next_k);
+        VF cos_t = zero;
+        VF kept = zero;
+        MF split = none;
+        MF escapes = none;
+        VI next_k = k;
+        if (!hn::AllFalse(df, fresnel)) {
+            const VF eta = hn::IfThenElse(down, eta_down.at(k), eta_up.at(k));
+            const VF m = hn::IfThenElse(down, inverse_eta_down.at(k), inverse_eta_up.at(k));
+            MF total;
+            const VF reflectance = FresnelReflectance(hn::Abs(dz), eta, m, cos_t, total);
+            const MF outer = hn::And(fresnel, hn::Or(hn::And(down, at_last), hn::AndNot(down, at_first)));
+            // Split outer boundaries: the transmitted part escapes and the reflected part goes on.
+            split = model.split ? hn::AndNot(total, outer) : none;
+            const MF test = hn::AndNot(hn::Or(total, split), hn::And(fresnel, reflectance > zero));
+            MF reflected = hn::And(fresnel, total);
+            if (!hn::AllFalse(df, test)) reflected = hn::Or(reflected, hn::And(test, random.uniform(test) < reflectance));
+            const MF refracted = hn::AndNot(hn::Or(reflected, split), fresnel);
+            escapes = hn::Or(split, hn::And(refracted, outer));
+            const MF moves_on = hn::AndNot(outer, refracted);
+            kept = hn::IfThenElseZero(split, reflectance);
+            dx = hn::IfThenElse(moves_on, hn::Mul(eta, dx), dx);
+            dy = hn::IfThenElse(moves_on, hn::Mul(eta, dy), dy);
+            dz = hn::IfThenElse(hn::Or(reflected, split), hn::Neg(dz), hn::IfThenElse(moves_on, hn::CopySign(cos_t, dz), dz));
+            next_k = hn::IfThenElse(imask(hn::And(moves_on, down)), hn::Add(k, hn::Set(di, 1)), k);
+            next_k = hn::IfThenElse(imask(hn::AndNot(down, moves_on)), hn::Sub(k, hn::Set(di, 1)), next_k);
+        }
 
         const VI steps = hn::Add(hn::LoadU(di, reinterpret_cast<const std::int32_t*>(p.steps) + base), hn::IfThenElseZero(imask(active), hn::Set(di, 1)));
         const MF gone = hn::AndNot(split, escapes);
