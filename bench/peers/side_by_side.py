@@ -149,7 +149,8 @@ def row_sweep(a, work):
               "--quantities", "R"]
     sweep = ["--vary", f"epidermis.melanosome_fraction=0.005:0.25:{a.levels}:log"]
     one, levels, _, _ = alternate(a.runs, lambda: cpu_seconds(common, work)[0], lambda: cpu_seconds(common + sweep, work)[0])
-    return (f"{a.levels}-level melanosome sweep", "31 wavelengths, stderr 0.002, in levels of one", levels, one, "(no peer)", True)
+    return (f"{a.levels}-level melanosome sweep (no peer)", f"31 wavelengths, stderr 0.002: {levels:.3g} s, one level {one:.3g} s, "
+            f"{levels / one:.2f}x one level", None, None, "", True)
 
 
 def row_biospec(a, work):
