@@ -99,7 +99,7 @@ HWY_INLINE void Azimuth(VF u, VF& cos_phi, VF& sin_phi) {
     // Quarter q: (cos, sin) = (c, s), (-s, c), (-c, -s), (s, -c).
     const VI q = hn::ConvertTo(di, whole);
     const MF odd = FromInt(hn::Ne(hn::And(q, hn::Set(di, 1)), hn::Zero(di)));
-    const MF cos_negative = FromInt(hn::Eq(hn::And(hn::Add(q, hn::Set(di, 1)), hn::Set(di, 2)), hn::Set(di, 2)));
+    const MF cos_negative = FromInt(hn::Ne(hn::And(hn::Add(q, hn::Set(di, 1)), hn::Set(di, 2)), hn::Zero(di)));
     const MF sin_negative = FromInt(hn::Ne(hn::And(q, hn::Set(di, 2)), hn::Zero(di)));
     const VF a = hn::IfThenElse(odd, s, c);
     const VF b = hn::IfThenElse(odd, c, s);

@@ -45,7 +45,7 @@ def alternate(runs, first, second):
     for _ in range(runs):
         a.append(first())
         b.append(second())
-    return statistics.median(a), statistics.median(b), a, b
+    return statistics.median(a), statistics.median(b)
 
 
 def mci_run(name, photons, layers, grid=(0.01, 0.01, 40, 50, 30)):
@@ -91,7 +91,7 @@ def row_mcml(a, work):
         result["ours"] = (run["R_diffuse"], run["R_diffuse_stderr"], run["T"], run["T_stderr"])
         return seconds
 
-    t_peer, t_ours, _, _ = alternate(a.runs, peer, skinspec)
+    t_peer, t_ours = alternate(a.runs, peer, skinspec)
     (rd_p, tt_p), (rd, rd_se, tt, tt_se) = result["peer"], result["ours"]
     # MCML prints no errors; its own is about the same as ours for the same photons.
     z = max(abs(rd - rd_p) / (rd_se * 2 ** 0.5), abs(tt - tt_p) / (tt_se * 2 ** 0.5))
@@ -106,6 +106,7 @@ def row_ad(a, work):
         albedo = 1.0 - 10 ** rng.uniform(-3.0, -0.3)
         tau = 10 ** rng.uniform(-1.0, 1.0)
         slabs.append((albedo, tau, rng.choice([0.0, 0.5, 0.9])))
+
     def write_rt(points):
         with open(os.path.join(work, "slabs.rt"), "w") as f:
             for albedo, tau, g in slabs:
@@ -133,7 +134,7 @@ def row_ad(a, work):
         return seconds
 
     write_rt(a.channels)
-    t_peer, t_ours, _, _ = alternate(a.runs, peer, skinspec)
+    t_peer, t_ours = alternate(a.runs, peer, skinspec)
     # The agreement against ad at 64 points (untimed): at 24 points ad's own quadrature is ~2e-4 off at g 0.9. ad prints
     # 5 decimals: 1e-5 covers its rounding.
     write_rt(64)
@@ -148,17 +149,16 @@ def row_sweep(a, work):
     common = [a.skinspec, "spectrum", "--preset", "biospec-moderately", "--wavelengths", "400:700:10", "--stderr", "0.002", "--threads", "1",
               "--quantities", "R"]
     sweep = ["--vary", f"epidermis.melanosome_fraction=0.005:0.25:{a.levels}:log"]
-    one, levels, _, _ = alternate(a.runs, lambda: cpu_seconds(common, work)[0], lambda: cpu_seconds(common + sweep, work)[0])
+    one, levels = alternate(a.runs, lambda: cpu_seconds(common, work)[0], lambda: cpu_seconds(common + sweep, work)[0])
     return (f"{a.levels}-level melanosome sweep (no peer)", f"31 wavelengths, stderr 0.002: {levels:.3g} s, one level {one:.3g} s, "
             f"{levels / one:.2f}x one level", None, None, "", True)
 
 
 def row_biospec(a, work):
     def rate(extra):
-        seconds, out = cpu_seconds([a.skinspec, "spectrum", "--preset", "biospec-moderately", "--wavelengths", "550", "--rays", str(a.rays),
-                                    "--threads", "1", "--quantities", "R", "--json"] + extra, work)
-        return seconds
-    default, authors, _, _ = alternate(a.runs, lambda: rate([]), lambda: rate(["--variant", "biospec-authors-code"]))
+        return cpu_seconds([a.skinspec, "spectrum", "--preset", "biospec-moderately", "--wavelengths", "550", "--rays", str(a.rays),
+                            "--threads", "1", "--quantities", "R"] + extra, work)[0]
+    default, authors = alternate(a.runs, lambda: rate([]), lambda: rate(["--variant", "biospec-authors-code"]))
     return ("BioSpec walk (no peer)", f"rays/s, 550 nm, {a.rays:g} rays: default {a.rays / default:.3g}, authors'-code variant {a.rays / authors:.3g}",
             None, None, "(set beside the authors' RISE BioSpecSkinSPF, built by hand)", True)
 
