@@ -25,6 +25,7 @@ constexpr TableSource sources[] = {
     {ExtinctionUnits::molar_decadic_per_cm_per_molar, "chromophores/bilirubin.csv", "molar_extinction"},
     {ExtinctionUnits::molar_decadic_per_cm_per_molar, "chromophores/beta_carotene.csv", "molar_extinction"},
     {ExtinctionUnits::absorption_per_cm, "chromophores/water.csv", "mu_a"},
+    {ExtinctionUnits::absorption_per_cm, "chromophores/lipid.csv", "mu_a"},
     {ExtinctionUnits::absorption_per_cm, "chromophores/baseline_tissue.csv", "mu_a"},
 };
 
@@ -44,7 +45,7 @@ const std::vector<ChromophoreKind>& all_chromophores() {
     static const std::vector<ChromophoreKind> kinds{
         ChromophoreKind::eumelanin, ChromophoreKind::pheomelanin,   ChromophoreKind::oxyhemoglobin,
         ChromophoreKind::deoxyhemoglobin, ChromophoreKind::bilirubin, ChromophoreKind::beta_carotene,
-        ChromophoreKind::water,     ChromophoreKind::baseline_tissue};
+        ChromophoreKind::water,     ChromophoreKind::lipid,         ChromophoreKind::baseline_tissue};
     return kinds;
 }
 
@@ -59,6 +60,7 @@ std::string_view name(ChromophoreKind kind) {
         case ChromophoreKind::bilirubin: return "bilirubin";
         case ChromophoreKind::beta_carotene: return "beta-carotene";
         case ChromophoreKind::water: return "water";
+        case ChromophoreKind::lipid: return "lipid";
         case ChromophoreKind::baseline_tissue: return "baseline tissue";
     }
     return "?";

@@ -16,6 +16,7 @@ enum class ChromophoreKind {
     bilirubin,        // molar extinction, cm^-1 / M, decadic  (PhotochemCAD)
     beta_carotene,    // molar extinction, cm^-1 / M, decadic  (PhotochemCAD)
     water,            // absorption coefficient, cm^-1         (Segelstein)
+    lipid,            // absorption coefficient, cm^-1         (van Veen, 429-1098 nm)
     baseline_tissue,  // absorption coefficient, cm^-1         (Jacques' bloodless-tissue formula)
 };
 

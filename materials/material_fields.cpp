@@ -51,6 +51,10 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
          std::pair{0.0, 2e-3}},  // ~10x the spec's 2.1e-4 g/L
         {"vessel_radius_um", "um", vessel_radius, &L::vessel_radius_um, false,
          "mean blood-vessel radius for the packaging correction (0: off, blood spread evenly)", true, std::pair{0.0, 100.0}},
+        {"water_fraction", "1", fraction, &L::water_fraction, false, "volume fraction of water in the layer, blood's included (v_w)", true,
+         std::pair{0.05, 0.9}},  // SC 0.15-0.35 ... dermis 0.6-0.7 (docs/HYPERSPECTRAL.md)
+        {"lipid_fraction", "1", fraction, &L::lipid_fraction, false,
+         "volume fraction of lipid in the layer (v_l; its table covers 429-1098 nm only)", true, std::pair{0.0, 0.3}},
         {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein"},
         {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)"},
         {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius"},

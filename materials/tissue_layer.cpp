@@ -67,7 +67,7 @@ const std::vector<std::string_view>& reduced_scattering_tables() {
 
 namespace {
 
-enum class Compartment { melanosomes, blood, background };
+enum class Compartment { melanosomes, blood, background, whole_layer };
 
 // One chromophore's share of mu_a inside its compartment (shared spec "Absorption coefficients"). Adding a
 // chromophore is one row here, its data file (materials/chromophore.cpp) and its concentration field
@@ -83,7 +83,7 @@ struct AbsorptionTerm {
 
 // Melanosomes: Sarna & Swartz mass extinction of eu- and pheomelanin; whole blood: haemoglobin split by the
 // oxygen saturation S (Prahl) and bilirubin (PhotochemCAD); background: beta-carotene (PhotochemCAD) and
-// Jacques' bloodless-tissue baseline.
+// Jacques' bloodless-tissue baseline; the whole layer: water (Segelstein) and lipid (van Veen).
 const std::vector<AbsorptionTerm>& absorption_terms() {
     using L = TissueLayer;
     using M = ModelOptions;
@@ -105,6 +105,8 @@ const std::vector<AbsorptionTerm>& absorption_terms() {
          [](const M& m) { return m.carotene_molar_mass_g_per_mol; }, molar, always},
         {Compartment::background, ChromophoreKind::baseline_tissue, [](const L&) { return 1.0; }, none, molar,
          [](const M& m) { return m.baseline_absorption; }},
+        {Compartment::whole_layer, ChromophoreKind::water, [](const L& l) { return l.water_fraction; }, none, molar, always},
+        {Compartment::whole_layer, ChromophoreKind::lipid, [](const L& l) { return l.lipid_fraction; }, none, molar, always},
     };
     return terms;
 }
@@ -144,7 +146,7 @@ double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const M
     if (background_fraction > 0.0) {
         mu_a += background_fraction * compartment_absorption_per_cm(Compartment::background, layer, wavelength_nm, model);
     }
-    return mu_a;
+    return mu_a + compartment_absorption_per_cm(Compartment::whole_layer, layer, wavelength_nm, model);
 }
 
 double vessel_packaging_factor(double mu_blood_per_cm, double vessel_radius_um) {

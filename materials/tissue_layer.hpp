@@ -74,6 +74,8 @@ struct TissueLayer {
     double bilirubin_g_per_l = 0.05;       // in whole blood
     double carotene_g_per_l = 0.0;         // in the background
     double vessel_radius_um = 0.0;         // mean radius of the vessels holding the blood; 0: blood spread evenly
+    double water_fraction = 0.0;           // volume fraction of water in the layer (blood's water included)
+    double lipid_fraction = 0.0;           // volume fraction of lipid in the layer
 
     CrossingScattering crossing = CrossingScattering::cosine;
     double hg_g = 0.0;                         // for henyey_greenstein
@@ -87,7 +89,9 @@ struct TissueLayer {
 };
 
 // Absorption coefficient [1/cm] at a wavelength (shared spec "Absorption coefficients"):
-//   mu_a = v_m (mu_eu + mu_ph) + v_b (S mu_HbO2 + (1 - S) mu_Hb + mu_bili) + (1 - v_m - v_b) (mu_car + mu_base).
+//   mu_a = v_m (mu_eu + mu_ph) + v_b (S mu_HbO2 + (1 - S) mu_Hb + mu_bili) + (1 - v_m - v_b) (mu_car + mu_base)
+//          + v_w mu_water + v_l mu_lipid,
+// the last two over the whole layer (Jacques 2013, Phys Med Biol 58:R37, Eq. 12; the haemoglobin tables hold no water).
 // Terms with zero weight are not evaluated, so a chromophore's table range only matters where it is present.
 // With a vessel radius R_v > 0 the blood term is packaged (Svaasand et al. 1995, Lasers Med Sci 10:55; Verkruysse
 // et al. 1997, Phys Med Biol 42:51, Eq. 6; van Veen et al. 2002, Opt Lett 27:246): v_b C mu_blood with

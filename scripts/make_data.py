@@ -21,6 +21,7 @@ standard library is used.
 """
 
 import argparse
+import math
 import pathlib
 import sys
 
@@ -279,28 +280,96 @@ def clamp_negative(rows, column=1):
     return [r[:column] + [max(r[column], 0.0)] + r[column + 1:] for r in rows], count
 
 
+TAIL_START_NM = 250  # the hyperspectral range (docs/HYPERSPECTRAL.md)
+TAIL_END_NM = 2500
+TAIL_STEP_NM = 10
+MELANIN_TAIL_FIT_NM = (600, 830)
+HEMOGLOBIN_TAIL_FIT_NM = (960, 1000)
+SALOMATINA_SHORT_FIT_NM = (369, 500)
+SALOMATINA_LONG_FIT_NM = (500, 1610)
+
+
+def least_squares_line(xs, ys):
+    """Intercept and slope of y = a + b x."""
+    n = len(xs)
+    mx, my = sum(xs) / n, sum(ys) / n
+    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    return my - slope * mx, slope
+
+
+def tail_wavelengths(after_nm, end_nm):
+    first = (int(after_nm) // TAIL_STEP_NM + 1) * TAIL_STEP_NM
+    return [float(w) for w in range(first, end_nm + 1, TAIL_STEP_NM)]
+
+
+def with_power_law_tail(rows, fit_nm, end_nm):
+    """rows, then eps = A lambda^-b above them: A, b by least squares in log-log over fit_nm."""
+    fit = [r for r in rows if fit_nm[0] <= r[0] <= fit_nm[1]]
+    log_a, slope = least_squares_line([math.log(r[0]) for r in fit], [math.log(r[1]) for r in fit])
+    tail = [[w, math.exp(log_a + slope * math.log(w))] for w in tail_wavelengths(rows[-1][0], end_nm)]
+    return rows + tail, f"{math.exp(log_a):.4g} lambda^{slope:.4f}"
+
+
+def with_exponential_tail(rows, fit_nm, end_nm):
+    """rows, then each column continued as eps(last) exp(-(lambda - last) / L), L by least squares of ln eps over fit_nm."""
+    fit = [r for r in rows if fit_nm[0] <= r[0] <= fit_nm[1]]
+    last = rows[-1]
+    lengths = []
+    for c in range(1, len(last)):
+        _, slope = least_squares_line([r[0] for r in fit], [math.log(r[c]) for r in fit])
+        lengths.append(-1.0 / slope)
+    tail = [[w] + [last[c] * math.exp(-(w - last[0]) / lengths[c - 1]) for c in range(1, len(last))]
+            for w in tail_wavelengths(last[0], end_nm)]
+    return rows + tail, [f"column {c}: L = {lengths[c - 1]:.1f} nm" for c in range(1, len(last))]
+
+
+def with_anchored_power_law_tails(rows, short_fit_nm, long_fit_nm, start_nm, end_nm):
+    """rows with a power law a (lambda/500)^-b below and above, b by least squares in log-log over each fit range,
+    a so that the law meets the table's end value (continuous)."""
+    laws = []
+
+    def law(fit_nm, anchor):
+        fit = [r for r in rows if fit_nm[0] <= r[0] <= fit_nm[1]]
+        _, slope = least_squares_line([math.log(r[0] / 500.0) for r in fit], [math.log(r[1]) for r in fit])
+        amplitude = anchor[1] / (anchor[0] / 500.0) ** slope
+        laws.append(f"{fit_nm[0]}-{fit_nm[1]} nm: a = {amplitude:.4g} mm^-1, b = {-slope:.4f}")
+        return lambda w: amplitude * (w / 500.0) ** slope
+
+    below, above = law(short_fit_nm, rows[0]), law(long_fit_nm, rows[-1])
+    head = [[float(w), below(w)] for w in range(start_nm, int(math.ceil(rows[0][0])), TAIL_STEP_NM) if w < rows[0][0]]
+    tail = [[w, above(w)] for w in tail_wavelengths(rows[-1][0], end_nm)]
+    return head + rows + tail, laws
+
+
 def make_chromophores(src, out):
     d = out / "chromophores"
-    rows = read_columns(src / "eumelanin_sarna.txt")
-    write_table(d / "eumelanin.csv", "Eumelanin mass extinction coefficient (Sarna & Swartz)",
-                "Sarna T., Swartz H.M. (1988), The physical properties of melanins, digitised by OMLC; "
-                "raw file eumelanin_sarna.txt (column ext)",
-                "wavelength_nm [nm]; mass_extinction [cm^-1 / (mg/mL)]",
-                ["wavelength_nm", "mass_extinction"], [[r[0], r[1]] for r in rows], "error",
-                ["BioSpec uses this as mu_a = eps * c without ln(10) (docs/MATERIALS.md)",
-                 "no value outside the measured range: asking there is an error"])
-    rows = read_columns(src / "pheomelanin_sarna.txt")
-    write_table(d / "pheomelanin.csv", "Pheomelanin mass extinction coefficient (Sarna & Swartz)",
-                "Sarna T., Swartz H.M. (1988), digitised by OMLC; raw file pheomelanin_sarna.txt (column ext)",
-                "wavelength_nm [nm]; mass_extinction [cm^-1 / (mg/mL)]",
-                ["wavelength_nm", "mass_extinction"], [[r[0], r[1]] for r in rows], "error",
-                ["no value outside the measured range: asking there is an error"])
-    rows = read_columns(src / "hemoglobin_prahl.txt")
+    for name, raw, title, source in (
+            ("eumelanin", "eumelanin_sarna.txt", "Eumelanin",
+             "Sarna T., Swartz H.M. (1988), The physical properties of melanins, digitised by OMLC; "
+             "raw file eumelanin_sarna.txt (column ext)"),
+            ("pheomelanin", "pheomelanin_sarna.txt", "Pheomelanin",
+             "Sarna T., Swartz H.M. (1988), digitised by OMLC; raw file pheomelanin_sarna.txt (column ext)")):
+        measured = [[r[0], r[1]] for r in read_columns(src / raw)]
+        rows, law = with_power_law_tail(measured, MELANIN_TAIL_FIT_NM, TAIL_END_NM)
+        write_table(d / f"{name}.csv", f"{title} mass extinction coefficient (Sarna & Swartz)", source,
+                    "wavelength_nm [nm]; mass_extinction [cm^-1 / (mg/mL)]",
+                    ["wavelength_nm", "mass_extinction"], rows, "error",
+                    (["BioSpec uses this as mu_a = eps * c without ln(10) (docs/MATERIALS.md)"] if name == "eumelanin" else [])
+                    + [f"measured to {fmt(measured[-1][0])} nm; rows above it are the power law {law}, least squares "
+                       f"in log-log over the table's {MELANIN_TAIL_FIT_NM[0]}-{MELANIN_TAIL_FIT_NM[1]} nm (Jacques "
+                       "1996 models melanin as lambda^-3.33..-3.48: the same form)",
+                       "no value below the measured range: asking there is an error"])
+    measured = read_columns(src / "hemoglobin_prahl.txt")
+    rows, laws = with_exponential_tail(measured, HEMOGLOBIN_TAIL_FIT_NM, TAIL_END_NM)
     write_table(d / "hemoglobin.csv", "Molar extinction of oxy- and deoxy-haemoglobin (decadic)",
                 "S. Prahl (OMLC) compilation of W.B. Gratzer and N. Kollias; raw file hemoglobin_prahl.txt",
                 "wavelength_nm [nm]; oxy, deoxy [cm^-1 / M, decadic]",
                 ["wavelength_nm", "oxy", "deoxy"], rows, "error",
-                ["per mole of haemoglobin tetramer; mu_a = ln(10) eps c / M with M = 64,500 (Prahl) or 66,500 g/mol"])
+                ["per mole of haemoglobin tetramer; mu_a = ln(10) eps c / M with M = 64,500 (Prahl) or 66,500 g/mol",
+                 f"measured to {fmt(measured[-1][0])} nm; rows above it continue each column's decay over "
+                 f"{HEMOGLOBIN_TAIL_FIT_NM[0]}-{HEMOGLOBIN_TAIL_FIT_NM[1]} nm as an exponential ({'; '.join(laws)}): "
+                 "a modelling assumption, not a measurement (its share of skin's absorption: docs/HYPERSPECTRAL.md); "
+                 "blood's water is not in these tables: it is counted by the layer's water_fraction"])
     for name, raw, title, solvent in (
             ("beta_carotene", "beta_carotene_photochemcad.txt", "Beta-carotene", "hexane"),
             ("bilirubin", "bilirubin_photochemcad.txt", "Bilirubin", "chloroform")):
@@ -318,25 +387,38 @@ def make_chromophores(src, out):
                 "Segelstein D. (1981), M.Sc. thesis, University of Missouri-Kansas City, via OMLC; "
                 "raw file water_segelstein.txt cut to 200-2500 nm",
                 "wavelength_nm [nm]; mu_a [cm^-1]", ["wavelength_nm", "mu_a"], rows, "error")
-    rows = [[float(w), 0.244 + 85.3 * pow(2.718281828459045, -(w - 154.0) / 66.2)] for w in range(250, 1001)]
+    rows = [[float(w), 0.244 + 85.3 * pow(2.718281828459045, -(w - 154.0) / 66.2)] for w in range(250, TAIL_END_NM + 1)]
     write_table(d / "baseline_tissue.csv", "Baseline absorption of bloodless skin tissue (Jacques)",
                 "formula mu_base = 0.244 + 85.3 exp(-(lambda - 154) / 66.2) cm^-1 (S. Jacques, OMLC 'Skin optics' "
                 "summary 1998; used by BioSpec, Krishnaswamy & Baranoski 2004), tabulated at 1 nm",
                 "wavelength_nm [nm]; mu_a [cm^-1]", ["wavelength_nm", "mu_a"], rows, "error",
                 ["linear interpolation between 1 nm samples is within 3e-5 (relative) of the formula",
-                 "range limited to 250-1000 nm, where the formula was fitted"])
+                 "fitted to bloodless skin in the visible; above 1000 nm the formula's constant 0.244 cm^-1 is kept "
+                 "as the protein background, water and lipid are separate terms (docs/HYPERSPECTRAL.md)"])
+    rows = [[r[0], r[1] / 100.0] for r in read_columns(src / "fat_vanveen.txt")]
+    write_table(d / "lipid.csv", "Absorption coefficient of mammalian fat (van Veen et al.)",
+                "van Veen R.L.P., Sterenborg H.J.C.M., Pifferi A., Torricelli A., Cubeddu R. (2005), J. Biomed. Opt. "
+                "10(5):054004 (pork lard), as distributed by OMLC; raw file fat_vanveen.txt (1/m), converted to 1/cm",
+                "wavelength_nm [nm]; mu_a [cm^-1]", ["wavelength_nm", "mu_a"], rows, "error",
+                ["no value outside the measured 429-1098 nm: a layer with lipid_fraction > 0 is refused there"])
 
 
 def make_tissue(src, out):
     for short, name in (("EP", "epidermis"), ("DE", "dermis"), ("HY", "hypodermis")):
-        rows = read_columns(src / f"salomatina_{short}.txt")
+        measured = [[r[0], r[3]] for r in read_columns(src / f"salomatina_{short}.txt")]
+        rows, laws = with_anchored_power_law_tails(measured, SALOMATINA_SHORT_FIT_NM, SALOMATINA_LONG_FIT_NM,
+                                                   TAIL_START_NM, TAIL_END_NM)
         write_table(out / "tissue" / f"salomatina_{name}.csv",
-                    f"Measured ex-vivo human {name} absorption and reduced scattering (Salomatina)",
-                    f"Salomatina E. et al. (2006), J. Biomed. Opt. 11(6):064026; raw file salomatina_{short}.txt",
-                    "wavelength_nm [nm]; mu_a, mu_a_std, mu_s_reduced, mu_s_reduced_std [mm^-1]",
-                    ["wavelength_nm", "mu_a_per_mm", "mu_a_std_per_mm", "mu_s_reduced_per_mm",
-                     "mu_s_reduced_std_per_mm"], rows, "error",
-                    ["std is the spread over the measured samples", "no value outside the measured range"])
+                    f"Measured ex-vivo human {name} reduced scattering (Salomatina)",
+                    f"Salomatina E. et al. (2006), J. Biomed. Opt. 11(6):064026; raw file salomatina_{short}.txt "
+                    "(column mu_s'; its mu_a and the standard deviations are left in the raw file)",
+                    "wavelength_nm [nm]; mu_s_reduced [mm^-1]", ["wavelength_nm", "mu_s_reduced_per_mm"], rows, "error",
+                    [f"measured {fmt(measured[0][0])}-{fmt(measured[-1][0])} nm; outside, mu_s' = a (lambda / 500 nm)^-b "
+                     f"with b fitted (least squares in log-log) over {SALOMATINA_SHORT_FIT_NM[0]}-"
+                     f"{SALOMATINA_SHORT_FIT_NM[1]} nm below and {SALOMATINA_LONG_FIT_NM[0]}-{SALOMATINA_LONG_FIT_NM[1]} "
+                     f"nm above, a set so the law meets the table's end value ({'; '.join(laws)})",
+                     "the table's 1000-1600 nm part alone is flat (water-band cross-talk of the inversion), so the "
+                     "long tail takes the exponent of 500-1600 nm"])
 
 
 BIOSPEC_PRESETS = (  # name, melanosome volume fraction (docs/biospec-model.md)
@@ -374,6 +456,7 @@ thickness_cm = 0.001
 refractive_index = 1.55
 scattering = "measured_stratum_corneum"
 carotene_g_per_l = 2.1e-4
+water_fraction = 0.25               # Warner et al. 1988, J Invest Dermatol 90:218: 15-35 % in the SC (docs/HYPERSPECTRAL.md)
 reduced_scattering_table = "salomatina_epidermis"
 volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
 volumetric_phase = "measured_stratum_corneum"     # Bruls & van der Leun 1984 profile as the phase function (g 0.95-0.96)
@@ -387,6 +470,7 @@ melanosome_fraction = {melanosomes}
 eumelanin_mg_per_ml = 80
 pheomelanin_mg_per_ml = 12
 carotene_g_per_l = 2.1e-4
+water_fraction = 0.6                # Warner et al. 1988: ~60-70 % in the viable epidermis
 reduced_scattering_table = "salomatina_epidermis"
 volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
 volumetric_phase = "measured_epidermis"           # Bruls & van der Leun 1984 profile as the phase function (g 0.88-0.90)
@@ -401,6 +485,7 @@ oxygen_saturation = 0.75
 hemoglobin_g_per_l = 150
 bilirubin_g_per_l = 0.05
 carotene_g_per_l = 7e-5
+water_fraction = 0.7                # dermis 60-75 % (Jacques 2013, Phys Med Biol 58:R37; docs/HYPERSPECTRAL.md)
 reduced_scattering_table = "salomatina_dermis"
 volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
 volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)
@@ -415,6 +500,7 @@ oxygen_saturation = 0.75
 hemoglobin_g_per_l = 150
 bilirubin_g_per_l = 0.05
 carotene_g_per_l = 7e-5
+water_fraction = 0.65               # dermis 60-75 %
 reduced_scattering_table = "salomatina_dermis"
 volumetric_scattering = "from_reduced_scattering"  # rte, adding-doubling: mu_s = mu_s' / (1 - g), the same mu_s' as diffusion
 volumetric_g = 0.8                  # van Gemert et al. 1989, IEEE TBME 36:1146: g = 0.62 + 0.29e-3 lambda/nm (0.74-0.82)

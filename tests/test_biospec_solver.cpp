@@ -137,6 +137,7 @@ TEST_CASE("without absorbers and reflector all light leaves", "[biospec_solver]"
         l.melanosome_fraction = 0.0;
         l.blood_fraction = 0.0;
         l.carotene_g_per_l = 0.0;
+        l.water_fraction = 0.0;
     }
     stack.model.baseline_absorption = false;
     const auto result = solve_biospec(stack, all_quantities({450, 600}, 20'000));
@@ -232,8 +233,8 @@ TEST_CASE("bad requests are input errors naming the value and range", "[biospec_
     request.stderr_target = 0.0;
     CHECK_THROWS_WITH(solve_biospec(stack, request), "standard error target 0 is outside (0, inf)");
     request.stderr_target.reset();
-    request.wavelengths = WavelengthGrid::list({900.0});
-    CHECK_THROWS_WITH(solve_biospec(stack, request), Catch::Contains("eumelanin: wavelength 900 nm is outside"));
+    request.wavelengths = WavelengthGrid::list({2600.0});
+    CHECK_THROWS_WITH(solve_biospec(stack, request), Catch::Contains("baseline tissue: wavelength 2600 nm is outside"));
     request.wavelengths = WavelengthGrid::list({550.0});
     BiospecOptions options;
     options.max_events_per_ray = 3'000'000'000u;  // the packets count events in 32-bit signed lanes

@@ -45,10 +45,12 @@ TEST_CASE("negative PhotochemCAD tails are clamped to zero", "[chromophore]") {
 
 TEST_CASE("each chromophore's out-of-range policy is explicit", "[chromophore]") {
     // Melanins, haemoglobin, water and the baseline: asking outside the table is an error naming it.
-    CHECK_THROWS_WITH(chromophore(ChromophoreKind::eumelanin).table(850.0),
-                      Catch::Contains("eumelanin: wavelength 850 nm is outside the tabulated domain"));
-    CHECK_THROWS_AS(chromophore(ChromophoreKind::oxyhemoglobin).table(1100.0), InputError);
+    CHECK_THROWS_WITH(chromophore(ChromophoreKind::eumelanin).table(2600.0),
+                      Catch::Contains("eumelanin: wavelength 2600 nm is outside the tabulated domain"));
+    CHECK_THROWS_AS(chromophore(ChromophoreKind::oxyhemoglobin).table(2600.0), InputError);
     CHECK_THROWS_AS(chromophore(ChromophoreKind::baseline_tissue).table(200.0), InputError);
+    CHECK_THROWS_WITH(chromophore(ChromophoreKind::lipid).table(1100.0),
+                      Catch::Contains("lipid: wavelength 1100 nm is outside the tabulated domain [429, 1098] nm"));
     // Carotene and bilirubin: zero above 700 nm, where their absorption is nil.
     CHECK(chromophore(ChromophoreKind::beta_carotene).table(750.0) == 0.0);
     CHECK(chromophore(ChromophoreKind::bilirubin).table(750.0) == 0.0);

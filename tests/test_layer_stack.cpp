@@ -90,8 +90,8 @@ TEST_CASE("a measured volumetric phase: g is the profile's mean cosine and mu_s'
 
 TEST_CASE("wavelengths outside a present chromophore's table are errors, not extrapolations", "[layer_stack]") {
     const auto stack = preset("biospec-lightly");
-    CHECK_THROWS_WITH(stack.optics(1, 900.0), Catch::Contains("eumelanin: wavelength 900 nm"));
-    CHECK_THROWS_AS(stack.optics(0, 300.0), InputError);  // Salomatina starts at 369 nm
+    CHECK_THROWS_WITH(stack.optics(1, 2600.0), Catch::Contains("eumelanin: wavelength 2600 nm"));
+    CHECK_THROWS_AS(stack.optics(0, 240.0), InputError);  // the reduced-scattering tables start at 250 nm
 }
 
 TEST_CASE("bottom boundary names", "[layer_stack]") {

@@ -24,6 +24,7 @@ TEST_CASE("comparing thin-layer phase functions reports differences with combine
     // Energy-free SC alone, index-matched: all light is transmitted either way, so nothing differs.
     auto sc = stack.sub_stack({"stratum_corneum"});
     sc.layers[0].carotene_g_per_l = 0.0;
+    sc.layers[0].water_fraction = 0.0;
     sc.layers[0].refractive_index = 1.0;
     sc.model.baseline_absorption = false;
     sc.bottom = BottomBoundary::exit;

@@ -81,7 +81,7 @@ TEST_CASE("fit inputs: free fields, bounds and wavelengths are checked before an
     fails({{"epidermis.melanosome_fraction", 0.2, 0.1}}, "--bounds epidermis.melanosome_fraction=0.2:0.1: LO must be below HI");
     fails({{"epidermis.melanosome_fraction", {}, {}}, {"epidermis.melanosome_fraction", {}, {}}}, "is given twice");
     fails({{"epidermis.melanosome_fraction", {}, {}}}, "4 measured wavelengths to fit; a fit needs at least 5", {400, 500, 600, 700});
-    fails({{"epidermis.melanosome_fraction", {}, {}}}, "wavelength 830 nm is outside the model's tables (layer 'epidermis'): eumelanin", {790, 800, 810, 820, 830});
+    fails({{"epidermis.melanosome_fraction", {}, {}}}, "wavelength 2600 nm is outside the model's tables (layer 'stratum_corneum'): baseline tissue", {2460, 2470, 2480, 2490, 2500, 2600});
     // A thin layer's thickness scales its paths, so it may be free.
     SpectrumFitSettings s;
     s.free = {{"epidermis.thickness_cm", {}, {}}};

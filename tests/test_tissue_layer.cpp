@@ -83,7 +83,7 @@ TEST_CASE("absent chromophores are not evaluated, present ones keep their range"
     bare.baseline_absorption = false;
     CHECK(absorption_per_cm(l, 2000.0, bare) == 0.0);
     l.melanosome_fraction = 0.1;
-    CHECK_THROWS_WITH(absorption_per_cm(l, 900.0, bare), Catch::Contains("eumelanin: wavelength 900 nm"));
+    CHECK_THROWS_WITH(absorption_per_cm(l, 2600.0, bare), Catch::Contains("eumelanin: wavelength 2600 nm"));
 }
 
 TEST_CASE("collagen Rayleigh coefficient matches the hand computation", "[tissue_layer]") {
