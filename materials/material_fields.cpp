@@ -51,6 +51,9 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
          std::pair{0.0, 2e-3}},  // ~10x the spec's 2.1e-4 g/L
         {"vessel_radius_um", "um", vessel_radius, &L::vessel_radius_um, false,
          "mean blood-vessel radius for the packaging correction (0: off, blood spread evenly)", true, std::pair{0.0, 100.0}},
+        {"melanin_cluster_radius_um", "um", vessel_radius, &L::melanin_cluster_radius_um, false,
+         "radius of the spheres packing the melanosomes, for the sieve effect (0: off, melanin spread evenly)", true,
+         std::pair{0.0, 5.0}},  // one melanosome 0.1-0.3 um; melanosome complexes and melanocyte dendrites 1-3 um
         {"water_fraction", "1", fraction, &L::water_fraction, false, "volume fraction of water in the layer, blood's included (v_w)", true,
          std::pair{0.05, 0.9}},  // SC 0.15-0.35 ... dermis 0.6-0.7 (docs/HYPERSPECTRAL.md)
         {"lipid_fraction", "1", fraction, &L::lipid_fraction, false,

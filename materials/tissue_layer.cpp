@@ -138,7 +138,10 @@ double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const M
     const double v_b = layer.blood_fraction;
     const double background_fraction = 1.0 - v_m - v_b;
     double mu_a = 0.0;
-    if (v_m > 0.0) mu_a += v_m * compartment_absorption_per_cm(Compartment::melanosomes, layer, wavelength_nm, model);
+    if (v_m > 0.0) {
+        const double mu_melanosomes = compartment_absorption_per_cm(Compartment::melanosomes, layer, wavelength_nm, model);
+        mu_a += v_m * sphere_packaging_factor(mu_melanosomes, layer.melanin_cluster_radius_um) * mu_melanosomes;
+    }
     if (v_b > 0.0) {
         const double mu_blood = compartment_absorption_per_cm(Compartment::blood, layer, wavelength_nm, model);
         mu_a += v_b * vessel_packaging_factor(mu_blood, layer.vessel_radius_um) * mu_blood;
@@ -153,6 +156,16 @@ double vessel_packaging_factor(double mu_blood_per_cm, double vessel_radius_um) 
     constexpr double cm_per_um = 1e-4;
     const double x = 2.0 * mu_blood_per_cm * vessel_radius_um * cm_per_um;
     return x > 0.0 ? -std::expm1(-x) / x : 1.0;
+}
+
+double sphere_packaging_factor(double mu_per_cm, double radius_um) {
+    constexpr double cm_per_um = 1e-4;
+    const double x = 2.0 * mu_per_cm * radius_um * cm_per_um;
+    if (!(x > 0.0)) return 1.0;
+    // Below x = 0.01 the closed form loses ~eps/x^2 to cancellation: its series, 1 - 3x/8 + x^2/10 - x^3/48 + x^4/280.
+    if (x < 0.01) return 1.0 + x * (-0.375 + x * (0.1 + x * (-1.0 / 48.0 + x / 280.0)));
+    const double efficiency = 1.0 - 2.0 * (-std::expm1(-x) - x * std::exp(-x)) / (x * x);
+    return 1.5 * efficiency / x;
 }
 
 double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_nm) {

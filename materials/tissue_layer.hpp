@@ -74,6 +74,7 @@ struct TissueLayer {
     double bilirubin_g_per_l = 0.05;       // in whole blood
     double carotene_g_per_l = 0.0;         // in the background
     double vessel_radius_um = 0.0;         // mean radius of the vessels holding the blood; 0: blood spread evenly
+    double melanin_cluster_radius_um = 0.0;  // radius of the spheres holding the melanosomes (sieve effect); 0: spread evenly
     double water_fraction = 0.0;           // volume fraction of water in the layer (blood's water included)
     double lipid_fraction = 0.0;           // volume fraction of lipid in the layer
 
@@ -95,7 +96,8 @@ struct TissueLayer {
 // Terms with zero weight are not evaluated, so a chromophore's table range only matters where it is present.
 // With a vessel radius R_v > 0 the blood term is packaged (Svaasand et al. 1995, Lasers Med Sci 10:55; Verkruysse
 // et al. 1997, Phys Med Biol 42:51, Eq. 6; van Veen et al. 2002, Opt Lett 27:246): v_b C mu_blood with
-// C = (1 - exp(-2 mu_blood R_v)) / (2 mu_blood R_v).
+// C = (1 - exp(-2 mu_blood R_v)) / (2 mu_blood R_v). With a melanin cluster radius r > 0 the melanosome term is
+// packaged the same way in spheres (the sieve effect): v_m C_s mu_mel, C_s = sphere_packaging_factor.
 double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const ModelOptions& model);
 
 // Rayleigh coefficient of the collagen fibres [1/cm] (shared spec step 3):
@@ -105,5 +107,11 @@ double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_n
 
 // The packaging factor C above for whole-blood absorption mu_blood [1/cm] and vessel radius [um]; 1 at radius 0.
 double vessel_packaging_factor(double mu_blood_per_cm, double vessel_radius_um);
+
+// Sieve effect of absorbing spheres of radius r [um] and absorption mu [1/cm] in a transparent medium, geometric
+// optics without refraction (Duysens 1956, Biochim Biophys Acta 19:1; the sphere's absorption efficiency
+// Q = 1 - 2 (1 - (1 + x) e^-x) / x^2, van de Hulst 1957 Sec. 14.21): C_s = 3 Q / (2 x), x = 2 mu r; 1 at r = 0,
+// 1 - 3x/8 + O(x^2) for small x, 3 / (2x) for large x.
+double sphere_packaging_factor(double mu_per_cm, double radius_um);
 
 }  // namespace skinspec

@@ -63,3 +63,29 @@ TEST_CASE("unit helpers", "[chromophore]") {
     CHECK(name(ChromophoreKind::beta_carotene) == "beta-carotene");
     CHECK(units_text(chromophore(ChromophoreKind::eumelanin).units) == "cm^-1/(mg/mL)");
 }
+
+TEST_CASE("tables reach 2500 nm by their documented laws, continuous with the measurements", "[chromophore]") {
+    // Raw rows: Segelstein water 31.542 /cm at 1449 nm; van Veen fat 13.10 /m at 930 nm.
+    CHECK(chromophore(ChromophoreKind::water).table(1449.0) == Approx(31.542));
+    CHECK(chromophore(ChromophoreKind::lipid).table(930.0) == Approx(0.131));
+    // Melanin in the near infrared: Jacques (1996, OMLC 'Melanosome absorption coefficient') models the melanosome
+    // absorption as lambda^-3.33 .. lambda^-3.48; the tail fitted to Sarna's 600-830 nm must fall in that band.
+    const auto& eu = chromophore(ChromophoreKind::eumelanin).table;
+    const double ratio = eu(2000.0) / eu(1000.0);
+    CHECK(ratio < std::pow(2.0, -3.33));
+    CHECK(ratio > std::pow(2.0, -3.48));
+    // Haemoglobin: the measured 1000 nm row stays, the tail decays monotonically from it.
+    const auto& oxy = chromophore(ChromophoreKind::oxyhemoglobin).table;
+    CHECK(oxy(1000.0) == 1024.0);
+    double previous = oxy(1000.0);
+    for (double nm = 1010.0; nm <= 2500.0; nm += 10.0) {
+        CHECK(oxy(nm) < previous);
+        previous = oxy(nm);
+    }
+    // Every table with an 'error' policy refuses past 2500 nm (no silent extrapolation).
+    for (const auto kind : {ChromophoreKind::eumelanin, ChromophoreKind::pheomelanin, ChromophoreKind::oxyhemoglobin,
+                            ChromophoreKind::water, ChromophoreKind::baseline_tissue}) {
+        CHECK_NOTHROW(chromophore(kind).table(2500.0));
+        CHECK_THROWS_AS(chromophore(kind).table(2501.0), InputError);
+    }
+}

@@ -120,3 +120,15 @@ TEST_CASE("volumetric scattering from the reduced scattering: mu_s = mu_s' / (1 
         }
     }
 }
+
+TEST_CASE("reduced scattering reaches 250-2500 nm continuously", "[layer_stack]") {
+    // Salomatina's dermis is measured from 369.27 to 1602.09 nm (8.7825 and 1.5857 /mm there, raw rows); outside,
+    // power laws meet those end values (scripts/make_data.py).
+    const auto stack = preset("biospec-lightly");
+    const auto reduced = [&](double nm) { return *stack.optics(3, nm).mu_s_reduced_per_cm; };
+    CHECK(reduced(369.27) == Approx(87.825).epsilon(1e-4));
+    CHECK(reduced(1602.086756) == Approx(15.857).epsilon(1e-4));
+    CHECK(reduced(360.0) / reduced(369.27) == Approx(1.0).margin(0.07));
+    CHECK(reduced(1610.0) / reduced(1602.086756) == Approx(1.0).margin(0.01));
+    for (const double nm : {250.0, 300.0, 1700.0, 2000.0}) CHECK(reduced(nm) > reduced(nm + 50.0));  // the tails fall
+}

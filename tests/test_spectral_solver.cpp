@@ -107,6 +107,27 @@ TEST_CASE("every declared capability is served", "[solver]") {
     }
 }
 
+TEST_CASE("every solver covers 250-2500 nm with finite reflectance in [0, 1] (issue 35)", "[solver]") {
+    const auto skin = load_material("biospec-lightly");
+    for (const auto* solver : solver_registry()) {
+        INFO(solver->name());
+        SolverRequest request;
+        request.spectral.wavelengths = WavelengthGrid::list({250.0, 1000.0, 1450.0, 1940.0, 2500.0});
+        if (solver->capabilities().uncertainty) request.fixed_rays_per_wavelength = 2000;
+        const auto result = solve_spectrum(*solver, skin, request);
+        REQUIRE(result.wavelengths.size() == 5);
+        for (const auto& w : result.wavelengths) {
+            INFO(w.wavelength_nm << " nm");
+            CHECK(std::isfinite(w.reflectance.value));
+            CHECK(w.reflectance.value >= 0.0);
+            CHECK(w.reflectance.value <= 1.0);
+        }
+        // Water's 1450 and 1940 nm bands leave little more than the first-surface reflection.
+        CHECK(result.wavelengths[2].reflectance.value < result.wavelengths[1].reflectance.value);
+        CHECK(result.wavelengths[3].reflectance.value < 0.1);
+    }
+}
+
 TEST_CASE("a result records its provenance: resolved material, overrides, solver, version, integers stay integers", "[solver]") {
     const std::vector<MaterialOverride> overrides{{"epidermis.melanosome_fraction", "0.03"}};
     const auto skin = load_material("biospec-moderately", overrides);

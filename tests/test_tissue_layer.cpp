@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "materials/chromophore.hpp"
 #include "materials/tissue_layer.hpp"
 #include "spectral/input_error.hpp"
 
@@ -132,4 +133,43 @@ TEST_CASE("vessel packaging: Svaasand's factor, its limits, and the blood term i
     // Packaging flattens the Soret band more than the red.
     const auto ratio = [&](double nm) { return absorption_per_cm(packaged, nm, model) / absorption_per_cm(dermis, nm, model); };
     CHECK(ratio(420.0) < ratio(650.0));
+}
+
+TEST_CASE("water and lipid absorb over the whole layer", "[tissue_layer]") {
+    TissueLayer layer;
+    layer.water_fraction = 0.65;
+    ModelOptions bare;
+    bare.baseline_absorption = false;
+    // Segelstein's water at 1449 nm is 31.542 /cm (raw row): the layer absorbs 0.65 of it.
+    CHECK(absorption_per_cm(layer, 1449.0, bare) == Approx(0.65 * 31.542).epsilon(1e-12));
+    layer.lipid_fraction = 0.1;  // van Veen's fat at 930 nm: 13.10 /m
+    CHECK(absorption_per_cm(layer, 930.0, bare) ==
+          Approx(0.65 * chromophore(ChromophoreKind::water).table(930.0) + 0.1 * 0.131).epsilon(1e-12));
+    CHECK_THROWS_WITH(absorption_per_cm(layer, 1200.0, bare), Catch::Contains("lipid: wavelength 1200 nm is outside"));
+}
+
+TEST_CASE("sieve effect: Duysens' sphere factor, its limits, and the melanin term it scales", "[tissue_layer]") {
+    CHECK(sphere_packaging_factor(1000.0, 0.0) == 1.0);
+    // Small spheres: C = 1 - 3x/8 + O(x^2) (the series of 3 Q / 2x), here x = 2 * 10 /cm * 0.5e-4 cm = 1e-3.
+    CHECK(sphere_packaging_factor(10.0, 0.5) == Approx(1.0 - 0.375e-3 + 1e-7).epsilon(1e-10));
+    // Both sides of the series switch (x = 0.01) agree.
+    CHECK(sphere_packaging_factor(10.0, std::nextafter(5.0, 0.0)) == Approx(sphere_packaging_factor(10.0, 5.0)).epsilon(1e-11));
+    // x = 1: Q = 1 - 2 (1 - 2/e) = 4/e - 1, C = 1.5 (4/e - 1).
+    CHECK(sphere_packaging_factor(100.0, 50.0) == Approx(1.5 * (4.0 / std::exp(1.0) - 1.0)).epsilon(1e-12));
+    // Opaque spheres absorb their cross-section: C -> 3 / (2x).
+    CHECK(sphere_packaging_factor(1e5, 100.0) == Approx(1.5 / 2000.0).epsilon(1e-6));
+    TissueLayer layer;
+    layer.melanosome_fraction = 0.05;
+    ModelOptions bare;
+    bare.baseline_absorption = false;
+    auto sieved = layer;
+    sieved.melanin_cluster_radius_um = 1.0;
+    for (const double nm : {350.0, 500.0, 700.0}) {
+        const double mu_melanosomes = absorption_per_cm(layer, nm, bare) / 0.05;
+        CHECK(absorption_per_cm(sieved, nm, bare) ==
+              Approx(0.05 * sphere_packaging_factor(mu_melanosomes, 1.0) * mu_melanosomes).epsilon(1e-12));
+    }
+    // The sieve flattens the ultraviolet more than the red.
+    const auto ratio = [&](double nm) { return absorption_per_cm(sieved, nm, bare) / absorption_per_cm(layer, nm, bare); };
+    CHECK(ratio(350.0) < ratio(700.0));
 }
