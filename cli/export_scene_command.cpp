@@ -22,7 +22,7 @@ struct SceneOptions {
     std::string preset;
     std::string material_file;
     std::vector<std::string> overrides;
-    std::string wavelengths = "400:700:10";
+    std::string wavelengths{renderer_sampled_wavelengths};
     std::string rgb;
     std::string phase;
     double phase_wavelength_nm = 550.0;

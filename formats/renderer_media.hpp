@@ -51,6 +51,10 @@ enum class PhaseExport {
 };
 std::string_view to_string(PhaseExport phase);  // "own", "hg"
 
+// The spectral media's default wavelengths: the 360-830 nm that pbrt-v4 and Mitsuba 3 sample (a spectrum file is
+// 0 outside its range in both, so narrower media vanish there), as --wavelengths text.
+inline constexpr std::string_view renderer_sampled_wavelengths = "360:830:10";
+
 struct MediaRequest {
     std::vector<double> wavelengths_nm;  // spectral export, or exactly three (R, G, B) with rgb
     bool rgb = false;

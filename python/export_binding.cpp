@@ -41,7 +41,8 @@ py::object export_scene_files(SceneRenderer renderer, const py::object& material
         if (!wavelengths.is_none()) throw InputError("rgb: give either wavelengths (spectral media) or rgb (three wavelengths as R, G, B), not both");
         request.wavelengths_nm = finite_vector(rgb, "--rgb");
     } else {
-        const auto grid = wavelength_argument(wavelengths);
+        const auto grid = wavelengths.is_none() ? WavelengthGrid::parse(renderer_sampled_wavelengths, "wavelengths")
+                                                : wavelength_argument(wavelengths);
         request.wavelengths_nm.assign(grid.nm().begin(), grid.nm().end());
     }
     request.phase_wavelength_nm = phase_wavelength_nm;
@@ -110,11 +111,11 @@ py::object export_lut(const std::string& material, const py::object& output, con
     return out;
 }
 
-constexpr const char* scene_doc = R"doc(
+const std::string scene_doc = std::string(R"doc(
 
     material: a skinspec.Material, preset name or .toml path (layered); output: the scene file; wavelengths: spectral
-    media at these wavelengths in nm (default 400-700 every 10, one .spd file per layer and coefficient beside the
-    scene) or rgb: three wavelengths whose coefficients are taken as R, G, B (e.g. [650, 550, 450]); phase: "hg" or
+    media at these wavelengths in nm (default )doc") + std::string(renderer_sampled_wavelengths) + R"doc(, what the renderers sample; one .spd file per layer and
+    coefficient beside the scene) or rgb: three wavelengths whose coefficients are taken as R, G, B (e.g. [650, 550, 450]); phase: "hg" or
     "own"; phase_wavelength: the wavelength (nm) of the phase functions; overwrite: replace existing files. The
     files are read back after writing (read_back_largest_relative_difference). Returns the dict `--json` prints:
     files, wavelengths_nm and per layer thickness_mm, refractive_index, sigma_a_per_mm and sigma_s_per_mm (numpy, one

@@ -104,3 +104,21 @@ TEST_CASE("spectrum files read back exactly, malformed ones are input errors", "
     CHECK(spectrum_file_path("out/skin.pbrt", "epidermis", "sigma_a") == std::filesystem::path("out/skin_spectra/epidermis_sigma_a.spd"));
     std::filesystem::remove_all(folder);
 }
+
+TEST_CASE("the default spectral media cover what the renderers sample, 360-830 nm (issue 37)", "[renderer_media]") {
+    // pbrt-v4's PiecewiseLinearSpectrum and Mitsuba 3's spectrum files are 0 outside their range: media must reach it.
+    const auto grid = WavelengthGrid::parse(renderer_sampled_wavelengths, "wavelengths");
+    REQUIRE(grid.nm().front() <= 360.0);
+    REQUIRE(grid.nm().back() >= 830.0);
+    MediaRequest request;
+    request.wavelengths_nm.assign(grid.nm().begin(), grid.nm().end());
+    const auto media = renderer_media(moderately(), request);
+    for (const auto& l : media.layers) {
+        for (std::size_t i = 0; i < grid.nm().size(); ++i) {
+            INFO(l.name << " at " << grid.nm()[i] << " nm");
+            CHECK(std::isfinite(l.sigma_a_per_mm[i]));
+            CHECK(l.sigma_a_per_mm[i] > 0.0);
+            CHECK(l.sigma_s_per_mm[i] > 0.0);
+        }
+    }
+}
