@@ -249,7 +249,7 @@ void biospec_cases(Grid& grid) {
     };
     const std::uint64_t rays = full ? 20'000 : 4'000;
     std::vector<Variant> variants{
-        {"preset", {}, {250.0, 550.0, 820.0}, 0.0, rays},
+        {"preset", {}, {250.0, 550.0, 1450.0, 2500.0}, 0.0, rays},
         {"no melanin", {"epidermis.melanosome_fraction=0"}, {450.0}, 0.0, rays},
         {"maximal melanin", {"epidermis.melanosome_fraction=0.5"}, {450.0}, 0.0, rays},
         {"no blood", {"dermis.blood_fraction=0"}, {420.0}, 0.0, rays},
@@ -262,7 +262,7 @@ void biospec_cases(Grid& grid) {
         {"stratum corneum 1 nm, large budget", {"stratum_corneum.thickness_cm=1e-7"}, {550.0}, 0.0, full ? std::uint64_t{2'000'000} : std::uint64_t{200'000}},
         {"reticular dermis 10 cm", {"reticular_dermis.thickness_cm=10"}, {650.0}, 0.0, rays},
         {"below the tables (240 nm)", {}, {240.0}, 0.0, rays},
-        {"above the tables (830 nm)", {}, {830.0}, 0.0, rays},
+        {"above the tables (2510 nm)", {}, {2510.0}, 0.0, rays},
     };
     std::map<std::string, double> r450;
     for (const bool reflector : {true, false}) {
@@ -394,7 +394,7 @@ void layered_stack_cases(Grid& grid) {
         for (const auto& variant : variants) {
             const auto& label = variant.first;
             const auto& overrides_text = variant.second;
-            for (const double wavelength : {360.0, 370.0, 550.0, 820.0}) {
+            for (const double wavelength : {240.0, 250.0, 550.0, 2500.0}) {
                 grid.run(std::string(solver->name()) + "-stack", fmt::format("{}: {}, {:g} nm", solver->name(), label, wavelength), [&](Checks& c) {
                     std::vector<MaterialOverride> overrides;
                     for (const auto& o : overrides_text) overrides.push_back(parse_override(o));
