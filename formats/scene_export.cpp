@@ -81,7 +81,11 @@ PhaseApproximationError phase_approximation_error(const LayerStack& stack, const
             return r.diffuse_reflectance + r.specular_reflectance;
         };
         const double difference = r_of(written) - r_of(own);
-        if (std::abs(difference) > std::abs(out.largest_R_difference)) out = {difference, nm};
+        out.R_differences.push_back(difference);
+        if (std::abs(difference) > std::abs(out.largest_R_difference)) {
+            out.largest_R_difference = difference;
+            out.at_nm = nm;
+        }
     }
     return out;
 }
@@ -161,9 +165,11 @@ nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRende
             {"units", {{"thickness", "mm"}, {"sigma_a, sigma_s", "1/mm"}, {"phase", "1/sr"}}},
             {"layers", layers},
             {"read_back_largest_relative_difference", exported.read_back_difference},
-            {"phase_approximation", {{"largest_R_difference", exported.phase_error.largest_R_difference},
+            {"phase_approximation", {{"R_difference", exported.phase_error.R_differences},
+                                     {"largest_R_difference", exported.phase_error.largest_R_difference},
                                      {"at_nm", exported.phase_error.at_nm},
-                                     {"meaning", fmt::format("R of the media as written minus R of the material's own description, both by "
+                                     {"meaning", fmt::format("R of the media as written minus R of the material's own description (per "
+                                                             "wavelength, then the largest), both by "
                                                              "adding-doubling ({} channels): the phase functions as the renderer takes them, "
                                                              "at {} nm, in place of each layer's own at each wavelength",
                                                              phase_error_channels, format_number(media.phase_wavelength_nm))}}}};

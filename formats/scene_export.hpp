@@ -29,7 +29,8 @@ std::string_view rgb_caveat(SceneRenderer renderer);
 // phase_error_channels channels, the quadrature's own error far below).
 inline constexpr std::size_t phase_error_channels = 16;
 struct PhaseApproximationError {
-    double largest_R_difference = 0.0;  // R of the media as written - R of the description, largest in magnitude
+    std::vector<double> R_differences;  // R of the media as written - R of the description, per exported wavelength
+    double largest_R_difference = 0.0;  // the largest in magnitude
     double at_nm = 0.0;
 };
 

@@ -28,6 +28,12 @@ TEST_CASE("an export states what the renderer's phase functions change in R: not
     CHECK(std::abs(approximated.phase_error.largest_R_difference) > 1e-3);
     CHECK(std::abs(approximated.phase_error.largest_R_difference) < 0.03);
     CHECK(std::find(nm.begin(), nm.end(), approximated.phase_error.at_nm) != nm.end());
+    // One difference per exported wavelength; the largest is the one stated.
+    const auto& per_nm = approximated.phase_error.R_differences;
+    REQUIRE(per_nm.size() == nm.size());
+    const auto at = std::find(nm.begin(), nm.end(), approximated.phase_error.at_nm) - nm.begin();
+    CHECK(per_nm[at] == approximated.phase_error.largest_R_difference);
+    for (const double d : per_nm) CHECK(std::abs(d) <= std::abs(approximated.phase_error.largest_R_difference));
     // Mitsuba takes the profiles as tables at 550 nm, their scattering keeping each wavelength's reduced scattering.
     const auto tables = export_scene(stack, MediaRequest{nm}, SceneRenderer::mitsuba, folder / "measured.xml", true);
     CHECK(std::abs(tables.phase_error.largest_R_difference) < 0.002);
