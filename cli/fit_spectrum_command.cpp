@@ -350,7 +350,7 @@ void add_fit_spectrum_command(CLI::App& app) {
     cmd->add_option("--free", o->free,
                     "Free fields, LAYER.FIELD (comma list; default epidermis.melanosome_fraction, papillary_dermis.blood_fraction, "
                     "reticular_dermis.blood_fraction, dermis.oxygen_saturation): fields that change absorption only (also "
-                    "carotene_g_per_l, bilirubin_g_per_l, vessel_radius_um, ...) or thickness_cm of a layer without Rayleigh scattering")
+                    "carotene_g_per_l, bilirubin_g_per_l, vessel_radius_um, water_fraction, melanin_cluster_radius_um, ...) or thickness_cm of a layer without Rayleigh scattering")
         ->delimiter(',');
     cmd->add_option("--bounds", o->bounds, "FIELD=LO:HI for a free field (repeatable; defaults in docs/SPECTRUM_FIT.md)");
     add_geometry_option(*cmd, o->solver);
