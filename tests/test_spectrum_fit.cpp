@@ -119,7 +119,9 @@ TEST_CASE("the replayed model's analytic Jacobian equals central differences", "
         const auto r_up = fitter.model(up), r_down = fitter.model(down);
         for (std::size_t w = 0; w < base.size(); ++w) {
             INFO(fitter.keys()[j] << " at " << fitter.wavelengths_nm()[w] << " nm");
-            CHECK(jacobian[w][j] == Approx((r_up[w].value - r_down[w].value) / (2.0 * h)).epsilon(2e-3).margin(1e-6));
+            // margin: single-precision re-weighting leaves ~1e-7 of R (~0.2) in each difference, over 2h ~0.01: ~2e-6,
+            // which is the whole derivative near an isosbestic point (S at 545 nm: -3.3e-4).
+            CHECK(jacobian[w][j] == Approx((r_up[w].value - r_down[w].value) / (2.0 * h)).epsilon(2e-3).margin(5e-6));
         }
     }
 }
