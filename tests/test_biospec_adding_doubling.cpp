@@ -25,6 +25,21 @@ SpectralRequest request(std::vector<double> nm, double incidence_deg = 0.0) {
     return r;
 }
 
+// R of the walk (the model's independent Monte Carlo) to a standard error of 0.0005, and adding-doubling's at
+// `channels` on the grid `nm`.
+Estimate walk_reflectance(const LayerStack& stack, double nm) {
+    auto walk_request = request({nm});
+    walk_request.stderr_target = 0.0005;
+    walk_request.max_rays_per_wavelength = 4'000'000;
+    return solve_biospec(stack, walk_request).wavelengths[0].reflectance;
+}
+
+SpectralResult adding_doubling(const LayerStack& stack, std::vector<double> nm, std::size_t channels) {
+    BiospecAdOptions options;
+    options.ad.channels = channels;
+    return solve_biospec_adding_doubling_spectrum(stack, request(std::move(nm)), options);
+}
+
 // E_3(x) = (e^-x (1 - x) + x^2 E_1(x)) / 2 (Abramowitz & Stegun 5.1.14), E_1(x) = -Ei(-x).
 double exponential_integral_3(double x) { return 0.5 * (std::exp(-x) * (1.0 - x) - x * x * std::expint(-x)); }
 
@@ -109,15 +124,10 @@ TEST_CASE("BioSpec adding-doubling's stated accuracy covers its error where a gr
     // 0.0054 off. Against the walk (the model's independent Monte Carlo): the stated accuracy at 12 and 24 channels
     // covers the difference, and 96 channels converge.
     const auto stack = preset("forearm-nist2017-p10");
-    auto walk_request = request({700});
-    walk_request.stderr_target = 0.0005;
-    walk_request.max_rays_per_wavelength = 4'000'000;
-    const auto walk = solve_biospec(stack, walk_request).wavelengths[0].reflectance;
+    const auto walk = walk_reflectance(stack, 700.0);
     for (const std::size_t channels : {12, 24, 96}) {
         INFO(channels << " channels");
-        BiospecAdOptions options;
-        options.ad.channels = channels;
-        const auto ad = solve_biospec_adding_doubling_spectrum(stack, request({700}), options);
+        const auto ad = adding_doubling(stack, {700}, channels);
         const double difference = std::abs(ad.wavelengths[0].reflectance.value - walk.value);
         CHECK(difference <= ad.stated_error->R + 3.0 * walk.stderr);
         if (channels == 96) CHECK(difference <= 0.001 + 3.0 * walk.stderr);
@@ -129,13 +139,8 @@ TEST_CASE("BioSpec adding-doubling's stated accuracy covers a wide grid's least 
     // quadrature converges fast; at 750 nm light goes deep and 24 channels were 0.007 off while stating 0.0005 from
     // the other three. Against the walk (the model's independent Monte Carlo) the statement must cover the error.
     const auto stack = preset("forearm-nist2017-p50");
-    auto walk_request = request({750});
-    walk_request.stderr_target = 0.0005;
-    walk_request.max_rays_per_wavelength = 4'000'000;
-    const auto walk = solve_biospec(stack, walk_request).wavelengths[0].reflectance;
-    BiospecAdOptions options;
-    options.ad.channels = 24;
-    const auto ad = solve_biospec_adding_doubling_spectrum(stack, request({250, 750, 1375, 2500}), options);
+    const auto walk = walk_reflectance(stack, 750.0);
+    const auto ad = adding_doubling(stack, {250, 750, 1375, 2500}, 24);
     const double difference = std::abs(ad.wavelengths[1].reflectance.value - walk.value);
     CHECK(difference > 0.003);  // the case is a real one
     CHECK(difference <= ad.stated_error->R + 3.0 * walk.stderr);
