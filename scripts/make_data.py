@@ -297,6 +297,12 @@ def least_squares_line(xs, ys):
     return my - slope * mx, slope
 
 
+def log_log_fit(rows, fit_nm):
+    """ln A and slope of ln(value) = ln A + slope ln(lambda), least squares over the rows inside fit_nm."""
+    fit = [r for r in rows if fit_nm[0] <= r[0] <= fit_nm[1]]
+    return least_squares_line([math.log(r[0]) for r in fit], [math.log(r[1]) for r in fit])
+
+
 def tail_wavelengths(after_nm, end_nm):
     first = (int(after_nm) // TAIL_STEP_NM + 1) * TAIL_STEP_NM
     return [float(w) for w in range(first, end_nm + 1, TAIL_STEP_NM)]
@@ -304,8 +310,7 @@ def tail_wavelengths(after_nm, end_nm):
 
 def with_power_law_tail(rows, fit_nm, end_nm):
     """rows, then eps = A lambda^-b above them: A, b by least squares in log-log over fit_nm."""
-    fit = [r for r in rows if fit_nm[0] <= r[0] <= fit_nm[1]]
-    log_a, slope = least_squares_line([math.log(r[0]) for r in fit], [math.log(r[1]) for r in fit])
+    log_a, slope = log_log_fit(rows, fit_nm)
     tail = [[w, math.exp(log_a + slope * math.log(w))] for w in tail_wavelengths(rows[-1][0], end_nm)]
     return rows + tail, f"{math.exp(log_a):.4g} lambda^{slope:.4f}"
 
@@ -329,8 +334,7 @@ def with_anchored_power_law_tails(rows, short_fit_nm, long_fit_nm, start_nm, end
     laws = []
 
     def law(fit_nm, anchor):
-        fit = [r for r in rows if fit_nm[0] <= r[0] <= fit_nm[1]]
-        _, slope = least_squares_line([math.log(r[0] / 500.0) for r in fit], [math.log(r[1]) for r in fit])
+        _, slope = log_log_fit(rows, fit_nm)
         amplitude = anchor[1] / (anchor[0] / 500.0) ** slope
         laws.append(f"{fit_nm[0]}-{fit_nm[1]} nm: a = {amplitude:.4g} mm^-1, b = {-slope:.4f}")
         return lambda w: amplitude * (w / 500.0) ** slope
