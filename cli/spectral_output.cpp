@@ -414,7 +414,9 @@ void write_plot(const std::string& file, const ReportedSpectra& spectra) {
                     "Wavelength (nm)", any_t ? "Reflectance R, transmittance T (fraction)" : "Reflectance R (fraction)", curves);
 }
 
-void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings, const std::vector<const SpectralResult*>& results) {
+namespace {
+
+void print_warning_summary(const std::string& subject, const std::vector<const ResultWarning*>& warnings, const std::vector<const SpectralResult*>& results) {
     // A stated model error says with a number what diffusion's trust findings only hint at: when every result
     // states one, it replaces them on the terminal (they stay in the JSON), and it is printed once when it matters.
     const bool all_stated = !results.empty() && std::all_of(results.begin(), results.end(), [](const auto* r) { return r->stated_error.has_value(); });
@@ -432,11 +434,27 @@ void print_warning_summary(const std::string& subject, const std::vector<ResultW
                                  e.delta_e2000 ? fmt::format(", colour by CIEDE2000 {:.1f}", *e.delta_e2000) : std::string(), *e.meaning,
                                  all_stated ? "; the trust findings per layer are in the JSON" : "");
     }
-    std::vector<ResultWarning> shown;
-    for (const auto& w : warnings) {
-        if (!(all_stated && w.kind.starts_with(diffusion_warning_prefix))) shown.push_back(w);
+    std::vector<const ResultWarning*> shown;
+    for (const auto* w : warnings) {
+        if (!(all_stated && w->kind.starts_with(diffusion_warning_prefix))) shown.push_back(w);
     }
     for (const auto& line : summarise_warnings(shown)) std::cerr << "skinspec: warning: " << subject << ": " << line << '\n';
+}
+
+}  // namespace
+
+void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings, const std::vector<const SpectralResult*>& results) {
+    std::vector<const ResultWarning*> each;
+    for (const auto& w : warnings) each.push_back(&w);
+    print_warning_summary(subject, each, results);
+}
+
+void print_warning_summary(const std::string& subject, const std::vector<const SpectralResult*>& results) {
+    std::vector<const ResultWarning*> each;
+    for (const auto* r : results) {
+        for (const auto& w : r->warnings) each.push_back(&w);
+    }
+    print_warning_summary(subject, each, results);
 }
 
 }  // namespace skinspec::cli

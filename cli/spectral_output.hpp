@@ -52,5 +52,7 @@ inline constexpr double stated_color_error_worth_a_warning = 1.0;  // CIEDE2000
 inline constexpr double stated_R_error_worth_a_warning = 0.01;     // without a colour
 void print_warning_summary(const std::string& subject, const std::vector<ResultWarning>& warnings,
                            const std::vector<const SpectralResult*>& results = {});
+// The same for results: their warnings together (a sweep's members), read in place.
+void print_warning_summary(const std::string& subject, const std::vector<const SpectralResult*>& results);
 
 }  // namespace skinspec::cli

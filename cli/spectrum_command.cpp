@@ -134,14 +134,10 @@ void run_spectrum(const SpectrumOptions& o) {
     });
     // One summary per material, over all of its sweep's members.
     for (std::size_t i = 0, j = 0; i < spectra.size(); i = j) {
-        std::vector<ResultWarning> warnings;
         std::vector<const SpectralResult*> results;
-        for (j = i; j < spectra.size() && spectra[j].result.material == spectra[i].result.material; ++j) {
-            warnings.insert(warnings.end(), spectra[j].result.warnings.begin(), spectra[j].result.warnings.end());
-            results.push_back(&spectra[j].result);
-        }
+        for (j = i; j < spectra.size() && spectra[j].result.material == spectra[i].result.material; ++j) results.push_back(&spectra[j].result);
         const auto& name = spectra[i].result.material;
-        print_warning_summary(j - i > 1 ? name + " (" + std::to_string(j - i) + " results)" : name, warnings, results);
+        print_warning_summary(j - i > 1 ? name + " (" + std::to_string(j - i) + " results)" : name, results);
     }
     if (o.json) std::cout << to_json(spectra).dump(2) << '\n';
     else if (sweeps.empty()) std::cout << to_table(spectra);

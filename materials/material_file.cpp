@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "materials/material_fields.hpp"
+#include "materials/parameter_sweep.hpp"
 #include "spectral/data_paths.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
@@ -559,12 +560,11 @@ const NumberField<Owner>* number_field(const std::vector<NumberField<Owner>>& fi
 // the file reader (anything but a valid number of a field the stack already holds, a value out of range, a
 // contradiction): the caller then takes the TOML path, which gives the reader's own message. One table (the
 // field descriptors) serves both paths.
-bool set_number_in_place(LayerStack& stack, const MaterialOverride& o) {
-    const auto dot = o.key.find('.');
+bool set_number_in_place(LayerStack& stack, std::string_view key, std::optional<double> value) {
+    const auto dot = key.find('.');
     if (dot == std::string::npos) return false;
-    const auto head = std::string_view(o.key).substr(0, dot);
-    const auto name = std::string_view(o.key).substr(dot + 1);
-    const auto value = override_number(o);
+    const auto head = key.substr(0, dot);
+    const auto name = key.substr(dot + 1);
     if (!value) return false;
     if (head == "model") {
         for (const auto& f : model_fields()) {
@@ -581,34 +581,38 @@ bool set_number_in_place(LayerStack& stack, const MaterialOverride& o) {
         stack.*(f->member) = *value;
         return true;
     }
-    std::vector<TissueLayer*> layers;
-    for (auto& l : stack.layers) {
-        if (layer_matches(l.name, head)) layers.push_back(&l);
-    }
-    if (layers.empty()) return false;
-    if (const auto* f = number_field(layer_number_fields(), name)) {
-        if (!f->range.contains(*value)) return false;
-        for (const auto* l : layers) {
-            const double v_m = f->member == &TissueLayer::melanosome_fraction ? *value : l->melanosome_fraction;
-            const double v_b = f->member == &TissueLayer::blood_fraction ? *value : l->blood_fraction;
-            if (v_m + v_b > 1.0) return false;
+    // The layers the head names (checked, then set: a refusal leaves the stack as it was).
+    const auto matching = [&](TissueLayer& l) { return layer_matches(l.name, head); };
+    const auto all_matching = [&](const auto& condition) {
+        return std::all_of(stack.layers.begin(), stack.layers.end(), [&](TissueLayer& l) { return !matching(l) || condition(l); });
+    };
+    const auto set_matching = [&](const auto& set) {
+        for (auto& l : stack.layers) {
+            if (matching(l)) set(l);
         }
-        for (auto* l : layers) l->*(f->member) = *value;
         return true;
+    };
+    if (std::none_of(stack.layers.begin(), stack.layers.end(), matching)) return false;
+    if (const auto* f = number_field(layer_number_fields(), name)) {
+        const bool fits = all_matching([&](const TissueLayer& l) {
+            const double v_m = f->member == &TissueLayer::melanosome_fraction ? *value : l.melanosome_fraction;
+            const double v_b = f->member == &TissueLayer::blood_fraction ? *value : l.blood_fraction;
+            return v_m + v_b <= 1.0;
+        });
+        if (!fits || !f->range.contains(*value)) return false;
+        return set_matching([&](TissueLayer& l) { l.*(f->member) = *value; });
     }
     if (const auto* f = number_field(volumetric_fields(), name)) {
-        const bool plain = std::all_of(layers.begin(), layers.end(), [&](const TissueLayer* l) {
-            return l->volumetric && l->volumetric->source == VolumetricSource::power_law && !(name == "volumetric_g" && is_measured(l->volumetric->phase));
+        const bool plain = all_matching([&](const TissueLayer& l) {
+            return l.volumetric && l.volumetric->source == VolumetricSource::power_law && !(name == "volumetric_g" && is_measured(l.volumetric->phase));
         });
         if (!plain || !f->range.contains(*value)) return false;
-        for (auto* l : layers) (*l->volumetric).*(f->member) = *value;
-        return true;
+        return set_matching([&](TissueLayer& l) { (*l.volumetric).*(f->member) = *value; });
     }
     if (const auto* f = number_field(reduced_power_law_fields(), name)) {
-        const bool law = std::all_of(layers.begin(), layers.end(), [](const TissueLayer* l) { return l->reduced && l->reduced->table.empty(); });
+        const bool law = all_matching([](const TissueLayer& l) { return l.reduced && l.reduced->table.empty(); });
         if (!law || !f->range.contains(*value)) return false;
-        for (auto* l : layers) (*l->reduced).*(f->member) = *value;
-        return true;
+        return set_matching([&](TissueLayer& l) { (*l.reduced).*(f->member) = *value; });
     }
     return false;
 }
@@ -621,9 +625,19 @@ void assign_with_overrides(Material& into, const Material& material, const std::
     if (auto* stack = std::get_if<LayerStack>(&into)) {
         // Numbers (every sweep, most --set) are set in the material directly; anything else goes through the file
         // reader, which also words every refusal.
-        if (std::all_of(overrides.begin(), overrides.end(), [&](const MaterialOverride& o) { return set_number_in_place(*stack, o); })) return;
+        if (std::all_of(overrides.begin(), overrides.end(), [&](const MaterialOverride& o) { return set_number_in_place(*stack, o.key, override_number(o)); })) return;
     }
     into = parse_material(to_toml(material), "material " + material_name(material), overrides);
+}
+
+void assign_with_values(Material& into, const Material& material, const SweptValues& values) {
+    into = material;
+    if (auto* stack = std::get_if<LayerStack>(&into)) {
+        bool all = true;
+        for (std::size_t i = 0; i < values.size() && all; ++i) all = set_number_in_place(*stack, values.field(i), values.values[i]);
+        if (all) return;
+    }
+    assign_with_overrides(into, material, sweep_overrides(values));
 }
 
 Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "materials/layer_stack.hpp"
+#include "materials/swept_values.hpp"
 
 namespace skinspec {
 
@@ -50,6 +51,8 @@ Material parse_material(std::string_view toml_text, std::string_view source, con
 Material with_overrides(const Material& material, const std::vector<MaterialOverride>& overrides);
 // The same into `into`, reusing the memory it holds (a sweep builds thousands of members into a few materials).
 void assign_with_overrides(Material& into, const Material& material, const std::vector<MaterialOverride>& overrides);
+// The same for a sweep member's values (as --vary sets them), set typed where the fields allow (no text).
+void assign_with_values(Material& into, const Material& material, const SweptValues& values);
 // A preset name (file stem in data/materials) or a path to a .toml file.
 Material load_material(std::string_view name_or_file, const std::vector<MaterialOverride>& overrides = {});
 std::vector<std::filesystem::path> preset_files();

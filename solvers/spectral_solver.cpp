@@ -385,6 +385,8 @@ SweepMember SweepMembers::operator[](std::size_t i) const {
     if (!list_.empty()) return list_[i];
     SweepMember m{base_, {axes_.empty() ? nullptr : fields_, {}}, base_toml_, {}};
     // Its index on each axis: the first axis fastest (sweep_grid's order).
+    m.position.reserve(axes_.size());
+    m.varied.values.reserve(axes_.size());
     for (std::size_t a = 0, rest = i; a < axes_.size(); ++a) {
         m.position.push_back(rest % axes_[a].values.size());
         m.varied.values.push_back(axes_[a].values[m.position.back()]);

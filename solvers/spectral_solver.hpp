@@ -143,7 +143,7 @@ struct SweepMember {
     std::vector<std::size_t> position;  // its index on each axis of the sweep (empty: not on a lattice)
     std::vector<MaterialOverride> overrides() const { return sweep_overrides(varied); }
     Material material() const { return with_overrides(*base, overrides()); }
-    void build(Material& into) const { assign_with_overrides(into, *base, overrides()); }  // material() into `into`
+    void build(Material& into) const { assign_with_values(into, *base, varied); }  // material() into `into`
 };
 
 // A sweep's members, made one at a time when they are solved: a list given whole, or a lattice (every combination

@@ -84,23 +84,23 @@ ResultSettings all_settings(const SpectralResult& result) {
     return out;
 }
 
-std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings) {
+std::vector<std::string> summarise_warnings(const std::vector<const ResultWarning*>& warnings) {
     const auto first_seen = [](std::vector<std::string>& list, const std::string& item) {
         if (std::find(list.begin(), list.end(), item) == list.end()) list.push_back(item);
     };
     std::vector<std::string> kinds;
-    for (const auto& w : warnings) first_seen(kinds, w.kind);
+    for (const auto* w : warnings) first_seen(kinds, w->kind);
     std::vector<std::string> out;
     for (const auto& kind : kinds) {
         std::vector<std::string> subjects;
-        for (const auto& w : warnings) {
-            if (w.kind == kind) first_seen(subjects, w.subject);
+        for (const auto* w : warnings) {
+            if (w->kind == kind) first_seen(subjects, w->subject);
         }
         std::string line = kind + ": ";
         for (std::size_t s = 0; s < subjects.size(); ++s) {
             std::vector<const ResultWarning*> found;
-            for (const auto& w : warnings) {
-                if (w.kind == kind && w.subject == subjects[s]) found.push_back(&w);
+            for (const auto* w : warnings) {
+                if (w->kind == kind && w->subject == subjects[s]) found.push_back(w);
             }
             double lowest = INFINITY, highest = -INFINITY;
             for (const auto* w : found) {
@@ -115,6 +115,12 @@ std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& wa
         out.push_back(std::move(line));
     }
     return out;
+}
+
+std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings) {
+    std::vector<const ResultWarning*> each;
+    for (const auto& w : warnings) each.push_back(&w);
+    return summarise_warnings(each);
 }
 
 }  // namespace skinspec

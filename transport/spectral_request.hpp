@@ -110,7 +110,8 @@ struct ResultWarning {
 };
 // One line per kind, in order of first appearance:
 // "KIND: epidermis at 31 of them (400 nm to 700 nm, values 0.62 to 0.89); papillary_dermis at 400 nm (0.87)".
-std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings);
+std::vector<std::string> summarise_warnings(const std::vector<const ResultWarning*>& warnings);
+std::vector<std::string> summarise_warnings(const std::vector<ResultWarning>& warnings);  // of a list: the same
 
 // InputError "incidence angle A deg is outside [0, 90)" unless 0 <= A < 90 (every solver's one incidence check).
 void check_incidence_deg(double incidence_deg);

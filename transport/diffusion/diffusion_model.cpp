@@ -286,12 +286,13 @@ SpectralResult solve_diffusion_bands(const HomogeneousMaterial& material, const 
 }
 
 ResultWarning result_warning(const TrustWarning& w, const std::string& at) {
-    std::string kind;
-    if (w.kind == "albedo") kind = fmt::format("{}reduced albedo below {} (not trustworthy there)", diffusion_warning_prefix, diffusion_min_reduced_albedo);
-    else if (w.kind == "thin") kind = fmt::format("{}slab thinner than {} transport mean free paths (not trustworthy there)", diffusion_warning_prefix, diffusion_min_slab_mean_free_paths);
-    else kind = fmt::format("{}layer thinner than {} transport mean free paths, merged with its neighbour (fully below {})",
-                            diffusion_warning_prefix, diffusion_merge_none_above_mfp, diffusion_merge_fully_below_mfp);
-    return {kind, w.slab, at, w.value};
+    // Worded once (a sweep's members each carry a few).
+    static const std::string albedo = fmt::format("{}reduced albedo below {} (not trustworthy there)", diffusion_warning_prefix, diffusion_min_reduced_albedo);
+    static const std::string thin =
+        fmt::format("{}slab thinner than {} transport mean free paths (not trustworthy there)", diffusion_warning_prefix, diffusion_min_slab_mean_free_paths);
+    static const std::string merged = fmt::format("{}layer thinner than {} transport mean free paths, merged with its neighbour (fully below {})",
+                                                  diffusion_warning_prefix, diffusion_merge_none_above_mfp, diffusion_merge_fully_below_mfp);
+    return {w.kind == "albedo" ? albedo : w.kind == "thin" ? thin : merged, w.slab, at, w.value};
 }
 
 }  // namespace skinspec
