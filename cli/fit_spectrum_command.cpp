@@ -29,6 +29,10 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+// A fit whose model's stated accuracy exceeds this fraction of its residual RMS is reported (the quadrature, not the
+// skin, may shape it).
+constexpr double fit_model_accuracy_worth_a_warning = 0.5;
+
 struct FitSpectrumOptions {
     std::string measured;
     std::string preset;
@@ -114,6 +118,7 @@ Json fit_json(const SpectrumFit& f) {
                 {"parameter_stderr", stderr},
                 {"on_bound", bound},
                 {"rms", f.rms},
+                {"model_accuracy", f.model_accuracy ? Json(*f.model_accuracy) : Json(nullptr)},
                 {"delta_e2000", f.delta_e2000},
                 {"measured_lab", lab(f.measured_lab)},
                 {"fitted_lab", lab(f.fitted_lab)},
@@ -139,7 +144,7 @@ std::string csv_of(const std::vector<SpectrumFit>& fits, const std::string& prov
     out += "name";
     const auto& first = fits.front();
     for (const auto& k : first.parameter_keys) out += "," + k + "," + k + "_stderr";
-    out += ",on_bound,rms,delta_e2000,measured_L,measured_a,measured_b,fitted_L,fitted_a,fitted_b";
+    out += ",on_bound,rms,model_accuracy,delta_e2000,measured_L,measured_a,measured_b,fitted_L,fitted_a,fitted_b";
     for (const double nm : first.wavelength_nm) out += fmt::format(",fitted_{:g}nm", nm);
     for (const double nm : first.wavelength_nm) out += fmt::format(",fitted_stderr_{:g}nm", nm);
     out += '\n';
@@ -150,7 +155,8 @@ std::string csv_of(const std::vector<SpectrumFit>& fits, const std::string& prov
             out += fmt::format(",{:.6g},{}", f.parameters[i], std::isfinite(f.parameter_stderr[i]) ? fmt::format("{:.3g}", f.parameter_stderr[i]) : "");
             if (f.on_bound[i]) bound += (bound.empty() ? "" : ";") + f.parameter_keys[i];
         }
-        out += fmt::format(",{},{:.5f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", bound, f.rms, f.delta_e2000, f.measured_lab.L,
+        out += fmt::format(",{},{:.5f},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", bound, f.rms,
+                           f.model_accuracy ? fmt::format("{:.5f}", *f.model_accuracy) : "", f.delta_e2000, f.measured_lab.L,
                            f.measured_lab.a, f.measured_lab.b, f.fitted_lab.L, f.fitted_lab.a, f.fitted_lab.b);
         for (const double v : f.fitted) out += fmt::format(",{:.5f}", v);
         for (const double v : f.fitted_stderr) out += fmt::format(",{:.5f}", v);
@@ -168,14 +174,16 @@ std::string table_of(const std::vector<SpectrumFit>& fits) {
     for (const auto& f : fits) name_width = std::max(name_width, f.name.size());
     std::string out = fmt::format("{:<{}}", "spectrum", name_width);
     for (const auto& k : keys) out += fmt::format("  {:>{}}", k, width);
-    out += fmt::format("  {:>7}  {:>6}  {:>13}\n", "rms", "dE00", "L* meas/fit");
+    const bool stated = fits.front().model_accuracy.has_value();  // one engine for every fit
+    out += fmt::format("  {:>7}{}  {:>6}  {:>13}\n", "rms", stated ? fmt::format("  {:>8}", "model +-") : "", "dE00", "L* meas/fit");
     for (const auto& f : fits) {
         out += fmt::format("{:<{}}", f.name, name_width);
         for (std::size_t i = 0; i < keys.size(); ++i) {
             const std::string se = std::isfinite(f.parameter_stderr[i]) ? fmt::format("{:.2g}", f.parameter_stderr[i]) : "n/a";
             out += fmt::format("  {:>{}}", fmt::format("{:.4g} +- {}{}", f.parameters[i], se, f.on_bound[i] ? " *" : ""), width);
         }
-        out += fmt::format("  {:>7.4f}  {:>6.2f}  {:>6.1f}/{:<6.1f}\n", f.rms, f.delta_e2000, f.measured_lab.L, f.fitted_lab.L);
+        out += fmt::format("  {:>7.4f}{}  {:>6.2f}  {:>6.1f}/{:<6.1f}\n", f.rms, stated ? fmt::format("  {:>8.4f}", f.model_accuracy.value_or(0.0)) : "",
+                           f.delta_e2000, f.measured_lab.L, f.fitted_lab.L);
     }
     if (std::any_of(fits.begin(), fits.end(), [](const SpectrumFit& f) { return std::find(f.on_bound.begin(), f.on_bound.end(), true) != f.on_bound.end(); })) {
         out += "* on a bound of its range (--bounds FIELD=LO:HI widens it)\n";
@@ -214,6 +222,9 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
         throw InputError("--mode: fit-spectrum fits with biospec (the walk's paths, replayed) or biospec-adding-doubling (the model solved exactly), not '" +
                          o.solver.mode + "'");
     }
+    if (o.solver.switches.contains("channels") && engine != FitEngine::adding_doubling) {
+        throw InputError("--channels: the quadrature of --mode biospec-adding-doubling (--mode biospec replays traced paths and has none)");
+    }
     if (!o.output.empty()) check_output_path(o.output, o.force, {".csv", ".json"});
     if (!o.plot.empty()) {
         check_output_path(o.plot, o.force, {".png", ".svg"});
@@ -245,6 +256,7 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
 
     SpectrumFitSettings settings;
     settings.engine = engine;
+    if (const auto channels = solver_switches(o.solver).quadrature_channels) settings.channels = *channels;
     settings.free = free_parameters(o);
     if (!o.window.empty()) std::tie(settings.window_from_nm, settings.window_to_nm) = parse_range(o.window, "--window");
     settings.weights = weights_of(o);
@@ -329,6 +341,23 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
         std::cerr << fmt::format("{} spectra fitted in {:.2f} s ({}; {:.2f} s per spectrum): median RMS {:.4f}, worst {:.4f}\n", fits.size(), seconds, setup,
                                  (seconds - trace_seconds) / static_cast<double>(fits.size()), median(rms), *std::max_element(rms.begin(), rms.end()))
                   << "mean residual (fitted - measured): " << band_text << '\n';
+        // The exact model's quadrature error is systematic: where it is not small beside the residual, the fit may
+        // follow the quadrature rather than the skin.
+        std::vector<const SpectrumFit*> coarse;
+        double largest = 0.0;
+        for (const auto& f : fits) {
+            if (!f.model_accuracy) continue;
+            largest = std::max(largest, *f.model_accuracy);
+            if (*f.model_accuracy > fit_model_accuracy_worth_a_warning * f.rms) coarse.push_back(&f);
+        }
+        if (exact) std::cerr << fmt::format("the model's stated accuracy at the fits ({} channels): largest {:.4f}\n", settings.channels, largest);
+        if (!coarse.empty()) {
+            std::cerr << fmt::format("skinspec: warning: at {} of {} fits (e.g. {}: {:.4f} against RMS {:.4f}) the model's stated accuracy is more "
+                                     "than {:g} of the residual RMS: the {}-channel quadrature may shape the fit; --channels {} (about 8x the "
+                                     "time) reduces it\n",
+                                     coarse.size(), fits.size(), coarse.front()->name, *coarse.front()->model_accuracy, coarse.front()->rms,
+                                     fit_model_accuracy_worth_a_warning, settings.channels, 2 * settings.channels);
+        }
     }
     if (InterruptGuard::interrupted()) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": " << fits.size() << " of " << chosen.size()
@@ -357,6 +386,7 @@ void add_fit_spectrum_command(CLI::App& app) {
     cmd->add_option("--mode", o->solver.mode,
                     "How the BioSpec model is evaluated: biospec (default: paths traced once and re-weighted, Monte Carlo) or "
                     "biospec-adding-doubling (solved exactly at every evaluation: no noise, any layer field free)");
+    add_switch_option(*cmd, o->solver, SolverSwitch::channels);
     cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();
     cmd->add_option("--window", o->window, "Fit only the wavelengths in FROM:TO nm (default: all of the file)");
     cmd->add_option("--weight", o->weights, "FROM:TO=W: residuals in [FROM, TO] nm count W times (repeatable; default 1)");

@@ -15,16 +15,20 @@ void add_solver_options(CLI::App& command, SolverOptions& o, const std::string& 
     for (const auto* s : solver_registry()) modes += "\n  " + std::string(s->name()) + ": " + std::string(s->description());
     command.add_option("--mode", o.mode, "Solver (default " + default_text + "):" + modes);
     for (const auto& d : switch_descriptors()) {
-        if (!d.parse) continue;
-        std::string takers;
-        for (const auto* s : solver_registry()) {
-            const auto& declared = s->capabilities().switches;
-            if (std::find(declared.begin(), declared.end(), d.id) != declared.end()) takers += (takers.empty() ? "" : ", ") + std::string(s->name());
-        }
-        command.add_option_function<std::string>(
-            "--" + std::string(d.name), [&o, name = std::string(d.name)](const std::string& value) { o.switches[name] = value; },
-            takers + ": " + std::string(d.values));
+        if (d.parse) add_switch_option(command, o, d.id);
     }
+}
+
+void add_switch_option(CLI::App& command, SolverOptions& o, SolverSwitch id) {
+    const auto& d = describe(id);
+    std::string takers;
+    for (const auto* s : solver_registry()) {
+        const auto& declared = s->capabilities().switches;
+        if (std::find(declared.begin(), declared.end(), d.id) != declared.end()) takers += (takers.empty() ? "" : ", ") + std::string(s->name());
+    }
+    command.add_option_function<std::string>(
+        "--" + std::string(d.name), [&o, name = std::string(d.name)](const std::string& value) { o.switches[name] = value; },
+        takers + ": " + std::string(d.values));
 }
 
 const SpectralSolver& chosen_solver(const SolverOptions& o, std::string_view fallback) {

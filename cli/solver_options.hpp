@@ -21,6 +21,8 @@ struct SolverOptions {
 // Adds --mode and one option per switch descriptor, with help texts naming the solvers that declare each. `default_text` describes
 // the default of --mode ("biospec"); an empty options.mode means "the command's default".
 void add_solver_options(CLI::App& command, SolverOptions& options, const std::string& default_text = "biospec");
+// One switch's option alone (a command that offers only some solvers, e.g. fit-spectrum's --channels).
+void add_switch_option(CLI::App& command, SolverOptions& options, SolverSwitch id);
 
 // The solver named by --mode, or `fallback` when --mode was not given.
 const SpectralSolver& chosen_solver(const SolverOptions& options, std::string_view fallback = "biospec");

@@ -190,3 +190,34 @@ TEST_CASE("a material of 17 layers fits: the gradient has one entry per layer", 
     CHECK(fit.parameters[0] == Approx(stack.layers[1].melanosome_fraction).epsilon(0.25));
     CHECK(fit.rms < 0.01);
 }
+
+TEST_CASE("the exact model's fit states its quadrature accuracy, and it bounds the distance to the converged quadrature", "[spectrum_fit]") {
+    // Lightly pigmented skin has the longest paths, where the quadrature converges slowest. The fitted spectrum at 8
+    // channels is compared with the same parameters solved at 96 (the converged reference, docs/ADDING_DOUBLING.md):
+    // the stated accuracy must cover the difference at every fitted wavelength.
+    const std::vector<double> nm{400.0, 450.0, 500.0, 550.0, 600.0, 650.0, 700.0};
+    SpectrumFitSettings settings;
+    settings.free = default_free_parameters();
+    settings.engine = FitEngine::adding_doubling;
+    settings.channels = 8;
+    settings.starts = 1;
+    const auto base = preset("biospec-lightly");
+    const SpectrumFitter coarse(base, nm, settings);
+    std::vector<double> measured;
+    for (const auto& e : coarse.model({0.02, 0.01, 0.01, 0.7})) measured.push_back(e.value + 0.003);
+    const auto fit = coarse.fit("synthetic", measured);
+    REQUIRE(fit.model_accuracy.has_value());
+    settings.channels = 96;
+    const auto converged = SpectrumFitter(base, nm, settings).model(fit.parameters);
+    double largest = 0.0;
+    for (std::size_t w = 0; w < nm.size(); ++w) largest = std::max(largest, std::abs(fit.fitted[w] - converged[w].value));
+    INFO("stated " << *fit.model_accuracy << ", largest |R(8 channels) - R(96)| " << largest);
+    CHECK(largest > 1e-4);  // the check has something to cover
+    CHECK(largest <= *fit.model_accuracy);
+
+    SpectrumFitSettings walk;
+    walk.free = default_free_parameters();
+    walk.rays_per_wavelength = 2000;
+    walk.starts = 1;
+    CHECK_FALSE(SpectrumFitter(base, nm, walk).fit("synthetic", measured).model_accuracy.has_value());
+}

@@ -179,17 +179,27 @@ std::vector<Estimate> SpectrumFitter::model(const std::vector<double>& parameter
 }
 
 // `parameters` empty: the base material's own values.
+BiospecAdOptions SpectrumFitter::exact_options(bool accuracy_check) const {
+    BiospecAdOptions options;
+    options.ad = AdOptions{settings_.channels, accuracy_check};
+    options.fold_into_skin = settings_.walk.fold_into_skin;
+    options.thin_layer_hg = settings_.walk.thin_layer_hg;
+    return options;
+}
+
+LayerStack SpectrumFitter::stack_at(const std::vector<double>& parameters) const {
+    auto stack = base_;
+    for (std::size_t p = 0; p < parameters.size(); ++p) handles_[p].set(stack, parameters[p]);
+    return stack;
+}
+
 std::vector<Estimate> SpectrumFitter::exact_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const {
     // One cache per thread: the measured profiles' moments and redistribution matrices outlive the evaluations.
     thread_local AdCache cache;
-    BiospecAdOptions options;
-    options.ad = AdOptions{settings_.channels, false};
-    options.fold_into_skin = settings_.walk.fold_into_skin;
-    options.thin_layer_hg = settings_.walk.thin_layer_hg;
+    const auto options = exact_options(false);
     const bool excluded = settings_.geometry == MeasurementGeometry::sce;
     const auto values = [&](const std::vector<double>& at) {
-        auto stack = base_;
-        for (std::size_t p = 0; p < at.size(); ++p) handles_[p].set(stack, at[p]);
+        const auto stack = stack_at(at);
         std::vector<double> r;
         for (const double nm : wavelengths_nm_) {
             const auto t = solve_biospec_adding_doubling(stack, nm, settings_.incidence_deg, options, &cache).totals;
@@ -215,8 +225,7 @@ std::vector<Estimate> SpectrumFitter::exact_model(const std::vector<double>& par
 }
 
 std::vector<Estimate> SpectrumFitter::replayed_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const {
-    auto stack = base_;
-    for (std::size_t p = 0; p < handles_.size(); ++p) handles_[p].set(stack, parameters[p]);
+    const auto stack = stack_at(parameters);
     const std::size_t layers = stack.layers.size(), n = paths_.size(), free = handles_.size();
     std::vector<double> scale(layers);
     for (std::size_t k = 0; k < layers; ++k) scale[k] = stack.layers[k].thickness_cm / base_.layers[k].thickness_cm;
@@ -377,6 +386,15 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
         weighted_sq += weights_[w] * r * r;
     }
     fit.rms = std::sqrt(sum_sq / static_cast<double>(n));
+    if (settings_.engine == FitEngine::adding_doubling) {
+        // The quadrature's error is systematic: stated beside the residual it is part of (the spectrum command's check).
+        SpectralRequest request;
+        request.wavelengths = WavelengthGrid::list(wavelengths_nm_);
+        request.incidence_deg = settings_.incidence_deg;
+        request.geometry = settings_.geometry;
+        const auto checked = solve_biospec_adding_doubling_spectrum(stack_at(fit.parameters), request, exact_options(true));
+        if (checked.stated_error) fit.model_accuracy = checked.stated_error->R;
+    }
 
     // Standard errors (sandwich form): Cov = A^-1 B A^-1, A = J^T W J, B = J^T W diag(s^2 + m_w^2) W J, with J the
     // model's Jacobian at the optimum (the analytic one of the replayed model), s^2 the residual variance per degree

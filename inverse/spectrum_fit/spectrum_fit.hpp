@@ -17,6 +17,7 @@
 #include "spectral/cie.hpp"
 #include "spectral/colorimetry.hpp"
 #include "transport/adding_doubling/adding_doubling.hpp"
+#include "transport/adding_doubling/biospec_adding_doubling.hpp"
 #include "transport/biospec/biospec_options.hpp"
 #include "transport/biospec/biospec_walk.hpp"
 #include "transport/spectral_request.hpp"
@@ -75,6 +76,10 @@ struct SpectrumFit {
     std::vector<double> measured;
     std::vector<double> fitted;
     std::vector<double> fitted_stderr;     // Monte Carlo standard error of the model at the optimum
+    // adding_doubling: the stated accuracy of the fitted R (adding-doubling's own check at the optimum: twice the
+    // largest change with every segment's channels doubled, at the first, middle, last and least absorbed fitted
+    // wavelength). A systematic error of the model, not noise; unset for the replayed walk (its noise is fitted_stderr).
+    std::optional<double> model_accuracy;
     Lab measured_lab, fitted_lab;
     double delta_e2000 = 0.0;
     std::size_t evaluations = 0;
@@ -119,6 +124,8 @@ public:
 private:
     std::vector<Estimate> replayed_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const;
     std::vector<Estimate> exact_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const;
+    BiospecAdOptions exact_options(bool accuracy_check) const;
+    LayerStack stack_at(const std::vector<double>& parameters) const;  // the base with the free fields set
     LayerStack base_;
     SpectrumFitSettings settings_;
     std::vector<LayerFieldHandle> handles_;
