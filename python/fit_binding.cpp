@@ -6,6 +6,7 @@
 #include "formats/measured_spectra.hpp"
 #include "inverse/spectrum_fit/spectrum_fit.hpp"
 #include "python/bindings.hpp"
+#include "solvers/solver_switches.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -53,6 +54,7 @@ py::object fit_object(const SpectrumFit& f) {
     d["parameter_stderr"] = stderrs;
     d["on_bound"] = on_bound;
     d["rms"] = f.rms;
+    d["model_accuracy"] = f.model_accuracy ? py::object(py::float_(*f.model_accuracy)) : py::object(py::none());
     d["wavelength_nm"] = to_array(f.wavelength_nm, {n});
     d["measured"] = to_array(f.measured, {n});
     d["fitted"] = to_array(f.fitted, {n});
@@ -69,7 +71,23 @@ py::object fit_object(const SpectrumFit& f) {
 py::object fit_spectrum(const py::object& wavelengths, const py::object& measured, const py::object& material, const py::object& free,
                         const py::object& bounds, const py::object& window, const py::object& weights, const py::object& rays,
                         const py::object& seed, const std::string& geometry, const py::object& incidence_deg, const py::object& starts, const py::object& names,
-                        const py::object& threads, const py::object& progress) {
+                        const std::string& mode, const py::object& channels, const py::object& threads, const py::object& progress) {
+    // How the model is evaluated (as the command's --mode), checked before any input is read.
+    FitEngine engine = FitEngine::replayed_walk;
+    if (mode == "biospec-adding-doubling") {
+        engine = FitEngine::adding_doubling;
+        if (!rays.is_none() || !seed.is_none()) {
+            throw InputError(std::string(rays.is_none() ? "seed" : "rays") +
+                             ": mode 'biospec-adding-doubling' solves the model exactly at every evaluation and traces no rays (rays and seed are for "
+                             "mode 'biospec', the replayed walk)");
+        }
+    } else if (mode != "biospec") {
+        throw InputError("mode: fit_spectrum fits with 'biospec' (the walk's paths, replayed) or 'biospec-adding-doubling' (the model solved exactly), not '" +
+                         mode + "'");
+    }
+    if (!channels.is_none() && engine != FitEngine::adding_doubling) {
+        throw InputError("channels: the quadrature of mode 'biospec-adding-doubling' (mode 'biospec' replays traced paths and has none)");
+    }
     const auto nm = finite_vector(wavelengths, "wavelengths");
     WavelengthGrid::list(nm, "wavelengths");
     if (nm.size() < min_measured_points) {
@@ -101,6 +119,12 @@ py::object fit_spectrum(const py::object& wavelengths, const py::object& measure
     if (!stack) throw InputError("material '" + material_name(base.material) + "' is homogeneous: the fit needs a layered skin for the BioSpec walk");
 
     SpectrumFitSettings settings;
+    settings.engine = engine;
+    if (!channels.is_none()) {
+        SolverSwitches switches;
+        describe(SolverSwitch::channels).parse(switches, py::str(channels).cast<std::string>(), "channels");
+        settings.channels = *switches.quadrature_channels;
+    }
     settings.free = free_parameters(free, bounds);
     if (!window.is_none()) {
         const auto w = finite_vector(window, "window");
@@ -115,8 +139,8 @@ py::object fit_spectrum(const py::object& wavelengths, const py::object& measure
             settings.weights.push_back({w[0], w[1], w[2]});
         }
     }
-    settings.rays_per_wavelength = whole_number(rays, 1, 1e12, "rays");
-    settings.seed = whole_number(seed, 0, 9.223372036854775808e18, "seed");
+    if (!rays.is_none()) settings.rays_per_wavelength = whole_number(rays, 1, 1e12, "rays");
+    if (!seed.is_none()) settings.seed = whole_number(seed, 0, 9.223372036854775808e18, "seed");
     settings.geometry = parse_measurement_geometry(geometry, "geometry");
     settings.incidence_deg = one_number(incidence_deg, "incidence_deg");
     settings.starts = whole_number(starts, 1, static_cast<double>(SpectrumFitSettings::scan_points), "starts");
@@ -146,12 +170,16 @@ void bind_fit(py::module_& m) {
     wavelengths: 1-D, nm (at least 5); measured: one spectrum (1-D) or several (spectra x wavelengths), values in
     [0, 1.5]. material: the base (default biospec-moderately) the free fields start from; free: the fields (default
     melanosome fraction, papillary and reticular blood fraction, oxygen saturation); bounds={field: (lo, hi)};
-    window=(from_nm, to_nm); weights=[(from_nm, to_nm, weight), ...]. Returns a skinspec.Fit (a list of them for
-    2-D input) with parameters and standard errors, RMS, the fitted spectrum and CIEDE2000 to the measured colour.)doc",
+    window=(from_nm, to_nm); weights=[(from_nm, to_nm, weight), ...]. mode: 'biospec' (default: paths traced once,
+    rays per wavelength (default 20000) and seed (default 1), re-weighted) or 'biospec-adding-doubling' (the model
+    solved exactly at every evaluation; channels: its quadrature, default 24). Returns a skinspec.Fit (a list of them
+    for 2-D input) with parameters and standard errors, RMS, the fitted spectrum, CIEDE2000 to the measured colour and,
+    for the exact model, model_accuracy: the quadrature's stated accuracy of the fitted R.)doc",
           py::arg("wavelengths"), py::arg("measured"), py::arg("material") = py::none(), py::kw_only(), py::arg("free") = py::none(),
-          py::arg("bounds") = py::none(), py::arg("window") = py::none(), py::arg("weights") = py::none(), py::arg("rays") = 20'000,
-          py::arg("seed") = 1, py::arg("geometry") = "sci", py::arg("incidence_deg") = 0.0, py::arg("starts") = SpectrumFitSettings{}.starts, py::arg("names") = py::none(),
-          py::arg("threads") = py::none(), py::arg("progress") = py::none());
+          py::arg("bounds") = py::none(), py::arg("window") = py::none(), py::arg("weights") = py::none(), py::arg("rays") = py::none(),
+          py::arg("seed") = py::none(), py::arg("geometry") = "sci", py::arg("incidence_deg") = 0.0, py::arg("starts") = SpectrumFitSettings{}.starts,
+          py::arg("names") = py::none(), py::arg("mode") = "biospec", py::arg("channels") = py::none(), py::arg("threads") = py::none(),
+          py::arg("progress") = py::none());
 }
 
 }  // namespace skinspec::python

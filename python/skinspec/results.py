@@ -99,6 +99,8 @@ class Fit:
     delta_e2000: float
     evaluations: int
     seconds: float
+    # mode 'biospec-adding-doubling': the quadrature's stated accuracy of the fitted R (None for the replayed walk).
+    model_accuracy: Optional[float] = None
 
     def __repr__(self) -> str:
         values = ", ".join(f"{k}={v:.4g}" for k, v in self.parameters.items())

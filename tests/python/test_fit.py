@@ -40,6 +40,19 @@ def test_fit_recovers_the_melanin_of_model_spectra():
     assert isinstance(one, skinspec.Fit) and one.name == "measured"
 
 
+def test_the_exact_model_fit_states_its_quadrature_accuracy(cli):
+    # mode and channels as the command's --mode and --channels: the same fit, the same stated accuracy.
+    nm, measured = two_spectra()
+    free = ["epidermis.melanosome_fraction"]
+    ours = skinspec.fit_spectrum(nm, measured[0], free=free, mode="biospec-adding-doubling", channels=8, starts=1)
+    theirs = cli("fit-spectrum", os.path.join(INPUTS, "fit_two.csv"), "--spectra", "light", "--free", free[0],
+                 "--mode", "biospec-adding-doubling", "--channels", "8", "--starts", "1")["fits"][0]
+    assert ours.model_accuracy is not None and ours.model_accuracy > 0
+    assert ours.model_accuracy == pytest.approx(theirs["model_accuracy"], abs=1e-12)
+    assert ours.parameters[free[0]] == pytest.approx(theirs["parameters"][free[0]], abs=1e-12)
+    assert skinspec.fit_spectrum(nm, measured[0], free=free, rays=500, starts=1).model_accuracy is None
+
+
 @pytest.mark.parametrize("change, message", [
     (dict(measured=np.ones((2, 2, 16)) * 0.3), "expected shape"),
     (dict(measured=np.full(16, 1.6)), r"outside \[0, 1.5\]"),
@@ -50,6 +63,10 @@ def test_fit_recovers_the_melanin_of_model_spectra():
     (dict(bounds={"epidermis.melanosome_fraction": (0.2, 0.1)}), "lo < hi"),
     (dict(material="jensen2001-skin1"), "homogeneous"),
     (dict(names=["a", "b", "c"]), "3 given for 1 spectra"),
+    (dict(mode="rte"), "mode: fit_spectrum fits with"),
+    (dict(mode="biospec-adding-doubling"), "rays: mode 'biospec-adding-doubling'"),
+    (dict(channels=48), "channels: the quadrature"),
+    (dict(mode="biospec-adding-doubling", rays=None, channels=2), r"channels = 2 is outside \[4, 256\]"),
 ])
 def test_bad_fit_input_raises(change, message):
     nm, measured = two_spectra()
