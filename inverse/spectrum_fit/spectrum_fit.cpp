@@ -18,6 +18,7 @@
 #include "spectral/text_fields.hpp"
 #include "transport/adding_doubling/biospec_adding_doubling.hpp"
 #include "transport/biospec/biospec_solver.hpp"
+#include "transport/random_stream.hpp"
 
 namespace skinspec {
 namespace {
@@ -164,8 +165,38 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
     request.max_rays_per_wavelength = settings.rays_per_wavelength;
     request.cancel = settings.cancel;
     auto paths = record_biospec_paths(base_, request, settings.walk);
-    if (paths) paths_ = std::move(*paths);
-    else cancelled_ = true;
+    if (!paths) {
+        cancelled_ = true;
+        return;
+    }
+    paths_ = std::move(*paths);
+    thin_paths();
+}
+
+void SpectrumFitter::thin_paths() {
+    // The floor: each layer's smallest effective absorption (mu_a times its thickness ratio) over the corners of the
+    // bounds. Absorption is multilinear in the fractions and concentrations, so its extremes are corners; the
+    // packaging factors make it only nearly so, and a floor above some evaluated absorption raises that
+    // evaluation's variance, never its mean (ExitPaths::thin). Beyond 8 free fields (256 corners) nothing is thinned.
+    const std::size_t free = handles_.size();
+    if (free > max_thinning_fields) return;
+    const std::size_t corners = std::size_t{1} << free, layers = base_.layers.size();
+    std::vector<LayerStack> corner_stacks;
+    for (std::size_t c = 0; c < corners; ++c) {
+        auto stack = base_;
+        for (std::size_t j = 0; j < free; ++j) handles_[j].set(stack, (c >> j) & 1 ? bounds_[j].second : bounds_[j].first);
+        corner_stacks.push_back(std::move(stack));
+    }
+    tbb::parallel_for(std::size_t{0}, paths_.size(), [&](std::size_t w) {
+        std::vector<double> floor(layers, std::numeric_limits<double>::infinity());
+        for (const auto& stack : corner_stacks) {
+            for (std::size_t k = 0; k < layers; ++k) {
+                const double scale = stack.layers[k].thickness_cm / base_.layers[k].thickness_cm;
+                floor[k] = std::min(floor[k], absorption_per_cm(stack.layers[k], wavelengths_nm_[w], stack.model) * scale);
+            }
+        }
+        paths_[w].thin(floor, RandomStream::for_batch(settings_.seed, wavelengths_nm_[w], thinning_stream).bits64());
+    });
 }
 
 std::uint64_t SpectrumFitter::rays() const {

@@ -125,6 +125,10 @@ private:
     std::vector<Estimate> replayed_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const;
     std::vector<Estimate> exact_model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const;
     BiospecAdOptions exact_options(bool accuracy_check) const;
+    // Analog absorption at the bounds' floor on the recorded exits (ExitPaths::thin), after they are traced.
+    void thin_paths();
+    static constexpr std::size_t max_thinning_fields = 8;
+    static constexpr std::uint64_t thinning_stream = 0x7468696eULL;  // the thinning's random numbers: not the walk's batches
     LayerStack stack_at(const std::vector<double>& parameters) const;  // the base with the free fields set
     LayerStack base_;
     SpectrumFitSettings settings_;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "transport/random_stream.hpp"
+
 namespace skinspec {
 namespace {
 
@@ -19,6 +21,23 @@ void ExitPaths::append(const ExitPaths& other) {
     for (std::size_t k = 0; k < other.layer_path_cm.size(); ++k) {
         layer_path_cm[k].insert(layer_path_cm[k].end(), other.layer_path_cm[k].begin(), other.layer_path_cm[k].end());
     }
+}
+
+void ExitPaths::thin(const std::vector<double>& floor_per_cm, std::uint64_t seed) {
+    const std::size_t n = exits(), layers = layer_path_cm.size();
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double tau = 0.0;
+        for (std::size_t k = 0; k < layers; ++k) tau += floor_per_cm[k] * static_cast<double>(layer_path_cm[k][i]);
+        if (RandomStream::keyed_uniform(seed, i) >= std::exp(-tau)) continue;
+        for (std::size_t k = 0; k < layers; ++k) layer_path_cm[k][kept] = layer_path_cm[k][i];
+        ++kept;
+    }
+    for (auto& l : layer_path_cm) {
+        l.resize(kept);
+        l.shrink_to_fit();
+    }
+    thinned_at_per_cm = floor_per_cm;
 }
 
 // Three versions chosen at load time by the CPU (GCC function multiversioning): AVX-512 (16-wide expf), AVX2 (8-wide)
@@ -37,7 +56,7 @@ Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vect
         const std::size_t m = std::min(chunk, n - start);
         std::fill(tau, tau + m, 0.0f);
         for (std::size_t k = 0; k < layers; ++k) {
-            const float mu = static_cast<float>(mu_a[k] * scale[k]);
+            const float mu = static_cast<float>(mu_a[k] * scale[k] - (thinned_at_per_cm.empty() ? 0.0 : thinned_at_per_cm[k]));
             const float* p = layer_path_cm[k].data() + start;
             for (std::size_t i = 0; i < m; ++i) tau[i] += mu * p[i];
         }

@@ -15,6 +15,8 @@ struct ExitPaths {
     std::uint64_t surface_exits = 0;  // first-surface reflections into the geometry (no path in the skin)
     double factor = 1.0;              // each exit's contribution (1, or 1 / band for 0/45)
     std::vector<std::vector<float>> layer_path_cm;  // [layer][exit], layer-major so that re-weighting vectorises
+    // After thin(): the effective absorption per layer [1/cm] the kept exits survived (empty: every exit kept).
+    std::vector<double> thinned_at_per_cm;
 
     void resize_layers(std::size_t layers) { layer_path_cm.resize(layers); }
     std::size_t layers() const { return layer_path_cm.size(); }
@@ -23,6 +25,13 @@ struct ExitPaths {
         for (std::size_t k = 0; k < layer_path_cm.size(); ++k) layer_path_cm[k].push_back(static_cast<float>(path_cm_per_layer[k]));
     }
     void append(const ExitPaths& other);
+    // Analog absorption at a floor (Russian roulette on the recorded exits): each exit is kept with probability
+    // exp(-sum_k m_k L_k), m_k = floor_per_cm[k] >= 0, and re-weighting then applies only the absorption above the
+    // floor, exp(-sum_k (mu_a,k scale_k - m_k) L_k): the same expectation for every absorption (unbiased for any
+    // floor; with the floor below every absorption asked for, each weight stays <= 1). The exits a fit can only
+    // weigh little (long paths) go, and with them most of its memory traffic. Draws from `seed` in exit order:
+    // reproducible, independent of threads. Once per ExitPaths.
+    void thin(const std::vector<double>& floor_per_cm, std::uint64_t seed);
     // R for the absorption coefficients mu_a [1/cm] per layer (scale_k multiplies layer k's paths: a thickness
     // ratio for layers whose paths scale with thickness), and its standard error over the rays. Single precision
     // per exit (relative error ~1e-6, far below the Monte Carlo error), sums in double.
