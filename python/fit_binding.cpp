@@ -6,7 +6,6 @@
 #include "formats/measured_spectra.hpp"
 #include "inverse/spectrum_fit/spectrum_fit.hpp"
 #include "python/bindings.hpp"
-#include "solvers/solver_switches.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -121,9 +120,9 @@ py::object fit_spectrum(const py::object& wavelengths, const py::object& measure
     SpectrumFitSettings settings;
     settings.engine = engine;
     if (!channels.is_none()) {
-        SolverSwitches switches;
-        describe(SolverSwitch::channels).parse(switches, py::str(channels).cast<std::string>(), "channels");
-        settings.channels = *switches.quadrature_channels;
+        py::kwargs quadrature;  // read as every switch keyword is (call_support's solver_switches)
+        quadrature["channels"] = channels;
+        settings.channels = *solver_switches(quadrature).quadrature_channels;
     }
     settings.free = free_parameters(free, bounds);
     if (!window.is_none()) {
