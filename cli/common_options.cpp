@@ -3,10 +3,17 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "transport/spectral_request.hpp"
+
 namespace skinspec::cli {
 
 CLI::Option* add_seed_option(CLI::App& command, std::uint64_t& seed, const std::string& help) {
     return command.add_option("--seed", seed, help)->capture_default_str()->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 63));
+}
+
+CLI::Option* add_ray_count_option(CLI::App& command, const std::string& name, std::uint64_t& rays, const std::string& help) {
+    return command.add_option(name, rays, help + " (at least " + std::to_string(minimum_rays_per_wavelength) + ": the standard error comes from the rays' spread)")
+        ->check(CLI::Range(minimum_rays_per_wavelength, maximum_rays_per_wavelength));
 }
 
 void check_option_values(CLI::App& app) {

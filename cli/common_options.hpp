@@ -1,6 +1,6 @@
 #pragma once
-// Options many commands share, declared once with their checks: --seed (a whole number in [0, 2^63]) and
-// --overwrite (alias --force). Material options: cli/material_options.hpp; solver options: cli/solver_options.hpp.
+// Options many commands share, declared once with their checks: --seed (a whole number in [0, 2^63]), the ray
+// counts and --overwrite (alias --force). Material options: cli/material_options.hpp; solver options: cli/solver_options.hpp.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -10,6 +10,9 @@
 namespace skinspec::cli {
 
 CLI::Option* add_seed_option(CLI::App& command, std::uint64_t& seed, const std::string& help = "Random seed");
+// A Monte Carlo ray count or budget per wavelength (--rays, --max-rays): a whole number in
+// [minimum_rays_per_wavelength, maximum_rays_per_wavelength] (transport/spectral_request.hpp says why the minimum).
+CLI::Option* add_ray_count_option(CLI::App& command, const std::string& name, std::uint64_t& rays, const std::string& help);
 CLI::Option* add_overwrite_flag(CLI::App& command, bool& overwrite, const std::string& help = "Replace existing output files");
 // Checks added to every option of `app` and its subcommands by type, one place for every command present and future:
 // a number (FLOAT) refuses nan and inf, which CLI11's own range checks let through ("--stderr nan" was accepted); a

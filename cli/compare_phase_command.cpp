@@ -140,7 +140,7 @@ void add_compare_phase_command(CLI::App& app) {
     cmd->add_option("--hg-source", o->hg_source, "g for HG: rms (fitted, Eq. 9), van-gemert, or a number in [-1, 1]")->capture_default_str();
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--stderr", o->stderr_target, "Standard error target per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
-    cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and run")->capture_default_str()->check(CLI::PositiveNumber);
+    add_ray_count_option(*cmd, "--max-rays", o->max_rays, "Ray budget per wavelength and run")->capture_default_str();
     add_seed_option(*cmd, o->seed, "Random seed");
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--plot", o->plot, "Plot the spectra to FILE.png or FILE.svg");

@@ -125,7 +125,7 @@ void add_export_lut_command(CLI::App& exporter) {
     cmd->add_option("--display", o->display, "OCIO display of the preview")->capture_default_str();
     cmd->add_option("--view", o->view, "OCIO view of the preview")->capture_default_str();
     add_seed_option(*cmd, o->seed, "Random seed");
-    cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and texel")->capture_default_str()->check(CLI::PositiveNumber);
+    add_ray_count_option(*cmd, "--max-rays", o->max_rays, "Ray budget per wavelength and texel")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads per process (default: all cores)")->check(CLI::Range(1u, 1024u));
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the summary as JSON");

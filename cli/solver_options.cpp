@@ -69,8 +69,7 @@ MeasurementGeometry measurement_geometry(const SolverOptions& o) {
 }
 
 void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64_t& seed) {
-    command.add_option("--rays", rays, "rte: photons per wavelength for R(r) (default 1000000); refused by deterministic solvers")
-        ->check(CLI::PositiveNumber);
+    add_ray_count_option(command, "--rays", rays, "rte: photons per wavelength for R(r) (default 1000000); refused by deterministic solvers");
     add_seed_option(command, seed, "rte: random seed");
 }
 

@@ -274,7 +274,9 @@ std::string to_table(const ReportedSpectra& spectra) {
     const auto estimate = [&](const Estimate& e) {
         return uncertain ? fmt::format("{:.4f} +- {:.4f}", e.value, e.stderr) : fmt::format("{:.4f}", e.value);
     };
-    if (spectra.size() > 1) {
+    const bool reflectance_of_each =
+        std::all_of(spectra.results.begin(), spectra.results.end(), [](const SpectralResult& r) { return r.quantities.reflectance; });
+    if (spectra.size() > 1 && reflectance_of_each) {
         // Side by side: total reflectance of every material.
         out += key_header;
         for (const auto& r : spectra.results) out += fmt::format("  {:>22}", r.material.substr(0, 22));
@@ -288,15 +290,19 @@ std::string to_table(const ReportedSpectra& spectra) {
             out += '\n';
         }
     } else {
-        const auto columns = scalar_columns(first);
-        out += key_header;
-        for (const auto& c : columns) out += fmt::format("  {:>20}", c.name.substr(0, 20));
-        out += uncertain ? fmt::format("  {:>10}\n", "rays") : "\n";
-        for (std::size_t i = 0; i < first.wavelengths.size(); ++i) {
-            const auto& w = first.wavelengths[i];
-            out += key(first, i);
-            for (const auto& c : columns) out += fmt::format("  {:>20}", estimate(c.get(w)));
-            out += uncertain ? fmt::format("  {:>10}\n", w.rays) : "\n";
+        // Each material's requested quantities (without R, side by side would show a quantity nobody asked for).
+        for (const auto& r : spectra.results) {
+            if (spectra.size() > 1) out += (&r == &first ? "" : "\n") + r.material + ":\n";
+            const auto columns = scalar_columns(r);
+            out += key_header;
+            for (const auto& c : columns) out += fmt::format("  {:>20}", c.name.substr(0, 20));
+            out += uncertain ? fmt::format("  {:>10}\n", "rays") : "\n";
+            for (std::size_t i = 0; i < r.wavelengths.size(); ++i) {
+                const auto& w = r.wavelengths[i];
+                out += key(r, i);
+                for (const auto& c : columns) out += fmt::format("  {:>20}", estimate(c.get(w)));
+                out += uncertain ? fmt::format("  {:>10}\n", w.rays) : "\n";
+            }
         }
     }
     out += '\n';

@@ -180,11 +180,11 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--layers", o->layers, "Simulate only these layers (comma list), e.g. stratum_corneum,epidermis")->delimiter(',');
     cmd->add_option("--wavelengths", o->wavelengths, "FIRST:LAST:STEP, one wavelength or a comma list (nm)")->capture_default_str();
     cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();
-    auto* rays = cmd->add_option("--rays", o->rays, "Fixed number of rays per wavelength")->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
+    auto* rays = add_ray_count_option(*cmd, "--rays", o->rays, "Fixed number of rays per wavelength");
     auto* se = cmd->add_option("--stderr", o->stderr_target, "Stop each wavelength once the standard error of R (and T) is below this (default 0.002)")
                    ->check(CLI::PositiveNumber);
     rays->excludes(se);
-    cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength with --stderr")->capture_default_str()->check(CLI::PositiveNumber);
+    add_ray_count_option(*cmd, "--max-rays", o->max_rays, "Ray budget per wavelength with --stderr")->capture_default_str();
     add_seed_option(*cmd, o->seed, "Random seed (results are identical for any thread count)");
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();

@@ -220,7 +220,7 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--view", o->view, "OCIO view for PNG/TIFF")->capture_default_str();
     cmd->add_option("--patch-size", o->patch_px, "Patch size in pixels")->capture_default_str();
     add_seed_option(*cmd, o->seed, "Random seed");
-    cmd->add_option("--max-rays", o->max_rays, "Ray budget per wavelength and patch")->capture_default_str()->check(CLI::PositiveNumber);
+    add_ray_count_option(*cmd, "--max-rays", o->max_rays, "Ray budget per wavelength and patch")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the patches as JSON");

@@ -53,7 +53,7 @@ py::list compare_phase(const py::object& material, const py::object& wavelengths
     const double target = one_number(stderr_target, "stderr");
     if (!(target > 0.0)) throw InputError("stderr = " + format_number(target) + " is outside (0, inf)");
     request.stderr_target = target;
-    request.max_rays_per_wavelength = whole_number(max_rays, 1, 1e12, "max_rays");
+    request.max_rays_per_wavelength = whole_number(max_rays, static_cast<double>(minimum_rays_per_wavelength), static_cast<double>(maximum_rays_per_wavelength), "max_rays");
     request.seed = whole_number(seed, 0, 9.223372036854775808e18, "seed");
     const ThreadLimit limit(threads);
     std::vector<PhaseComparison> comparisons;

@@ -202,12 +202,12 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
     }
     spectral.max_rays_per_wavelength = 10'000'000;  // as the CLI's --max-rays
     if (!max_rays.is_none()) {
-        spectral.max_rays_per_wavelength = whole_number(max_rays, 1, 1.125899906842624e15, "max_rays");
+        spectral.max_rays_per_wavelength = whole_number(max_rays, static_cast<double>(minimum_rays_per_wavelength), static_cast<double>(maximum_rays_per_wavelength), "max_rays");
         request.sampling_options.push_back("max_rays");
     }
     if (!rays.is_none() && !stderr_target.is_none()) throw InputError("rays and stderr: give one (a fixed ray count or a target), not both");
     if (!rays.is_none()) {
-        request.fixed_rays_per_wavelength = whole_number(rays, 1, 1.125899906842624e15, "rays");
+        request.fixed_rays_per_wavelength = whole_number(rays, static_cast<double>(minimum_rays_per_wavelength), static_cast<double>(maximum_rays_per_wavelength), "rays");
     } else if (!stderr_target.is_none()) {
         const double target = one_number(stderr_target, "stderr");
         if (!(target > 0.0)) throw InputError("stderr = " + py::str(stderr_target).cast<std::string>() + " is outside (0, inf)");

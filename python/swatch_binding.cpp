@@ -128,7 +128,7 @@ SwatchRequest swatch_request_argument(const std::string& material, const py::obj
         request.sampling_options.push_back("seed");
     }
     if (!max_rays.is_none()) {
-        request.max_rays_per_wavelength = whole_number(max_rays, 1, 1.125899906842624e15, "max_rays");
+        request.max_rays_per_wavelength = whole_number(max_rays, static_cast<double>(minimum_rays_per_wavelength), static_cast<double>(maximum_rays_per_wavelength), "max_rays");
         request.sampling_options.push_back("max_rays");
     }
     return request;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <unordered_map>
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include "materials/path_key.hpp"
@@ -272,6 +273,16 @@ void check_request_settings(const SpectralSolver& solver, const SolverRequest& r
         throw InputError(who + " is deterministic: it takes no standard-error target or ray count (Monte Carlo solvers: " +
                          offered_by([](const SolverCapabilities& c) { return c.uncertainty; }) + ")");
     }
+    if (caps.uncertainty) {
+        const auto count = [](std::string_view name, std::uint64_t rays) {
+            if (rays < minimum_rays_per_wavelength || rays > maximum_rays_per_wavelength) {
+                throw InputError(fmt::format("{} = {} is outside [{}, {}]: a Monte Carlo standard error needs at least {} rays per wavelength",
+                                             name, rays, minimum_rays_per_wavelength, maximum_rays_per_wavelength, minimum_rays_per_wavelength));
+            }
+        };
+        if (request.fixed_rays_per_wavelength) count("--rays", *request.fixed_rays_per_wavelength);
+        else count("--max-rays", request.spectral.max_rays_per_wavelength);
+    }
     refuse_sampling_options(solver, request.sampling_options);
     check_switches(solver, request.switches);
     check_overrides(solver, request.overrides);
@@ -289,7 +300,10 @@ void check_request(const SpectralSolver& solver, const Material& material, const
         throw InputError("solver '" + std::string(solver.name()) + "' is deterministic: it takes no ray count (Monte Carlo solvers with radial profiles: " +
                          offered_by([](const SolverCapabilities& c) { return c.uncertainty && c.radial_profiles; }) + ")");
     }
-    if (request.rays_per_wavelength && *request.rays_per_wavelength == 0) throw InputError("--rays 0 is outside [1, inf)");
+    if (request.rays_per_wavelength && *request.rays_per_wavelength < minimum_rays_per_wavelength) {
+        throw InputError(fmt::format("--rays = {} is outside [{}, {}]: a Monte Carlo standard error needs at least {} rays per wavelength",
+                                     *request.rays_per_wavelength, minimum_rays_per_wavelength, maximum_rays_per_wavelength, minimum_rays_per_wavelength));
+    }
 }
 
 namespace {

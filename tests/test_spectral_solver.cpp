@@ -61,6 +61,22 @@ TEST_CASE("a request for what a solver does not declare is refused with one mess
                       "solver 'biospec' does not compute radial profiles R(r) (solvers that do: rte, matched-multipole, multipole, dipole)");
 }
 
+TEST_CASE("a Monte Carlo result needs 100 rays per wavelength for its standard error (one ray reported R +- 0)", "[solver]") {
+    const auto skin = load_material("biospec-lightly");
+    for (const char* name : {"biospec", "rte"}) {
+        CHECK_THROWS_WITH(solve_spectrum(find_solver(name), skin, one_wavelength(1)),
+                          "--rays = 1 is outside [100, 1125899906842624]: a Monte Carlo standard error needs at least 100 rays per wavelength");
+        auto budget = SolverRequest{};
+        budget.spectral.stderr_target = 0.01;
+        budget.spectral.max_rays_per_wavelength = 99;
+        CHECK_THROWS_WITH(solve_spectrum(find_solver(name), skin, budget), Catch::Contains("--max-rays = 99 is outside [100, "));
+    }
+    // The fewest give a standard error from the rays' spread.
+    CHECK(solve_spectrum(find_solver("biospec"), skin, one_wavelength(minimum_rays_per_wavelength)).wavelengths.front().reflectance.stderr > 0.0);
+    CHECK_THROWS_WITH(solve_profiles(find_solver("rte"), skin, ProfileRequest{WavelengthGrid::list({550.0}), {0.0, 1.0}, false, {}, 99}),
+                      Catch::Contains("--rays = 99 is outside [100, "));
+}
+
 TEST_CASE("every declared capability is served", "[solver]") {
     const auto skin = load_material("biospec-lightly");  // every skin preset describes itself for every solver
     for (const auto* solver : solver_registry()) {

@@ -55,6 +55,14 @@ struct Estimate {
     double stderr = 0.0;
 };
 
+// The fewest rays per wavelength a Monte Carlo result may be computed from (a fixed count or a budget). Its standard
+// error is estimated from the rays' own spread, and that estimate's relative standard deviation is about
+// 1 / sqrt(2 (n - 1)) for n rays (7 % at 100); one ray has no spread at all (it reported R +- 0), and a few rays
+// that all miss report 0 +- 0.
+inline constexpr std::uint64_t minimum_rays_per_wavelength = 100;
+// The most: 2^50 (about 1.1e15), far beyond any run's time, and exact in a double (Python's numbers).
+inline constexpr std::uint64_t maximum_rays_per_wavelength = std::uint64_t{1} << 50;
+
 // Cooperative cancellation: solvers check it between batches of rays.
 using CancelFlag = std::atomic<bool>;
 

@@ -110,7 +110,7 @@ def test_threads_do_not_change_the_numbers():
     (dict(wavelengths=[400, float("nan"), 600]), r"wavelengths\[1\] = nan is not a finite number"),
     (dict(wavelengths=[600, 500]), "increasing"),
     (dict(wavelengths="400:700:10"), "expected numbers"),
-    (dict(rays=0), r"rays = 0 is outside \[1, "),
+    (dict(rays=0), r"rays = 0 is outside \[100, "),
     (dict(rays=100, stderr=0.01), "not both"),
     (dict(stderr=-1.0), r"stderr = -1.0 is outside \(0, inf\)"),
     (dict(seed=-1), r"seed = -1 is outside \[0, "),
