@@ -59,7 +59,10 @@ void add_geometry_option(CLI::App& command, SolverOptions& o) {
 MeasurementGeometry measurement_geometry(const SolverOptions& o) {
     const auto geometry = parse_measurement_geometry(o.geometry, "--geometry");
     static bool noted = false;  // once per command, however often it asks
-    if (geometry == MeasurementGeometry::zero_45 && !noted) {
+    // Only where it applies: a solver that refuses 0-45, or computes it without rays, is told nothing about rays.
+    const auto& caps = chosen_solver(o).capabilities();
+    const bool measures = std::find(caps.geometries.begin(), caps.geometries.end(), geometry) != caps.geometries.end();
+    if (geometry == MeasurementGeometry::zero_45 && measures && caps.uncertainty && !noted) {
         noted = true;
         // Measured: biospec-lightly, --stderr 0.002, 31 wavelengths: sci 0.28 s, 0-45 2.24 s (docs/BIOSPEC.md).
         std::cerr << "skinspec: note: --geometry 0-45 counts only the rays leaving at 40-50 deg: the same standard error takes about 8x "

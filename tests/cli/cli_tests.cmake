@@ -48,6 +48,7 @@ skinspec_cli_test("fit-profile radial" 0 "R +2\\.19000 \\+- [0-9.e-]+ +0\\.00200
 skinspec_cli_test("fit-profile patches" 0 "l +2\\.1[89][0-9]* .* 6[0-9]\\.[0-9][0-9]" fit-profile --patches patches.csv --step 0.05)
 skinspec_cli_test("spectrum provenance" 0 "\"provenance\": \\{[^}]*\"solver\": \"biospec\"[^]]*\"key\": \"epidermis.melanosome_fraction\",[^}]*\"value\": 0.03" spectrum --preset biospec-lightly --set epidermis.melanosome_fraction=0.03 --wavelengths 550 --rays 100 --json)
 skinspec_cli_test("swatch in a diffusion mode" 0 "2 patches, 0 rays" swatch --mode multipole --vary epidermis.melanosome_fraction=0.01:0.2:2)
+skinspec_cli_test("swatch says when its colour target is not met, and why" 0 "2 patches, 0 rays .* at most [1-9][0-9.]* \\(target 0.3 NOT met: the solver's own stated error\\)" swatch --mode dipole --vary epidermis.melanosome_fraction=0.01:0.4:2)
 skinspec_cli_test("color of spectrum's CSV" 0 "XYZ" color spectrum_result.csv --material skin_b --column T)
 skinspec_cli_test("spectrum vary grid" 0 "epidermis.melanosome_fraction +dermis.blood_fraction.*4 results" spectrum --preset biospec-lightly --vary epidermis.melanosome_fraction=0.01:0.1:2:log --vary dermis.blood_fraction=0.005:0.02:2 --wavelengths 400:700:20 --rays 500)
 skinspec_cli_test("spectrum vary json records values" 0 "\"varied\": \\{\n *\"epidermis.melanosome_fraction\": 0.1" spectrum --preset biospec-lightly --vary epidermis.melanosome_fraction=0.01:0.1:2 --wavelengths 550 --rays 200 --json)
