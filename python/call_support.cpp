@@ -158,6 +158,8 @@ py::array_t<double, py::array::c_style> finite_array(const py::handle& value, st
 
 std::vector<std::string> name_list(const py::handle& value, std::string_view what) {
     std::vector<std::string> out;
+    // A dict iterates its keys: its values would be dropped without a word (swatch(vary={field: values})).
+    if (py::isinstance<py::dict>(value)) throw InputError(std::string(what) + ": expected a string or a list of strings, not a dict");
     if (py::isinstance<py::str>(value)) {
         const auto text = value.cast<std::string>();
         for (std::size_t start = 0; start <= text.size();) {

@@ -128,7 +128,7 @@ void bind_exports(py::module_& m) {
 
     material: a preset name or .toml path; output: the linear OpenEXR texture (one texel per melanin column and blood
     row); melanin, blood: "FIRST:LAST:STEPS[:log]" of epidermis.melanosome_fraction and dermis.blood_fraction; set:
-    {field: value} overrides; delta_e: each texel's CIEDE2000 uncertainty target; solver, seed, max_rays, geometry
+    {field: value} overrides; delta_e: each texel's CIEDE2000 uncertainty target; mode (the solver, as --mode), seed, max_rays, geometry
     (default "sce"): as skinspec.swatch; space: the texture's linear working space; half: half float; spectra: also
     the reflectance spectra (.exr, one channel per wavelength, or .csv); preview: also a display-referred image with
     labelled axes (.png, .tif) in `display` / `view`; overwrite: replace existing files; the solver's switches as
@@ -137,7 +137,7 @@ void bind_exports(py::module_& m) {
     seconds) and the files written.)doc",
           py::arg("material"), py::arg("output"), py::kw_only(), py::arg("melanin") = "0.01:0.42:64:log",
           py::arg("blood") = "0.002:0.05:64:log", py::arg("set") = py::none(), py::arg("delta_e") = 0.5, py::arg("illuminant") = "D65",
-          py::arg("observer") = "2", py::arg("solver") = "biospec", py::arg("seed") = py::none(), py::arg("max_rays") = py::none(),
+          py::arg("observer") = "2", py::arg("mode") = "biospec", py::arg("seed") = py::none(), py::arg("max_rays") = py::none(),
           py::arg("geometry") = "sce", py::arg("space") = "ACEScg", py::arg("half") = false, py::arg("spectra") = py::none(),
           py::arg("preview") = py::none(), py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("threads") = py::none(),
           py::arg("progress") = py::none(), py::arg("overwrite") = false);

@@ -92,7 +92,7 @@ void bind_image_fit(py::module_& m) {
     channel value (None: estimated from the residuals); gamut_sigma: a residual above this many noise sigmas is outside
     the model's gamut; edit: "FIELD=*SCALE" or "FIELD=VALUE" (or a list): the image re-rendered with the fitted fields
     changed, returned as "edited" (fitted pixels whose edited fields leave the table unchanged, counted in
-    "edit"); solver (default "biospec-adding-doubling"), geometry (default "sce"), delta_e,
+    "edit"); mode (the solver, as --mode; default "biospec-adding-doubling"), geometry (default "sce"), delta_e,
     illuminant, observer, seed, max_rays, threads, progress (called with the table's nodes, then the image's rows) and
     solver switches as skinspec.swatch takes them. Returns the command's --json
     summary with "maps": (height, width) arrays named as the maps' OpenEXR channels (both fields, "FIELD.stderr",
@@ -100,7 +100,7 @@ void bind_image_fit(py::module_& m) {
           py::arg("image"), py::kw_only(), py::arg("material") = "biospec-moderately", py::arg("melanin") = "0.005:0.45:24:log",
           py::arg("blood") = "0.001:0.1:16:log", py::arg("set") = py::none(), py::arg("space") = "Linear Rec.709", py::arg("bands") = py::none(),
           py::arg("white") = 1.0, py::arg("noise") = py::none(), py::arg("gamut_sigma") = 4.0, py::arg("edit") = py::none(),
-          py::arg("solver") = "biospec-adding-doubling", py::arg("geometry") = "sce", py::arg("delta_e") = 0.5, py::arg("illuminant") = "D65",
+          py::arg("mode") = "biospec-adding-doubling", py::arg("geometry") = "sce", py::arg("delta_e") = 0.5, py::arg("illuminant") = "D65",
           py::arg("observer") = "2", py::arg("seed") = py::none(), py::arg("max_rays") = py::none(), py::arg("threads") = py::none(),
           py::arg("progress") = py::none());
 }

@@ -215,14 +215,15 @@ void bind_swatch(py::module_& m) {
 
     material: a preset name or .toml path; vary: "FIELD=FIRST:LAST:STEPS[:log]" strings (first: columns, second:
     rows; default for a skin: melanosome fraction 0.01-0.42 in 8 log steps by dermal blood 0.002-0.05 in 5); set:
-    {field: value} overrides; delta_e: each patch's CIEDE2000 uncertainty target; space: the colour space of the
+    {field: value} overrides; delta_e: each patch's CIEDE2000 uncertainty target; mode: the solver (as --mode; default the
+    BioSpec walk); space: the colour space of the
     "rgb" array (linear working-space values, white = 1); output: also the chart image, one path or a list (.exr
     linear in `space`; .png, .tif display-referred through display / view, with labelled axes), patch_size in pixels,
     checked before any work; the solver's switches as keywords (e.g. channels=16). Returns a dict of (rows, columns,
     ...) numpy arrays: parameters, XYZ, Lab, rgb, reflectance and its stderr per wavelength, delta_e2000_uncertainty,
     ita_deg, category; and the files written.)doc",
           py::arg("material") = "biospec-moderately", py::arg("vary") = py::none(), py::kw_only(), py::arg("set") = py::none(),
-          py::arg("delta_e") = SwatchRequest{}.delta_e, py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("solver") = "biospec",
+          py::arg("delta_e") = SwatchRequest{}.delta_e, py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("mode") = "biospec",
           py::arg("seed") = py::none(), py::arg("max_rays") = py::none(), py::arg("geometry") = "sci", py::arg("space") = "ACEScg",
           py::arg("output") = py::none(), py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard",
           py::arg("patch_size") = SwatchFiles{}.patch_px, py::arg("overwrite") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());

@@ -75,7 +75,7 @@ def test_export_profile_equals_the_command_and_keeps_total_reflectance(tmp_path)
 
 def test_export_lut_equals_the_command(tmp_path):
     axes = dict(melanin="0.01:0.42:3:log", blood="0.002:0.05:2:log")
-    ours = skinspec.export_lut("biospec-moderately", tmp_path / "py.exr", solver="adding-doubling", spectra=tmp_path / "py.csv", **axes)
+    ours = skinspec.export_lut("biospec-moderately", tmp_path / "py.exr", mode="adding-doubling", spectra=tmp_path / "py.csv", **axes)
     run("export", "lut", "--melanin", axes["melanin"], "--blood", axes["blood"], "--mode", "adding-doubling", "-o", str(tmp_path / "cli.exr"),
         "--spectra", str(tmp_path / "cli.csv"))
     assert open(tmp_path / "py.csv").read() == open(tmp_path / "cli.csv").read()

@@ -11,7 +11,7 @@ FAST = dict(delta_e=1.0, channels=8, melanin="0.005:0.45:12:log", blood="0.001:0
 def test_fit_image_recovers_the_fields_of_a_swatch_made_by_the_model():
     # An "image": the model's own albedo at 3 x 2 fields between the table's nodes (skinspec.swatch, linear Rec.709).
     truth = skinspec.swatch("biospec-moderately", ["epidermis.melanosome_fraction=0.02:0.2:3:log", "dermis.blood_fraction=0.004:0.04:2:log"],
-                            solver="biospec-adding-doubling", geometry="sce", delta_e=1.0, space="Linear Rec.709", channels=8)
+                            mode="biospec-adding-doubling", geometry="sce", delta_e=1.0, space="Linear Rec.709", channels=8)
     out = skinspec.fit_image(truth["rgb"], noise=0.002, edit="epidermis.melanosome_fraction=*0.5", **FAST)
     maps = out["maps"]
     assert maps["status"].shape == (2, 3)

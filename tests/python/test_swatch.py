@@ -23,14 +23,17 @@ def test_swatch_equals_the_command(cli):
 
 def test_swatch_defaults_and_refusals():
     with pytest.raises(skinspec.InputError, match="seed: solver 'dipole' is deterministic"):
-        skinspec.swatch("biospec-lightly", ["epidermis.melanosome_fraction=0.02:0.2:2"], solver="dipole", seed=1)
+        skinspec.swatch("biospec-lightly", ["epidermis.melanosome_fraction=0.02:0.2:2"], mode="dipole", seed=1)
     with pytest.raises(skinspec.InputError, match="vary"):
         skinspec.swatch("biospec-lightly", ["epidermis.melanosome_fraction"])
+    # A dict iterated its keys, its values dropped; skinspec.spectrum's form is refused here with a message.
+    with pytest.raises(skinspec.InputError, match="vary: expected a string or a list of strings, not a dict"):
+        skinspec.swatch("biospec-lightly", {"epidermis.melanosome_fraction": [0.01, 0.2]})
     # Not a skin (no epidermis, no dermis): one patch, no default sweep, as the command.
     one = skinspec.swatch(os.path.join(INPUTS, "white_reflector.toml"), delta_e=1)
     assert one["shape"] == (1, 1) and one["fields"] == []
     with pytest.raises(skinspec.InputError, match="is given per band; a swatch needs reflectance spectra"):
-        skinspec.swatch("jensen2001-skin1", solver="dipole")
+        skinspec.swatch("jensen2001-skin1", mode="dipole")
 
 
 def test_lit_swatch_conserves_energy_and_writes_its_files(tmp_path):
@@ -69,9 +72,9 @@ def test_swatch_writes_the_chart_files(tmp_path):
 def test_swatch_takes_the_solver_switches():
     # Honoured, not ignored: the switch reaches the solver, which checks it (and refuses a switch it does not take).
     with pytest.raises(skinspec.InputError, match=r"channels = 2 is outside \[4, 256\]"):
-        skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="biospec-adding-doubling", channels=2)
+        skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", mode="biospec-adding-doubling", channels=2)
     with pytest.raises(skinspec.InputError, match="does not take the switch 'channels'"):
-        skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="dipole", channels=8)
-    coarse = skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="biospec-adding-doubling", geometry="sce", channels=8)
-    fine = skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", solver="biospec-adding-doubling", geometry="sce", channels=32)
+        skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", mode="dipole", channels=8)
+    coarse = skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", mode="biospec-adding-doubling", geometry="sce", channels=8)
+    fine = skinspec.swatch(vary="epidermis.melanosome_fraction=0.05:0.05:1", mode="biospec-adding-doubling", geometry="sce", channels=32)
     assert coarse["delta_e2000_uncertainty"][0, 0] > fine["delta_e2000_uncertainty"][0, 0]
