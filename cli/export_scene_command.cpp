@@ -88,6 +88,16 @@ void run_export_scene(const SceneOptions& o, SceneRenderer renderer) {
                              "description at {} nm, the largest difference (adding-doubling, {} channels, both)\n",
                              format_number(media.phase_wavelength_nm), exported.phase_error.largest_R_difference, format_number(exported.phase_error.at_nm),
                              phase_error_channels);
+    if (const auto& gap = exported.description_gap) {
+        std::cout << fmt::format("the media are the skin's volumetric description: against its BioSpec description (spectrum's default mode) R "
+                                 "{:+.4f} +- {:.4f} at {} nm, the largest difference{} (adding-doubling and biospec-adding-doubling, {} channels, with their "
+                                 "stated accuracy)\n",
+                                 gap->largest_R_difference, gap->accuracy, format_number(gap->at_nm),
+                                 gap->delta_e2000 ? fmt::format(", colour CIEDE2000 {:.2f}", *gap->delta_e2000) : std::string(), phase_error_channels);
+    } else {
+        std::cout << "the media are the skin's volumetric description; its BioSpec description is not solved exactly (" << exported.description_gap_why_not
+                  << "), so their difference is not stated\n";
+    }
 }
 
 void add_scene_command(CLI::App& exporter, SceneRenderer renderer) {

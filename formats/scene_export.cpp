@@ -11,9 +11,12 @@
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
+#include "spectral/ciede2000.hpp"
+#include "spectral/colorimetry.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 #include "transport/adding_doubling/adding_doubling.hpp"
+#include "transport/adding_doubling/biospec_adding_doubling.hpp"
 #include "transport/rte/rte_model.hpp"
 
 namespace skinspec {
@@ -56,11 +59,47 @@ std::string_view phase_kind(RendererPhase::Kind kind) {
     return "henyey-greenstein";
 }
 
+// R of the volumetric description (what the media hold before the renderer's phase approximation).
+AdResult volumetric_solution(const RteStack& stack, AdCache& cache, bool accuracy_check = false) {
+    return solve_adding_doubling(stack, AdIncidence{false, 0.0}, AdOptions{phase_error_channels, accuracy_check}, &cache);
+}
+double volumetric_reflectance(const RteStack& stack, AdCache& cache) {
+    const auto r = volumetric_solution(stack, cache);
+    return r.diffuse_reflectance + r.specular_reflectance;
+}
+
+DescriptionGap description_gap(const LayerStack& stack, const std::vector<double>& wavelengths_nm) {
+    AdCache volumetric_cache, biospec_cache;
+    const auto biospec_solution = [&](double nm, bool accuracy_check) {
+        return solve_biospec_adding_doubling(stack, nm, 0.0, BiospecAdOptions{AdOptions{phase_error_channels, accuracy_check}}, &biospec_cache).totals;
+    };
+    DescriptionGap gap;
+    std::vector<double> volumetric, biospec;
+    for (const double nm : wavelengths_nm) {
+        volumetric.push_back(volumetric_reflectance(rte_stack_from(stack, nm), volumetric_cache));
+        const auto b = biospec_solution(nm, false);
+        biospec.push_back(b.diffuse_reflectance + b.specular_reflectance);
+        gap.R_differences.push_back(volumetric.back() - biospec.back());
+        if (std::abs(gap.R_differences.back()) > std::abs(gap.largest_R_difference)) {
+            gap.largest_R_difference = gap.R_differences.back();
+            gap.at_nm = nm;
+        }
+    }
+    // Where the gap is largest, the two solutions' own accuracy (adding-doubling's check with every segment's channels
+    // doubled): a gap within it is not resolved.
+    gap.accuracy = volumetric_solution(rte_stack_from(stack, gap.at_nm), volumetric_cache, true).accuracy + biospec_solution(gap.at_nm, true).accuracy;
+    if (has_color_span(wavelengths_nm)) {
+        const TristimulusWeights weights(wavelengths_nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
+        const auto lab = [&](const std::vector<double>& r) { return xyz_to_lab(weights.integrate(r), weights.white()); };
+        gap.delta_e2000 = ciede2000(lab(biospec), lab(volumetric));
+    }
+    return gap;
+}
+
 // The media's phase functions in the description's transport: per layer HG, isotropic, or for a table the
 // description's own phase function at the phase wavelength (the table holds its mean cosine to 1e-4).
 PhaseApproximationError phase_approximation_error(const LayerStack& stack, const RendererMedia& media) {
     const auto at_phase_wavelength = rte_stack_from(stack, media.phase_wavelength_nm);
-    const AdOptions options{phase_error_channels, false};
     AdCache cache;
     PhaseApproximationError out;
     for (std::size_t i = 0; i < media.wavelengths_nm.size(); ++i) {
@@ -76,11 +115,7 @@ PhaseApproximationError phase_approximation_error(const LayerStack& stack, const
                                       : phase.kind == RendererPhase::Kind::isotropic       ? PhaseFunction::isotropic()
                                                                                            : at_phase_wavelength.layers[k].phase;
         }
-        const auto r_of = [&](const RteStack& s) {
-            const auto r = solve_adding_doubling(s, AdIncidence{false, 0.0}, options, &cache);
-            return r.diffuse_reflectance + r.specular_reflectance;
-        };
-        const double difference = r_of(written) - r_of(own);
+        const double difference = volumetric_reflectance(written, cache) - volumetric_reflectance(own, cache);
         out.R_differences.push_back(difference);
         if (std::abs(difference) > std::abs(out.largest_R_difference)) {
             out.largest_R_difference = difference;
@@ -130,8 +165,31 @@ SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, S
     }
     out.mean_cosine_spread = mean_cosine_spread(stack, request.wavelengths_nm);
     out.phase_error = phase_approximation_error(stack, out.media);
+    try {
+        out.description_gap = description_gap(stack, out.media.wavelengths_nm);
+    } catch (const InputError& e) {
+        out.description_gap_why_not = e.what();  // e.g. an authors'-code variant biospec-adding-doubling does not model
+    }
     return out;
 }
+
+namespace {
+
+nlohmann::ordered_json description_gap_json(const SceneExport& exported) {
+    const auto& gap = exported.description_gap;
+    if (!gap) return {{"why_not", exported.description_gap_why_not}};
+    return {{"R_difference", gap->R_differences},
+            {"largest_R_difference", gap->largest_R_difference},
+            {"at_nm", gap->at_nm},
+            {"accuracy", gap->accuracy},
+            {"delta_e2000", gap->delta_e2000 ? nlohmann::ordered_json(*gap->delta_e2000) : nlohmann::ordered_json(nullptr)},
+            {"meaning", fmt::format("R of the material's volumetric description (what the media hold) minus R of its BioSpec description "
+                                    "(what `skinspec spectrum` solves by default), both exact (adding-doubling, biospec-adding-doubling; {} "
+                                    "channels), per wavelength, then the largest with the two solutions' stated accuracy there, and their colours' CIEDE2000 (D65, 2 degrees)",
+                                    phase_error_channels)}};
+}
+
+}  // namespace
 
 nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRenderer renderer) {
     const auto& media = exported.media;
@@ -172,7 +230,8 @@ nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRende
                                                              "wavelength, then the largest), both by "
                                                              "adding-doubling ({} channels): the phase functions as the renderer takes them, "
                                                              "at {} nm, in place of each layer's own at each wavelength",
-                                                             phase_error_channels, format_number(media.phase_wavelength_nm))}}}};
+                                                             phase_error_channels, format_number(media.phase_wavelength_nm))}}},
+            {"description_gap", description_gap_json(exported)}};
 }
 
 }  // namespace skinspec

@@ -4,6 +4,8 @@
 // formats/mitsuba_scene.hpp), every output checked before anything is written, and the written files read back to
 // check that they hold the coefficients they were given.
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -34,12 +36,27 @@ struct PhaseApproximationError {
     double at_nm = 0.0;
 };
 
+// The media are the skin's volumetric description (mu_s and a phase function per layer); `skinspec spectrum`'s
+// default, the BioSpec walk, solves its BioSpec description (per-crossing measured profiles, Rayleigh and cosine
+// turns), and the two differ (issue 31: CIEDE2000 3.6-4.6 on the skin presets). Stated by the exact solution of each
+// (adding-doubling, biospec-adding-doubling; phase_error_channels channels), so that a render is compared with the
+// skin it holds. Unset, with `why_not`, when the material's BioSpec description cannot be solved exactly.
+struct DescriptionGap {
+    std::vector<double> R_differences;  // R of the volumetric description - R of the BioSpec one, per exported wavelength
+    double largest_R_difference = 0.0;  // the largest in magnitude
+    double at_nm = 0.0;
+    double accuracy = 0.0;  // the two solutions' stated accuracy of R there, added
+    std::optional<double> delta_e2000;  // their colours (D65, 2 degrees) when the wavelengths cover 400-700 nm
+};
+
 struct SceneExport {
     RendererMedia media;
     std::vector<std::filesystem::path> files;                       // the scene, then its spectrum files
     std::vector<std::pair<double, double>> mean_cosine_spread;      // per layer over the exported wavelengths
     double read_back_difference = 0.0;                              // largest relative difference written vs read
     PhaseApproximationError phase_error;
+    std::optional<DescriptionGap> description_gap;
+    std::string description_gap_why_not;  // when description_gap is unset
 };
 
 // Writes `stack` as `renderer`'s scene at `scene` and reads it back. InputError, before anything is written, for a
