@@ -114,6 +114,28 @@ TEST_CASE("adding-doubling analytic limits", "[adding_doubling]") {
     }
 }
 
+TEST_CASE("a forward delta scatters nothing, and strongly forward layers keep their depth (similarity)", "[adding_doubling]") {
+    // HG with g = 1 is a delta forward: the layer is the same layer without scattering, exactly.
+    for (const bool reflector : {false, true}) {
+        auto delta = one_layer(1.4, 0.5, 1000.0, 1.0, 0.1), clear = one_layer(1.4, 0.5, 0.0, 0.0, 0.1);
+        delta.bottom_reflector = clear.bottom_reflector = reflector;
+        const auto a = solve_adding_doubling(delta, {}), b = solve_adding_doubling(clear, {});
+        CHECK(a.diffuse_reflectance == Approx(b.diffuse_reflectance).margin(1e-12));
+        CHECK(a.transmittance == Approx(b.transmittance).margin(1e-12));
+        CHECK(a.absorbed_layers[0] == Approx(b.absorbed_layers[0]).margin(1e-12));
+    }
+    // The similarity relation (van de Hulst; Wyman, Patterson & Wilson 1989): as g -> 1 at fixed mu_s (1 - g), R
+    // and T converge. mu_s' 20 /cm over 1.8 mm with g 0.999999 is 3.6e6 optical depths before delta-M, 173 after;
+    // limiting the depth to 1e6 before the scaling made the layer 3.6x thinner (R 0.66 where g 0.9999 gives 0.56).
+    const auto reduced = [](double g) {
+        auto s = one_layer(1.38, 0.05, 20.0 / (1.0 - g), g, 0.18);
+        s.bottom_reflector = true;
+        return solve_adding_doubling(s, {}).diffuse_reflectance;
+    };
+    CHECK(reduced(0.999999) == Approx(reduced(0.9999)).margin(1e-3));
+    CHECK(reduced(0.9999) == Approx(reduced(0.99)).margin(3e-3));
+}
+
 TEST_CASE("transparent layers (glass slides) are exact: no NaN from the channels they trap", "[adding_doubling]") {
     // A clear slide of 1.5 in air: incoherent plate, R = 2F / (1 + F), T = (1 - F) / (1 + F), F = 0.04 (Stokes). The
     // channels between s = 1 and 1.5 are totally reflected on both faces: adding them as a layer divided by zero.

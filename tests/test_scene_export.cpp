@@ -63,6 +63,21 @@ TEST_CASE("an export states how far its volumetric description is from the BioSp
     }
     // The presets' gap is not small (issue 31): far above the solutions' accuracy.
     CHECK(std::abs(gap.largest_R_difference) > 10.0 * gap.accuracy);
+    // Where the two descriptions are the same skin (no layer scatters: BioSpec crossings by HG with g = 1, no
+    // Rayleigh; no volumetric scattering), the gap is 0.
+    std::vector<MaterialOverride> clear{{"model.dermal_rayleigh", "false"}};
+    for (const char* layer : {"stratum_corneum", "epidermis", "dermis"}) {
+        const std::string l = layer;
+        for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{{"scattering", "henyey_greenstein"}, {"hg_g", "1"},
+                                                                                        {"volumetric_scattering", "power_law"},
+                                                                                        {"volumetric_mu_s_per_cm_at_500nm", "0"}}) {
+            clear.push_back({l + "." + key, value});
+        }
+    }
+    const auto same = export_scene(std::get<LayerStack>(load_material("biospec-lightly", clear)), MediaRequest{nm}, SceneRenderer::mitsuba,
+                                   folder / "same.xml", true);
+    REQUIRE(same.description_gap);
+    CHECK(std::abs(same.description_gap->largest_R_difference) < 1e-6);
     // The authors'-code variant has no exact BioSpec solution: nothing stated, and why.
     const auto authors = std::get<LayerStack>(load_material("biospec-lightly", {{"model.variant", "biospec-authors-code"}}));
     const auto unstated = export_scene(authors, MediaRequest{nm}, SceneRenderer::mitsuba, folder / "authors.xml", true);

@@ -145,7 +145,11 @@ AdCache::Entry redistribution(AdCache::Entry e, const AdChannels& c, std::vector
     // function has chi_2m > 0 too, but its truncated part is not light going on unscattered).
     const std::size_t moments = 2 * e.live.size();
     const double f = chi[moments];
-    if (f > 0.0 && f < 1.0 && chi[moments + 1] > 0.0) {
+    // A forward delta (every chi_l = 1: HG with g = 1) deflects nothing: f = 1, and the series below, an expansion
+    // of the delta that oscillates, carries no weight (1 - f = 0). Left unscaled it was used as the redistribution
+    // (biospec-adding-doubling, dermis HG g = 1: R 0.420 against the walk's 0.508 at 700 nm, 0.027 stated).
+    if (f >= 1.0) e.f = 1.0;
+    else if (f > 0.0 && chi[moments + 1] > 0.0) {
         e.f = f;
         for (std::size_t l = 0; l < moments; ++l) chi[l] = (chi[l] - f) / (1.0 - f);
     }
