@@ -106,6 +106,7 @@ LutFiles check_lut_files(const LutFiles& files, const ParameterSweep& u, const P
         check_output_path(files.preview, files.overwrite, {".png", ".tif", ".tiff"});
         check_chart_size(preview_layout(u, v));
     }
+    load_image_module_in_background();
     return out;
 }
 

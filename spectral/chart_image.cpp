@@ -161,6 +161,7 @@ ImageOutputs check_image_outputs(const ImageOutputs& outputs) {
     space_chromaticities(out.space);
     cm.check_display_view(outputs.display, outputs.view);
     for (const auto& file : outputs.files) check_output_path(file, outputs.overwrite, {".exr", ".png", ".tif", ".tiff"});
+    if (!outputs.files.empty()) load_image_module_in_background();
     return out;
 }
 

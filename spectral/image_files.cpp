@@ -1,6 +1,8 @@
 #include "spectral/image_files.hpp"
 
 #include <cstdlib>
+#include <future>
+
 #include <dlfcn.h>
 
 #include "spectral/input_error.hpp"
@@ -43,12 +45,17 @@ const ImageModuleFunctions& load_module() {
     throw ImageModuleError("image support (libskinspec_images.so) not found; looked in: " + tried);
 }
 
-const ImageModuleFunctions& module() {
-    static const ImageModuleFunctions& functions = load_module();
-    return functions;
+// The module, loaded once on a thread of its own; its failure is rethrown to every use.
+const std::shared_future<const ImageModuleFunctions*>& loading() {
+    static const std::shared_future<const ImageModuleFunctions*> loaded = std::async(std::launch::async, [] { return &load_module(); }).share();
+    return loaded;
 }
 
+const ImageModuleFunctions& module() { return *loading().get(); }
+
 }  // namespace
+
+void load_image_module_in_background() { loading(); }
 
 DataImage read_data_image(const std::filesystem::path& file) {
     if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");

@@ -43,6 +43,12 @@ struct PixelRect {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
+// Starts loading the image module on a thread of its own (once; later calls do nothing): a command that will write an
+// image calls it once its outputs are checked, so that the ~0.3-0.5 s of loading overlaps its work instead of
+// following it, or following a stop request (a stopped swatch took 0.5 s to write its partial chart, 1.2 s on a
+// loaded machine, where 1 s is allowed). Its failure is reported where the module is first used, as before.
+void load_image_module_in_background();
+
 // The stored values of any image OpenImageIO reads, as floats, no colour conversion (irradiance maps, masks);
 // InputError when missing, unreadable, smaller than 2 x 2 pixels or larger than the memory available (its header says
 // how large, so the refusal comes before the pixels are allocated).
