@@ -68,7 +68,10 @@ SwatchChart compute_swatch(const SwatchRequest& request) {
         if (std::holds_alternative<HomogeneousMaterial>(m)) {
             throw InputError("material '" + request.material + "' is given per band; a swatch needs reflectance spectra (a layered material)");
         }
-        check_request(solver, m, base);
+        // The swept fields too: one the solver does not read would make a chart of one colour.
+        auto checked = base;
+        for (auto& o : sweep_overrides({fields, parameters[i]})) checked.overrides.push_back(std::move(o));
+        check_request(solver, m, checked);
     }
 
     // Patches are solved in chunks through the solver's sweep (the BioSpec walk traces a chunk's paths once and

@@ -58,10 +58,11 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
          std::pair{0.05, 0.9}},  // SC 0.15-0.35 ... dermis 0.6-0.7 (docs/HYPERSPECTRAL.md)
         {"lipid_fraction", "1", fraction, &L::lipid_fraction, false,
          "volume fraction of lipid in the layer (v_l; its table covers 429-1098 nm only)", true, std::pair{0.0, 0.3}},
-        {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein"},
-        {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)"},
-        {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius"},
-        {"collagen_fibre_index", "1", refractive_index, &L::collagen_fibre_index, false, "collagen fibre refractive index"},
+        {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein", false, std::nullopt, ScatteringDescription::biospec},
+        {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)", false,
+         std::nullopt, ScatteringDescription::biospec},
+        {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius", false, std::nullopt, ScatteringDescription::biospec},
+        {"collagen_fibre_index", "1", refractive_index, &L::collagen_fibre_index, false, "collagen fibre refractive index", false, std::nullopt, ScatteringDescription::biospec},
     };
     return fields;
 }
@@ -70,9 +71,11 @@ const std::vector<NumberField<VolumetricScattering>>& volumetric_fields() {
     using V = VolumetricScattering;
     static const std::vector<NumberField<V>> fields{
         {"volumetric_mu_s_per_cm_at_500nm", "1/cm", non_negative, &V::mu_s_per_cm_at_500nm, true,
-         "volumetric walk: scattering coefficient at 500 nm, mu_s(l) = mu_s(500) (l / 500 nm)^-power"},
-        {"volumetric_mu_s_power", "1", power_law_exponent, &V::power, false, "volumetric walk: power-law exponent of mu_s"},
-        {"volumetric_g", "1", anisotropy, &V::g, false, "volumetric solvers: HG asymmetry (not with a measured volumetric_phase; below 1 with volumetric_scattering = from_reduced_scattering)"},
+         "volumetric walk: scattering coefficient at 500 nm, mu_s(l) = mu_s(500) (l / 500 nm)^-power", false, std::nullopt, ScatteringDescription::volumetric},
+        {"volumetric_mu_s_power", "1", power_law_exponent, &V::power, false, "volumetric walk: power-law exponent of mu_s", false, std::nullopt, ScatteringDescription::volumetric},
+        {"volumetric_g", "1", anisotropy, &V::g, false,
+         "volumetric solvers: HG asymmetry (not with a measured volumetric_phase; below 1 with volumetric_scattering = from_reduced_scattering)", false,
+         std::nullopt, ScatteringDescription::volumetric},
     };
     return fields;
 }
@@ -81,8 +84,8 @@ const std::vector<NumberField<ReducedScattering>>& reduced_power_law_fields() {
     using R = ReducedScattering;
     static const std::vector<NumberField<R>> fields{
         {"reduced_scattering_per_cm_at_500nm", "1/cm", non_negative, &R::per_cm_at_500nm, true,
-         "diffusion: reduced scattering at 500 nm, mu_s'(l) = a (l / 500 nm)^-b"},
-        {"reduced_scattering_power", "1", power_law_exponent, &R::power, false, "diffusion: power-law exponent b"},
+         "diffusion: reduced scattering at 500 nm, mu_s'(l) = a (l / 500 nm)^-b", false, std::nullopt, ScatteringDescription::reduced},
+        {"reduced_scattering_power", "1", power_law_exponent, &R::power, false, "diffusion: power-law exponent b", false, std::nullopt, ScatteringDescription::reduced},
     };
     return fields;
 }
@@ -90,7 +93,8 @@ const std::vector<NumberField<ReducedScattering>>& reduced_power_law_fields() {
 const std::vector<NumberField<LayerStack>>& surface_fields() {
     static const std::vector<NumberField<LayerStack>> fields{
         {"above_refractive_index", "1", refractive_index, &LayerStack::above_refractive_index, false, "medium above the skin"},
-        {"fold_aspect_ratio", "1", fold_ratio, &LayerStack::fold_aspect_ratio, false, "skin-fold perturbation of surface reflection (sigma)"},
+        {"fold_aspect_ratio", "1", fold_ratio, &LayerStack::fold_aspect_ratio, false, "skin-fold perturbation of surface reflection (sigma)", false,
+         std::nullopt, ScatteringDescription::biospec},
     };
     return fields;
 }
@@ -105,7 +109,7 @@ const std::vector<NumberField<LayerStack>>& bottom_fields() {
 const std::vector<ModelField>& model_fields() {
     using M = ModelOptions;
     static const std::vector<ModelField> fields{
-        {"dermal_rayleigh", "", &M::dermal_rayleigh, {}, "Rayleigh scattering by collagen in dermal layers"},
+        {"dermal_rayleigh", "", &M::dermal_rayleigh, {}, "Rayleigh scattering by collagen in dermal layers", false, ScatteringDescription::biospec},
         {"ln10_molar_tables", "", &M::molar_tables, {}, "multiply decadic molar tables (haemoglobin, bilirubin, carotene) by ln 10", true},
         {"ln10_melanin_tables", "", &M::melanin_tables, {}, "multiply the melanin tables by ln 10", true},
         {"baseline_absorption", "", &M::baseline_absorption, {}, "Jacques' bloodless-tissue absorption in the background", true},
@@ -114,13 +118,13 @@ const std::vector<ModelField>& model_fields() {
         {"carotene_molar_mass_g_per_mol", "g/mol", &M::carotene_molar_mass_g_per_mol, positive, "beta-carotene molar mass", true},
         {"rayleigh_turn", "", &M::rayleigh_turn, {},
          "where a Rayleigh-scattered ray turns: sampled_depth (free path ~ Exp(beta)), whole_crossing (the 2004 text), "
-         "no_absorption (authors' code: upward-turned rays charged nothing in the layer)"},
+         "no_absorption (authors' code: upward-turned rays charged nothing in the layer)", false, ScatteringDescription::biospec},
         {"swapped_upward_indices", "", &M::swapped_upward_indices, {},
-         "authors' code: upward crossings evaluate the interface with its indices swapped (no TIR at SC -> air)"},
+         "authors' code: upward crossings evaluate the interface with its indices swapped (no TIR at SC -> air)", false, ScatteringDescription::biospec},
         {"bottom_exit_fresnel", "", &M::bottom_exit_fresnel, {}, "Fresnel test where light leaves the bottom (boundary = exit)"},
         {"redraw_reversals_in_stratum_corneum", "", &M::redraw_reversals_in_stratum_corneum, {},
-         "re-draw an SC perturbation that reverses the travel sense (false: authors' code, the ray leaves / passes on)"},
-        {"fold_formula", "", &M::fold_formula, {}, "skin-fold perturbation: biospec_2004 or authors_code"},
+         "re-draw an SC perturbation that reverses the travel sense (false: authors' code, the ray leaves / passes on)", false, ScatteringDescription::biospec},
+        {"fold_formula", "", &M::fold_formula, {}, "skin-fold perturbation: biospec_2004 or authors_code", false, ScatteringDescription::biospec},
     };
     return fields;
 }
@@ -132,13 +136,13 @@ const std::vector<NamedField>& named_fields() {
         {"bottom", "boundary", "diffuse_reflector, exit", "hypodermis reflector or an open bottom"},
         {"layers", "name", "lower-case letters, digits, _", "layer name, unique in the stack"},
         {"layers", "scattering", "measured_stratum_corneum, measured_epidermis, rayleigh_cosine, cosine, henyey_greenstein",
-         "BioSpec walk: what a crossing does to a ray's direction"},
+         "BioSpec walk: what a crossing does to a ray's direction", ScatteringDescription::biospec},
         {"layers", "volumetric_phase", "henyey_greenstein, isotropic, rayleigh, measured_stratum_corneum, measured_epidermis",
-         "volumetric solvers: phase function (measured_*: the Bruls & van der Leun profile as a tabulated phase function, g its mean cosine)"},
+         "volumetric solvers: phase function (measured_*: the Bruls & van der Leun profile as a tabulated phase function, g its mean cosine)", ScatteringDescription::volumetric},
         {"layers", "volumetric_scattering", "power_law, from_reduced_scattering",
-         "volumetric solvers: mu_s from volumetric_mu_s_* (default), or mu_s = mu_s' / (1 - volumetric_g) from the layer's reduced scattering"},
+         "volumetric solvers: mu_s from volumetric_mu_s_* (default), or mu_s = mu_s' / (1 - volumetric_g) from the layer's reduced scattering", ScatteringDescription::volumetric},
         {"layers", "reduced_scattering_table", "salomatina_epidermis, salomatina_dermis, salomatina_hypodermis",
-         "diffusion: measured reduced scattering (or the power law, not both)"},
+         "diffusion: measured reduced scattering (or the power law, not both)", ScatteringDescription::reduced},
     };
     return fields;
 }
@@ -198,6 +202,44 @@ std::vector<std::string> absorption_only_fields() {
         if (f.absorption_only) keys.push_back("model." + std::string(f.key));
     }
     return keys;
+}
+
+std::string_view to_string(ScatteringDescription description) {
+    switch (description) {
+        case ScatteringDescription::biospec:
+            return "the BioSpec description (per-crossing scattering: the measured thin-layer profiles, Rayleigh and cosine turns, the skin fold)";
+        case ScatteringDescription::volumetric: return "the volumetric description (mu_s and the phase function)";
+        case ScatteringDescription::reduced: return "the reduced scattering mu_s' of diffusion";
+    }
+    return "";
+}
+
+std::optional<ScatteringDescription> scattering_description(std::string_view key) {
+    const auto dot = key.find('.');
+    if (dot == std::string_view::npos) return std::nullopt;
+    const auto section = key.substr(0, dot), field = key.substr(dot + 1);
+    const auto in = [&](const auto& table) -> std::optional<std::optional<ScatteringDescription>> {
+        for (const auto& f : table) {
+            if (f.key == field) return f.description;
+        }
+        return std::nullopt;
+    };
+    std::optional<std::optional<ScatteringDescription>> found;
+    if (section == "model") {
+        found = in(model_fields());
+    } else if (section == "surface") {
+        found = in(surface_fields());
+    } else if (section == "bottom") {
+        found = in(bottom_fields());
+    } else {
+        for (const auto& f : named_fields()) {
+            if (f.section == "layers" && f.key == field) found = f.description;
+        }
+        if (!found) found = in(layer_number_fields());
+        if (!found) found = in(volumetric_fields());
+        if (!found) found = in(reduced_power_law_fields());
+    }
+    return found ? *found : std::nullopt;
 }
 
 bool layer_matches(std::string_view layer_name, std::string_view head) {

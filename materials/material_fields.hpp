@@ -34,6 +34,14 @@ inline constexpr FieldRange non_negative{0.0, inf, false, true};
 inline constexpr FieldRange refractive_index{1.0, 4.0, false, false};
 }  // namespace field_ranges
 
+// The descriptions of a layered skin's scattering a field belongs to (a field without one, e.g. an absorber, a
+// thickness or an index, belongs to every description): BioSpec's per-crossing rules (the measured thin-layer
+// profiles, Rayleigh and cosine turns, the skin fold), the volumetric description (mu_s and a phase function), and
+// the reduced scattering mu_s' of diffusion. A solver reads the ones it declares (SolverCapabilities::descriptions):
+// an override of a field it does not read is refused, never silently ignored (solvers/spectral_solver.cpp).
+enum class ScatteringDescription { biospec, volumetric, reduced };
+std::string_view to_string(ScatteringDescription description);  // what it is, in words, for messages
+
 // A number field of `Owner` (a layer, its optional scattering groups, or the stack).
 template <class Owner>
 struct NumberField {
@@ -46,6 +54,7 @@ struct NumberField {
     bool absorption_only = false;  // changes mu_a only, never a ray's path (replayable)
     // fit-spectrum's default search range for the field when free (unset: a factor-of-two band around its value).
     std::optional<std::pair<double, double>> fit_bounds = std::nullopt;
+    std::optional<ScatteringDescription> description = std::nullopt;  // unset: every description's
 };
 
 // A [model] switch: a boolean, a decadic-conversion switch (written as true = multiply by ln 10), a number or
@@ -59,6 +68,7 @@ struct ModelField {
     FieldRange range;  // numbers only
     std::string_view doc;
     bool absorption_only = false;
+    std::optional<ScatteringDescription> description = std::nullopt;
 };
 
 // A field whose value is one of a set of names (parsed by its own enum parser).
@@ -67,6 +77,7 @@ struct NamedField {
     std::string_view key;
     std::string_view allowed;
     std::string_view doc;
+    std::optional<ScatteringDescription> description = std::nullopt;
 };
 
 const std::vector<NumberField<TissueLayer>>& layer_number_fields();
@@ -90,6 +101,9 @@ struct FieldRow {
     std::string doc;
 };
 std::vector<FieldRow> material_field_rows();
+// The description a key belongs to ("epidermis.hg_g": biospec; "dermis.volumetric_g": volumetric); unset for a
+// field of every description or a key that names no field of a layered material.
+std::optional<ScatteringDescription> scattering_description(std::string_view key);
 // The keys that change absorption only ("LAYER.melanosome_fraction", "model.baseline_absorption", ...).
 std::vector<std::string> absorption_only_fields();
 // Whether a layer named `layer_name` is addressed by the key head `head` of LAYER.FIELD: its name, or a suffix

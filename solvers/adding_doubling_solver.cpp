@@ -22,6 +22,7 @@ public:
             .replay_fields = {},
             .material_needs = "volumetric_mu_s_per_cm_at_500nm (and volumetric_g / volumetric_phase) in every layer",
             .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce},
+            .descriptions = {ScatteringDescription::volumetric},
         };
         return caps;
     }

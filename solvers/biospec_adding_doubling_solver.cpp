@@ -21,6 +21,7 @@ public:
             .replay_fields = {},
             .material_needs = "",
             .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce},
+            .descriptions = {ScatteringDescription::biospec},
         };
         return caps;
     }

@@ -24,6 +24,7 @@ public:
             .replay_fields = absorption_only_fields(),
             .material_needs = "",
             .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce, MeasurementGeometry::zero_45},
+            .descriptions = {ScatteringDescription::biospec},
         };
         return caps;
     }

@@ -119,6 +119,7 @@ public:
                 .replay_fields = {},
                 .material_needs = "reduced_scattering_table or reduced_scattering_* in every layer",
                 .bottom = !semi_infinite,
+                .descriptions = {ScatteringDescription::reduced},
             };
         };
         static const SolverCapabilities multipole = caps(false), dipole = caps(true);

@@ -21,10 +21,12 @@ public:
         return "multipole profiles scaled to the exact totals of the BioSpec model (biospec-adding-doubling): the BioSpec colour with diffusion's spatial spread";
     }
     const SolverCapabilities& capabilities() const override {
-        // biospec-adding-doubling's (its totals, switches and geometries), with radial profiles.
+        // biospec-adding-doubling's (its totals, switches and geometries), with radial profiles shaped by the reduced
+        // scattering.
         static const SolverCapabilities caps = [] {
             auto c = biospec_adding_doubling_solver().capabilities();
             c.radial_profiles = true;
+            c.descriptions.push_back(ScatteringDescription::reduced);  // the multipole's shapes of its profiles
             return c;
         }();
         return caps;

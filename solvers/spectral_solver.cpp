@@ -78,14 +78,41 @@ void check_material(const SpectralSolver& solver, const Material& material) {
     }
 }
 
-// A solver without a bottom would ignore an override of it (--reflector, --set/--vary bottom.FIELD).
-void check_overrides(const SpectralSolver& solver, const std::vector<MaterialOverride>& overrides) {
-    if (solver.capabilities().bottom) return;
+bool reads(const SolverCapabilities& caps, ScatteringDescription d) {
+    return std::find(caps.descriptions.begin(), caps.descriptions.end(), d) != caps.descriptions.end();
+}
+
+}  // namespace
+
+bool reads_field(const SolverCapabilities& caps, const Material& material, const std::string& key) {
+    const auto d = scattering_description(key);
+    if (!d || reads(caps, *d)) return true;
+    const auto* stack = std::get_if<LayerStack>(&material);
+    if (!stack || *d != ScatteringDescription::reduced || !reads(caps, ScatteringDescription::volumetric)) return false;
+    const auto head = std::string_view(key).substr(0, key.find('.'));
+    return std::any_of(stack->layers.begin(), stack->layers.end(), [&](const TissueLayer& l) {
+        return layer_matches(l.name, head) && l.volumetric && l.volumetric->source == VolumetricSource::from_reduced_scattering;
+    });
+}
+
+namespace {
+
+// An override the solver would ignore is refused: of the bottom, by a solver without one (--reflector, --set/--vary
+// bottom.FIELD), and of a field of a description of scattering it does not read (--set epidermis.hg_g with
+// adding-doubling left R as it was).
+void check_overrides(const SpectralSolver& solver, const Material& material, const std::vector<MaterialOverride>& overrides) {
+    const auto& caps = solver.capabilities();
+    const std::string who = "solver '" + std::string(solver.name()) + "'";
     for (const auto& o : overrides) {
-        if (!o.key.starts_with("bottom.")) continue;
-        throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", but solver '" + std::string(solver.name()) +
-                         "' treats the skin as one semi-infinite medium, which has no bottom (solvers that model it: " +
-                         offered_by([](const SolverCapabilities& c) { return c.bottom; }) + ")");
+        if (!caps.bottom && o.key.starts_with("bottom.")) {
+            throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", but " + who +
+                             " treats the skin as one semi-infinite medium, which has no bottom (solvers that model it: " +
+                             offered_by([](const SolverCapabilities& c) { return c.bottom; }) + ")");
+        }
+        if (reads_field(caps, material, o.key)) continue;
+        const auto d = *scattering_description(o.key);
+        throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", which " + who + " does not read: it belongs to " + std::string(to_string(d)) +
+                         " (solvers that read it: " + offered_by([&](const SolverCapabilities& c) { return reads_field(c, material, o.key); }) + ")");
     }
 }
 
@@ -239,6 +266,7 @@ void refuse_sampling_options(const SpectralSolver& solver, const std::vector<std
 void check_request(const SpectralSolver& solver, const Material& material, const SolverRequest& request) {
     check_material(solver, material);
     check_request_settings(solver, request);
+    check_overrides(solver, material, request.overrides);
 }
 
 void check_request_settings(const SpectralSolver& solver, const SolverRequest& request) {
@@ -285,7 +313,6 @@ void check_request_settings(const SpectralSolver& solver, const SolverRequest& r
     }
     refuse_sampling_options(solver, request.sampling_options);
     check_switches(solver, request.switches);
-    check_overrides(solver, request.overrides);
 }
 
 void check_request(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
@@ -420,7 +447,7 @@ SweepMembers sweep_members(const SpectralSolver& solver, const SolverRequest& re
     check_request(solver, *cut, request);
     SweepMembers members(cut, std::make_shared<const std::string>(to_toml(*cut)), axes);
     if (members.size() == 0) return members;
-    check_overrides(solver, members[0].overrides());
+    check_overrides(solver, members[0].material(), members[0].overrides());
     // The corners are built and checked here: every range a material checks is an interval and the one joint bound
     // (melanosome + blood fraction <= 1) is linear, so a sweep's extremes are its corners. solve_sweep builds every
     // member again (refusing as the reader does) before it traces any ray of a replaying solver's sweep.

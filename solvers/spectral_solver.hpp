@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "materials/material_fields.hpp"
 #include "materials/material_file.hpp"
 #include "materials/parameter_sweep.hpp"
 #include "solvers/solver_switches.hpp"
@@ -34,6 +35,10 @@ struct SolverCapabilities {
     std::string material_needs;      // what a layered material must describe for this solver, "" when nothing
     std::vector<MeasurementGeometry> geometries{MeasurementGeometry::sci};  // what its R can be measured as
     bool bottom = true;  // models the material's bottom (false: semi-infinite; a bottom.* override is refused)
+    // The descriptions of scattering it reads (materials/material_fields.hpp); an override of a field of another is
+    // refused. A volumetric solver also reads a layer's reduced scattering where that layer's volumetric mu_s is
+    // derived from it (volumetric_scattering = from_reduced_scattering).
+    std::vector<ScatteringDescription> descriptions{ScatteringDescription::biospec, ScatteringDescription::volumetric, ScatteringDescription::reduced};
 };
 
 // A request for one material. `spectral` is what the transport solvers consume; `overrides` are recorded in
@@ -122,6 +127,11 @@ const std::vector<const SpectralSolver*>& solver_registry();
 const SpectralSolver& find_solver(std::string_view name, std::string_view what = "--mode");
 // "biospec, rte, dipole, multipole".
 std::string solver_names();
+
+// Whether a solver of `caps` reads the field `key` of `material` (after its overrides): a field of every description
+// of scattering, of one the solver declares, or a layer's reduced scattering from which that layer's volumetric mu_s is
+// derived. check_request refuses an override of a field it does not read.
+bool reads_field(const SolverCapabilities& caps, const Material& material, const std::string& key);
 
 // InputError for anything the solver does not declare: the material's kind, a quantity, a measurement geometry,
 // a switch, a standard-error target or a ray count for a deterministic solver.
