@@ -66,9 +66,10 @@ void run_export_lut(const LutOptions& o) {
     request.seed = o.seed;
     request.sampling_options = o.sampling_given;
     request.max_rays_per_wavelength = o.max_rays;
-    request.solver = std::string(chosen_solver(o.solver).name());
+    const auto& solver = chosen_solver(o.solver);
+    request.solver = std::string(solver.name());
     request.switches = solver_switches(o.solver);
-    request.geometry = measurement_geometry(o.solver);
+    request.geometry = measurement_geometry(o.solver, solver);
     request.work_share = process_work_share();
 
     // Every output is checked before any work: nothing is written for a bad request.

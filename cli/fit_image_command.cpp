@@ -118,9 +118,10 @@ void run_fit_image(const FitImageOptions& o) {
     table.seed = o.seed;
     table.sampling_options = o.sampling_given;
     table.max_rays_per_wavelength = o.max_rays;
-    table.solver = std::string(chosen_solver(o.solver, "biospec-adding-doubling").name());
+    const auto& solver = chosen_solver(o.solver, "biospec-adding-doubling");
+    table.solver = std::string(solver.name());
     table.switches = solver_switches(o.solver);
-    table.geometry = measurement_geometry(o.solver);
+    table.geometry = measurement_geometry(o.solver, solver);
 
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);

@@ -262,7 +262,7 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     settings.weights = weights_of(o);
     settings.rays_per_wavelength = o.rays;
     settings.seed = o.seed;
-    settings.geometry = measurement_geometry(o.solver);
+    settings.geometry = measurement_geometry(o.solver, chosen_solver(o.solver));
     settings.incidence_deg = o.incidence_deg;
     settings.starts = o.starts;
     settings.wavelength_sources = measured.row_sources;

@@ -56,11 +56,11 @@ void add_geometry_option(CLI::App& command, SolverOptions& o) {
         ->capture_default_str();
 }
 
-MeasurementGeometry measurement_geometry(const SolverOptions& o) {
+MeasurementGeometry measurement_geometry(const SolverOptions& o, const SpectralSolver& solver) {
     const auto geometry = parse_measurement_geometry(o.geometry, "--geometry");
     static bool noted = false;  // once per command, however often it asks
     // Only where it applies: a solver that refuses 0-45, or computes it without rays, is told nothing about rays.
-    const auto& caps = chosen_solver(o).capabilities();
+    const auto& caps = solver.capabilities();
     const bool measures = std::find(caps.geometries.begin(), caps.geometries.end(), geometry) != caps.geometries.end();
     if (geometry == MeasurementGeometry::zero_45 && measures && caps.uncertainty && !noted) {
         noted = true;

@@ -34,7 +34,8 @@ inline constexpr const char* profile_solver_default = "matched-multipole for lay
 SolverSwitches solver_switches(const SolverOptions& options);
 // --geometry (for the commands whose R is a measurement: spectrum, swatch, fit-spectrum).
 void add_geometry_option(CLI::App& command, SolverOptions& options);
-MeasurementGeometry measurement_geometry(const SolverOptions& options);
+// The parsed --geometry; notes once what 0-45 costs in rays when `solver` (the one the command uses) traces rays for it.
+MeasurementGeometry measurement_geometry(const SolverOptions& options, const SpectralSolver& solver);
 // --rays and --seed of the commands that ask for radial profiles (a Monte Carlo solver's R(r)); rays 0: unset.
 void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64_t& seed);
 // solve_profiles with a progress bar labelled `label` on a terminal, stopped by SIGINT, SIGTERM or SIGHUP (the

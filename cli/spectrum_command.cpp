@@ -74,7 +74,7 @@ void run_spectrum(const SpectrumOptions& o) {
     spectral.wavelengths = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
     spectral.quantities = parse_quantities(o.quantities, "--quantities");
     spectral.incidence_deg = o.incidence_deg;
-    spectral.geometry = measurement_geometry(o.solver);
+    spectral.geometry = measurement_geometry(o.solver, solver);
     spectral.seed = o.seed;
     spectral.max_rays_per_wavelength = o.max_rays;
     if (o.rays > 0) request.fixed_rays_per_wavelength = o.rays;

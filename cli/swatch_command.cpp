@@ -73,7 +73,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     // A lit patch needs radial profiles: matched-multipole (band materials: the multipole) unless --mode names another solver.
     const auto& solver = chosen_profile_solver(o.solver, material);
     const auto switches = solver_switches(o.solver);
-    if (measurement_geometry(o.solver) != MeasurementGeometry::sci) {
+    if (measurement_geometry(o.solver, solver) != MeasurementGeometry::sci) {
         throw InputError("--geometry " + o.solver.geometry + ": a lit patch shows the light leaving every point of the surface (sci); "
                          "other geometries are for the chart");
     }
@@ -122,9 +122,10 @@ void run_swatch(const SwatchOptions& o) {
     request.seed = o.seed;
     request.sampling_options = o.sampling_given;
     request.max_rays_per_wavelength = o.max_rays;
-    request.solver = std::string(chosen_solver(o.solver).name());
+    const auto& solver = chosen_solver(o.solver);
+    request.solver = std::string(solver.name());
     request.switches = solver_switches(o.solver);
-    request.geometry = measurement_geometry(o.solver);
+    request.geometry = measurement_geometry(o.solver, solver);
     // Every output is checked before any work: nothing is written for a bad request.
     const auto files =
         check_swatch_files(SwatchFiles{{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.overwrite}, o.patch_px}, request);

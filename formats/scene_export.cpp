@@ -68,21 +68,24 @@ double volumetric_reflectance(const RteStack& stack, AdCache& cache) {
     return r.diffuse_reflectance + r.specular_reflectance;
 }
 
-DescriptionGap description_gap(const LayerStack& stack, const std::vector<double>& wavelengths_nm) {
-    AdCache volumetric_cache, biospec_cache;
+// `volumetric`: the volumetric description's R at each of `wavelengths_nm` (solved once for both statements).
+DescriptionGap description_gap(const LayerStack& stack, const std::vector<double>& wavelengths_nm, const std::vector<double>& volumetric,
+                               AdCache& volumetric_cache) {
+    AdCache biospec_cache;
     const auto biospec_solution = [&](double nm, bool accuracy_check) {
-        return solve_biospec_adding_doubling(stack, nm, 0.0, BiospecAdOptions{AdOptions{phase_error_channels, accuracy_check}}, &biospec_cache).totals;
+        BiospecAdOptions options;
+        options.ad = AdOptions{phase_error_channels, accuracy_check};
+        return solve_biospec_adding_doubling(stack, nm, 0.0, options, &biospec_cache).totals;
     };
     DescriptionGap gap;
-    std::vector<double> volumetric, biospec;
-    for (const double nm : wavelengths_nm) {
-        volumetric.push_back(volumetric_reflectance(rte_stack_from(stack, nm), volumetric_cache));
-        const auto b = biospec_solution(nm, false);
+    std::vector<double> biospec;
+    for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) {
+        const auto b = biospec_solution(wavelengths_nm[i], false);
         biospec.push_back(b.diffuse_reflectance + b.specular_reflectance);
-        gap.R_differences.push_back(volumetric.back() - biospec.back());
+        gap.R_differences.push_back(volumetric[i] - biospec.back());
         if (std::abs(gap.R_differences.back()) > std::abs(gap.largest_R_difference)) {
             gap.largest_R_difference = gap.R_differences.back();
-            gap.at_nm = nm;
+            gap.at_nm = wavelengths_nm[i];
         }
     }
     // Where the gap is largest, the two solutions' own accuracy (adding-doubling's check with every segment's channels
@@ -97,10 +100,11 @@ DescriptionGap description_gap(const LayerStack& stack, const std::vector<double
 }
 
 // The media's phase functions in the description's transport: per layer HG, isotropic, or for a table the
-// description's own phase function at the phase wavelength (the table holds its mean cosine to 1e-4).
-PhaseApproximationError phase_approximation_error(const LayerStack& stack, const RendererMedia& media) {
+// description's own phase function at the phase wavelength (the table holds its mean cosine to 1e-4); `described`:
+// the description's R at each exported wavelength.
+PhaseApproximationError phase_approximation_error(const LayerStack& stack, const RendererMedia& media, const std::vector<double>& described,
+                                                  AdCache& cache) {
     const auto at_phase_wavelength = rte_stack_from(stack, media.phase_wavelength_nm);
-    AdCache cache;
     PhaseApproximationError out;
     for (std::size_t i = 0; i < media.wavelengths_nm.size(); ++i) {
         const double nm = media.wavelengths_nm[i];
@@ -115,7 +119,7 @@ PhaseApproximationError phase_approximation_error(const LayerStack& stack, const
                                       : phase.kind == RendererPhase::Kind::isotropic       ? PhaseFunction::isotropic()
                                                                                            : at_phase_wavelength.layers[k].phase;
         }
-        const double difference = volumetric_reflectance(written, cache) - volumetric_reflectance(own, cache);
+        const double difference = volumetric_reflectance(written, cache) - described[i];
         out.R_differences.push_back(difference);
         if (std::abs(difference) > std::abs(out.largest_R_difference)) {
             out.largest_R_difference = difference;
@@ -164,9 +168,13 @@ SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, S
         throw std::runtime_error("the written scene does not read back as the media given (difference " + format_number(out.read_back_difference) + ")");
     }
     out.mean_cosine_spread = mean_cosine_spread(stack, request.wavelengths_nm);
-    out.phase_error = phase_approximation_error(stack, out.media);
+    // The description's R at every exported wavelength: the reference of both statements.
+    AdCache cache;
+    std::vector<double> described;
+    for (const double nm : out.media.wavelengths_nm) described.push_back(volumetric_reflectance(rte_stack_from(stack, nm), cache));
+    out.phase_error = phase_approximation_error(stack, out.media, described, cache);
     try {
-        out.description_gap = description_gap(stack, out.media.wavelengths_nm);
+        out.description_gap = description_gap(stack, out.media.wavelengths_nm, described, cache);
     } catch (const InputError& e) {
         out.description_gap_why_not = e.what();  // e.g. an authors'-code variant biospec-adding-doubling does not model
     }
