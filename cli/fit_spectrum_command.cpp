@@ -253,6 +253,8 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     const auto material = load_material(base_name, overrides);
     const auto* base = std::get_if<LayerStack>(&material);
     if (!base) throw InputError("material '" + base_name + "' is homogeneous: the fit needs a layered skin for the BioSpec walk");
+    // The fit evaluates the BioSpec model: an override of a field it does not read would be ignored.
+    check_overrides(chosen_solver(o.solver), material, overrides);
 
     SpectrumFitSettings settings;
     settings.engine = engine;

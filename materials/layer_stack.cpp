@@ -42,14 +42,15 @@ BottomBoundary parse_bottom_boundary(std::string_view text, std::string_view wha
     throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a bottom boundary (allowed: diffuse_reflector, exit)");
 }
 
+CrossingScattering crossing_in_effect(const TissueLayer& layer, const ModelOptions& model) {
+    return layer.crossing == CrossingScattering::rayleigh_cosine && !model.dermal_rayleigh ? CrossingScattering::cosine : layer.crossing;
+}
+
 LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsScope scope) const {
     const auto& layer = layers.at(index);
     LayerOptics o{layer.thickness_cm, layer.refractive_index, absorption_per_cm(layer, wavelength_nm, model),
-                  layer.crossing, layer.hg_g, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, nullptr};
-    if (layer.crossing == CrossingScattering::rayleigh_cosine) {
-        if (model.dermal_rayleigh) o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
-        else o.crossing = CrossingScattering::cosine;
-    }
+                  crossing_in_effect(layer, model), layer.hg_g, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, nullptr};
+    if (o.crossing == CrossingScattering::rayleigh_cosine) o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
     const auto reduced = [&] {
         return layer.reduced->table.empty() ? power_law(layer.reduced->per_cm_at_500nm, layer.reduced->power, wavelength_nm)
                                             : per_cm_from_per_mm(reduced_scattering_table(layer.reduced->table)(wavelength_nm));

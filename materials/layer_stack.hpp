@@ -41,6 +41,9 @@ struct OpticsScope {
     bool reduced = true;
 };
 
+// How a layer's crossings scatter in effect: rayleigh_cosine becomes cosine when model.dermal_rayleigh is off.
+CrossingScattering crossing_in_effect(const TissueLayer& layer, const ModelOptions& model);
+
 struct LayerStack {
     std::string name;
     std::string description;

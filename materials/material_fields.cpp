@@ -1,5 +1,6 @@
 #include "materials/material_fields.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -58,11 +59,14 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
          std::pair{0.05, 0.9}},  // SC 0.15-0.35 ... dermis 0.6-0.7 (docs/HYPERSPECTRAL.md)
         {"lipid_fraction", "1", fraction, &L::lipid_fraction, false,
          "volume fraction of lipid in the layer (v_l; its table covers 429-1098 nm only)", true, std::pair{0.0, 0.3}},
-        {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein", false, std::nullopt, ScatteringDescription::biospec},
+        {"hg_g", "1", anisotropy, &L::hg_g, false, "HG asymmetry for scattering = henyey_greenstein", false, std::nullopt, ScatteringDescription::biospec,
+         CrossingScattering::henyey_greenstein},
         {"collagen_fibre_fraction", "1", fraction, &L::collagen_fibre_fraction, false, "collagen volume fraction (Rayleigh, dermal layers)", false,
-         std::nullopt, ScatteringDescription::biospec},
-        {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius", false, std::nullopt, ScatteringDescription::biospec},
-        {"collagen_fibre_index", "1", refractive_index, &L::collagen_fibre_index, false, "collagen fibre refractive index", false, std::nullopt, ScatteringDescription::biospec},
+         std::nullopt, ScatteringDescription::biospec, CrossingScattering::rayleigh_cosine},
+        {"collagen_fibre_radius_nm", "nm", positive, &L::collagen_fibre_radius_nm, false, "collagen fibre radius", false, std::nullopt,
+         ScatteringDescription::biospec, CrossingScattering::rayleigh_cosine},
+        {"collagen_fibre_index", "1", refractive_index, &L::collagen_fibre_index, false, "collagen fibre refractive index", false, std::nullopt,
+         ScatteringDescription::biospec, CrossingScattering::rayleigh_cosine},
     };
     return fields;
 }
@@ -212,6 +216,23 @@ std::string_view to_string(ScatteringDescription description) {
         case ScatteringDescription::reduced: return "the reduced scattering mu_s' of diffusion";
     }
     return "";
+}
+
+std::optional<std::string> unread_in_layers(const LayerStack& stack, std::string_view key) {
+    const auto dot = key.find('.');
+    if (dot == std::string_view::npos) return std::nullopt;
+    const auto head = key.substr(0, dot), field = key.substr(dot + 1);
+    const auto row = std::find_if(layer_number_fields().begin(), layer_number_fields().end(), [&](const auto& f) { return f.key == field; });
+    if (row == layer_number_fields().end() || !row->read_with) return std::nullopt;
+    for (const auto& layer : stack.layers) {
+        if (!layer_matches(layer.name, head)) continue;
+        const auto in_effect = crossing_in_effect(layer, stack.model);
+        if (in_effect == *row->read_with) continue;
+        const bool switched_off = in_effect != layer.crossing;
+        return "layer '" + layer.name + "' scatters by " + std::string(to_string(in_effect)) + (switched_off ? " (model.dermal_rayleigh = false)" : "") + ", and " +
+               std::string(field) + " is read only with scattering = " + std::string(to_string(*row->read_with));
+    }
+    return std::nullopt;
 }
 
 std::optional<ScatteringDescription> scattering_description(std::string_view key) {

@@ -55,6 +55,9 @@ struct NumberField {
     // fit-spectrum's default search range for the field when free (unset: a factor-of-two band around its value).
     std::optional<std::pair<double, double>> fit_bounds = std::nullopt;
     std::optional<ScatteringDescription> description = std::nullopt;  // unset: every description's
+    // Read only by a layer whose crossings scatter this way (crossing_in_effect): hg_g with henyey_greenstein, the
+    // collagen fibres with rayleigh_cosine. Unset: read whatever the layer's scattering.
+    std::optional<CrossingScattering> read_with = std::nullopt;
 };
 
 // A [model] switch: a boolean, a decadic-conversion switch (written as true = multiply by ln 10), a number or
@@ -104,6 +107,10 @@ std::vector<FieldRow> material_field_rows();
 // The description a key belongs to ("epidermis.hg_g": biospec; "dermis.volumetric_g": volumetric); unset for a
 // field of every description or a key that names no field of a layered material.
 std::optional<ScatteringDescription> scattering_description(std::string_view key);
+// Why the layer field `key` goes unread in a layer it addresses ("layer 'epidermis' scatters by measured_epidermis,
+// and hg_g is read only with scattering = henyey_greenstein"); nullopt when every addressed layer reads it or the key
+// is no layer field. An override or a free fit parameter it names would be ignored: callers refuse it.
+std::optional<std::string> unread_in_layers(const LayerStack& stack, std::string_view key);
 // The keys that change absorption only ("LAYER.melanosome_fraction", "model.baseline_absorption", ...).
 std::vector<std::string> absorption_only_fields();
 // Whether a layer named `layer_name` is addressed by the key head `head` of LAYER.FIELD: its name, or a suffix

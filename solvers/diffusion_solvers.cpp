@@ -107,7 +107,7 @@ public:
     }
     const SolverCapabilities& capabilities() const override {
         // The dipole is one semi-infinite medium: nothing leaves through a bottom, so it computes no T and
-        // refuses a request to change the bottom (it would be ignored).
+        // refuses a request to change the bottom or a deeper layer's refractive index (they would be ignored).
         static const auto caps = [](bool semi_infinite) {
             return SolverCapabilities{
                 .quantities = {true, !semi_infinite, false, false},
@@ -119,6 +119,7 @@ public:
                 .replay_fields = {},
                 .material_needs = "reduced_scattering_table or reduced_scattering_* in every layer",
                 .bottom = !semi_infinite,
+                .layer_refractive_indices = !semi_infinite,
                 .descriptions = {ScatteringDescription::reduced},
             };
         };

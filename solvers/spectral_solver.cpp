@@ -95,8 +95,6 @@ bool reads_field(const SolverCapabilities& caps, const Material& material, const
     });
 }
 
-namespace {
-
 // An override the solver would ignore is refused: of the bottom, by a solver without one (--reflector, --set/--vary
 // bottom.FIELD), and of a field of a description of scattering it does not read (--set epidermis.hg_g with
 // adding-doubling left R as it was).
@@ -109,12 +107,26 @@ void check_overrides(const SpectralSolver& solver, const Material& material, con
                              " treats the skin as one semi-infinite medium, which has no bottom (solvers that model it: " +
                              offered_by([](const SolverCapabilities& c) { return c.bottom; }) + ")");
         }
-        if (reads_field(caps, material, o.key)) continue;
+        const auto* stack = std::get_if<LayerStack>(&material);
+        if (!caps.layer_refractive_indices && stack && o.key.ends_with(".refractive_index")) {
+            const auto handle = layer_field(*stack, o.key, o.origin);
+            if (handle.layers.back() > 0) {
+                throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", but " + who + " merges the layers into one semi-infinite medium with the top layer's refractive index ('" +
+                                 stack->layers.front().name + "'), so it does not read a deeper layer's (solvers that read it: " +
+                                 offered_by([](const SolverCapabilities& c) { return c.layer_refractive_indices; }) + ")");
+            }
+        }
+        if (reads_field(caps, material, o.key)) {
+            if (const auto why = stack ? unread_in_layers(*stack, o.key) : std::nullopt) throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", but " + *why);
+            continue;
+        }
         const auto d = *scattering_description(o.key);
         throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", which " + who + " does not read: it belongs to " + std::string(to_string(d)) +
                          " (solvers that read it: " + offered_by([&](const SolverCapabilities& c) { return reads_field(c, material, o.key); }) + ")");
     }
 }
+
+namespace {
 
 void check_switches(const SpectralSolver& solver, const SolverSwitches& switches) {
     const auto& caps = solver.capabilities();

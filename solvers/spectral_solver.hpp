@@ -35,6 +35,9 @@ struct SolverCapabilities {
     std::string material_needs;      // what a layered material must describe for this solver, "" when nothing
     std::vector<MeasurementGeometry> geometries{MeasurementGeometry::sci};  // what its R can be measured as
     bool bottom = true;  // models the material's bottom (false: semi-infinite; a bottom.* override is refused)
+    // Reads every layer's refractive index (false: one medium with the top layer's, the dipole; an override of a
+    // deeper layer's refractive_index is refused).
+    bool layer_refractive_indices = true;
     // The descriptions of scattering it reads (materials/material_fields.hpp); an override of a field of another is
     // refused. A volumetric solver also reads a layer's reduced scattering where that layer's volumetric mu_s is
     // derived from it (volumetric_scattering = from_reduced_scattering).
@@ -132,6 +135,10 @@ std::string solver_names();
 // of scattering, of one the solver declares, or a layer's reduced scattering from which that layer's volumetric mu_s is
 // derived. check_request refuses an override of a field it does not read.
 bool reads_field(const SolverCapabilities& caps, const Material& material, const std::string& key);
+// InputError for an override the solver would ignore: of a field it does not read, of the bottom by a solver without
+// one, of a deeper layer's refractive index by a solver that reads only the top's (check_request's, for the commands
+// that evaluate a solver's model without a request, e.g. fit-spectrum).
+void check_overrides(const SpectralSolver& solver, const Material& material, const std::vector<MaterialOverride>& overrides);
 
 // InputError for anything the solver does not declare: the material's kind, a quantity, a measurement geometry,
 // a switch, a standard-error target or a ray count for a deterministic solver.

@@ -6,8 +6,10 @@
 #include "materials/material_file.hpp"
 #include "materials/path_key.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
 
 #include <fmt/format.h>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -367,6 +369,67 @@ TEST_CASE("an override of a field the solver does not read is refused, and no su
         }
     }
     CHECK(refused > 40);
+}
+
+TEST_CASE("a layer field read only with one kind of scattering is refused where the layer scatters otherwise, and changes nothing there", "[solver]") {
+    const auto base = load_material("biospec-lightly");
+    auto no_rayleigh = base;
+    std::get<LayerStack>(no_rayleigh).model.dermal_rayleigh = false;
+    std::size_t refused = 0;
+    for (const auto* solver : solver_registry()) {
+        if (!solver->capabilities().layered_materials || !reads_field(solver->capabilities(), base, "epidermis.hg_g")) continue;
+        auto request = solver->capabilities().uncertainty ? one_wavelength(2000) : SolverRequest{};
+        for (const Material* material : std::array<const Material*, 2>{&base, &no_rayleigh}) {
+            const auto& stack = std::get<LayerStack>(*material);
+            std::optional<SpectralResult> unchanged;
+            for (const auto& f : layer_number_fields()) {
+                if (!f.read_with) continue;
+                for (const auto& layer : stack.layers) {
+                    if (crossing_in_effect(layer, stack.model) == *f.read_with) continue;
+                    const auto key = layer.name + "." + std::string(f.key);
+                    const auto value = format_number(f.range.contains(0.5) ? 0.5 : 2.0);
+                    INFO(solver->name() << " " << key << " dermal_rayleigh " << stack.model.dermal_rayleigh);
+                    auto changed = *material;
+                    std::get<LayerStack>(changed).layers[&layer - stack.layers.data()].*(f.member) = std::stod(value);
+                    auto asked = request;
+                    asked.overrides = {{key, value}};
+                    CHECK_THROWS_WITH(solve_spectrum(*solver, changed, asked), Catch::Contains("is read only with scattering = " + std::string(to_string(*f.read_with))));
+                    ++refused;
+                    if (!unchanged) unchanged = solve_spectrum(*solver, *material, request);
+                    CHECK(solve_spectrum(*solver, changed, request).wavelengths.front().reflectance.value == unchanged->wavelengths.front().reflectance.value);
+                }
+            }
+        }
+    }
+    CHECK(refused > 20);
+}
+
+TEST_CASE("a solver that reads only the top layer's refractive index refuses an override of a deeper one's", "[solver]") {
+    const auto base = load_material("biospec-lightly");
+    const auto& stack = std::get<LayerStack>(base);
+    std::size_t refused = 0;
+    for (const auto* solver : solver_registry()) {
+        if (!solver->capabilities().layered_materials || solver->capabilities().layer_refractive_indices) continue;
+        const auto unchanged = solve_spectrum(*solver, base, SolverRequest{});
+        for (std::size_t k = 0; k < stack.layers.size(); ++k) {
+            const auto key = stack.layers[k].name + ".refractive_index";
+            INFO(solver->name() << " " << key);
+            const auto other = with_overrides(base, {{key, "1.6"}});
+            SolverRequest asked;
+            asked.overrides = {{key, "1.6"}};
+            if (k == 0) {
+                // The top layer's index is read: the surface's Fresnel reflection changes.
+                CHECK(solve_spectrum(*solver, other, asked).wavelengths.front().specular_reflectance.value !=
+                      unchanged.wavelengths.front().specular_reflectance.value);
+                continue;
+            }
+            CHECK_THROWS_WITH(solve_spectrum(*solver, other, asked), Catch::Contains("does not read a deeper layer's"));
+            ++refused;
+            // ... and truly not read.
+            CHECK(solve_spectrum(*solver, other, SolverRequest{}).wavelengths.front().reflectance.value == unchanged.wavelengths.front().reflectance.value);
+        }
+    }
+    CHECK(refused >= 3);
 }
 
 TEST_CASE("a reduced-scattering sweep traces each value anew (issue 30)", "[solver][sweep]") {

@@ -85,10 +85,11 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
     }
     for (const auto& p : settings.free) {
         auto handle = layer_field(base, p.key, "--free");
+        if (const auto why = unread_in_layers(base, p.key)) throw InputError("--free '" + p.key + "': " + *why + " (the fit would not move it)");
         const auto& f = *handle.field;
         if (!f.absorption_only && settings.engine == FitEngine::replayed_walk) {
             const bool scalable = f.key == "thickness_cm" && std::all_of(handle.layers.begin(), handle.layers.end(), [&](std::size_t k) {
-                return base.layers[k].crossing != CrossingScattering::rayleigh_cosine || !base.model.dermal_rayleigh;
+                return crossing_in_effect(base.layers[k], base.model) != CrossingScattering::rayleigh_cosine;
             });
             if (!scalable) {
                 std::string allowed;
