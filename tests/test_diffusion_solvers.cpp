@@ -14,14 +14,20 @@ using namespace skinspec;
 
 namespace {
 
-// |R - R of adding-doubling at 8 channels| at each wavelength of `result` (the solver's own reference, solved here).
-double largest_difference(const SpectralResult& result, const Material& material) {
-    double largest = 0.0;
+struct Difference {
+    double largest = 0.0;  // |R - R of adding-doubling at 8 channels| (the solver's own reference, solved here)
+    double accuracy_lo = 1.0, accuracy_hi = 0.0;  // adding-doubling's own accuracy estimate, over the wavelengths
+};
+
+Difference largest_difference(const SpectralResult& result, const Material& material) {
+    Difference d;
     for (const auto& row : result.wavelengths) {
-        const auto ad = solve_adding_doubling(rte_stack_from(std::get<LayerStack>(material), row.wavelength_nm), AdIncidence{}, AdOptions{8, false});
-        largest = std::max(largest, std::abs(row.reflectance.value - ad.diffuse_reflectance - ad.specular_reflectance));
+        const auto ad = solve_adding_doubling(rte_stack_from(std::get<LayerStack>(material), row.wavelength_nm), AdIncidence{}, AdOptions{8, true});
+        d.largest = std::max(d.largest, std::abs(row.reflectance.value - ad.diffuse_reflectance - ad.specular_reflectance));
+        d.accuracy_lo = std::min(d.accuracy_lo, ad.accuracy);
+        d.accuracy_hi = std::max(d.accuracy_hi, ad.accuracy);
     }
-    return largest;
+    return d;
 }
 
 }  // namespace
@@ -34,10 +40,12 @@ TEST_CASE("a diffusion spectrum states its difference from adding-doubling of th
         INFO(name);
         const auto result = solve_spectrum(find_solver(name), skin, request);
         REQUIRE(result.stated_error);
-        // 9 of the 16 wavelengths measured, the largest difference among them stated: at most the largest of all.
-        const double all = largest_difference(result, skin);
-        CHECK(result.stated_error->R <= all + 1e-12);
-        CHECK(result.stated_error->R >= 0.95 * all);
+        // 9 of the 16 wavelengths measured, the largest difference among them stated (at most the largest of all),
+        // plus adding-doubling's own accuracy at one of them (its 8 channels are no exact reference).
+        const auto all = largest_difference(result, skin);
+        CHECK(all.accuracy_hi > 0.005);
+        CHECK(result.stated_error->R <= all.largest + all.accuracy_hi + 1e-12);
+        CHECK(result.stated_error->R >= 0.95 * all.largest + all.accuracy_lo);
         REQUIRE(result.stated_error->delta_e2000);
         CHECK(*result.stated_error->delta_e2000 > 1.0);  // diffusion on heavily pigmented skin: far off (docs/ADDING_DOUBLING.md)
     }
@@ -60,10 +68,13 @@ TEST_CASE("a diffusion sweep measures some members and every member states about
         const auto alone = solve_spectrum(dipole, members[i].material(), request);
         const double own = alone.stated_error->R;
         const auto p = members[i].position;
-        // 5 of 7 and 5 of 6 values measured (both ends and evenly between): measured members state exactly their own.
+        // 5 of 7 and 5 of 6 values measured (both ends and evenly between): measured members state their own
+        // difference (the sweep adds adding-doubling's largest accuracy at its corners, alone its own: at least it,
+        // by at most the accuracy's spread over the sweep).
         const bool measured = (p[0] == 0 || p[0] == 2 || p[0] == 3 || p[0] == 5 || p[0] == 6) && p[1] != 2;
         if (measured) {
-            CHECK(results[i].stated_error->R == own);
+            CHECK(results[i].stated_error->R >= own - 1e-12);
+            CHECK(results[i].stated_error->R <= own + 5e-3);
             CHECK(results[i].stated_error->delta_e2000 == alone.stated_error->delta_e2000);
         } else {
             CHECK(results[i].stated_error->R >= own);
