@@ -72,6 +72,31 @@ void suggest_options(const CLI::App& app, const std::vector<std::string>& unexpe
     }
 }
 
+// A first argument that names no command: "did you mean spectrum?" and the list, instead of CLI11's "A subcommand is
+// required"; no argument at all: the help. True when it said so (exit 2).
+bool unknown_command(const CLI::App& app, int argc, char** argv, bool print) {
+    std::vector<std::string> names;
+    for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+    if (argc < 2) {
+        if (print) std::cerr << app.help() << "skinspec: error: a command is required (skinspec COMMAND --help for its options)\n";
+        return true;
+    }
+    const std::string given = argv[1];
+    if (given.starts_with("-") || std::find(names.begin(), names.end(), given) != names.end()) return false;
+    std::string best, list;
+    std::size_t best_distance = std::max<std::size_t>(2, given.size() / 3) + 1;
+    for (const auto& name : names) {
+        list += (list.empty() ? "" : ", ") + name;
+        const auto d = edit_distance(given, name);
+        if (d < best_distance) {
+            best_distance = d;
+            best = name;
+        }
+    }
+    if (print) std::cerr << "skinspec: error: '" << given << "' is not a command" << (best.empty() ? "" : "; did you mean '" + best + "'?") << " (commands: " << list << ")\n";
+    return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -97,6 +122,7 @@ int main(int argc, char** argv) {
     skinspec::cli::check_option_values(app);
     // With several processes only rank 0 reports an input error (every rank finds the same one); any error stops them all.
     const bool root = skinspec::cli::is_root_process();
+    if (unknown_command(app, argc, argv, root)) return skinspec::cli::error_exit(2);
     const skinspec::OutputClaims outputs;  // the command's output files (spectral/atomic_file.hpp)
     try {
         app.parse(argc, argv);
