@@ -198,7 +198,7 @@ void write_csv(std::ostream& out, const ReportedSpectra& spectra) {
     write_in_order(out, spectra.size(), [&](std::size_t i, fmt::memory_buffer& text) {
         const auto& r = spectra[i].result;
         const auto* previous = i > 0 ? &spectra[i - 1].result : nullptr;
-        auto to = std::back_inserter(text);
+        auto to = fmt::appender(text);
         const auto same_model_settings = [&] {
             return previous->model_settings == r.model_settings ||
                    (previous->model_settings && r.model_settings && *previous->model_settings == *r.model_settings);
@@ -244,7 +244,7 @@ void write_csv(std::ostream& out, const ReportedSpectra& spectra) {
     out << header;
     write_in_order(out, spectra.size(), [&](std::size_t m, fmt::memory_buffer& text) {
         const auto& r = spectra[m].result;
-        auto to = std::back_inserter(text);
+        auto to = fmt::appender(text);
         for (std::size_t i = 0; i < r.wavelengths.size(); ++i) {
             const auto& w = r.wavelengths[i];
             fmt::format_to(to, "{}", r.material);
@@ -362,7 +362,7 @@ void write_sweep_table(std::ostream& out, const ReportedSpectra& spectra) {
     out << header;
     write_in_order(out, spectra.size(), [&](std::size_t i, fmt::memory_buffer& text) {
         const auto s = spectra[i];
-        auto to = std::back_inserter(text);
+        auto to = fmt::appender(text);
         fmt::format_to(to, "{:<22}", std::string_view(s.result.material).substr(0, 22));
         for (const double value : s.result.provenance.varied.values) fmt::format_to(to, "  {:>30.6g}", value);
         if (one_row) {

@@ -10,7 +10,7 @@ packages=(
   libopenimageio-dev openimageio-tools libopencolorio-dev opencolorio-tools
   libglm-dev libtbb-dev libpcg-cpp-dev catch2 libplplot-dev plplot-driver-cairo fonts-dejavu-core libnlopt-cxx-dev libhwy-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev libfftw3-dev libeigen3-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-venv
-  libpugixml-dev libopenmpi-dev openmpi-bin
+  libpugixml-dev libopenmpi-dev openmpi-bin libjemalloc-dev
   clang libclang-rt-14-dev
 )
 

@@ -48,7 +48,7 @@ run "spectrum" INT spectrum.json '"partial": true' spectrum --preset biospec-lig
 run "swatch" TERM swatch.png - swatch --delta-e 0.05 -o swatch.png
 run "swatch --lit" HUP - - swatch --lit spot --pixels 1024 --wavelengths 400:700:2 -o lit.png
 run "export lut" INT lut.exr - export lut --delta-e 0.05 -o lut.exr
-run "fit-spectrum" TERM fit.json '"partial": true' fit-spectrum "$inputs/fit_two.csv" --rays 400000 --output fit.json
+run "fit-spectrum" TERM fit.json '"partial": true' fit-spectrum "$inputs/fit_two.csv" --rays 400000 --starts 32 --output fit.json
 run "mcml" HUP stopped.mco 'INTERRUPTED' mcml long.mci --photons 1000000000
 run "bench" INT bench.json '"partial": true' bench --quick --output bench.json
 run "adding-doubling 256 channels" TERM ad.json '"partial": true' spectrum --mode adding-doubling --channels 256 --wavelengths 500:560:10 --output ad.json
