@@ -56,14 +56,15 @@ void run_export_profile(const ProfileExportOptions& o) {
     fit_request.gaussians = o.gaussians;
     if (!o.output.empty()) check_output_path(o.output, o.overwrite, {".json"});
     if (!o.table.empty()) check_output_path(o.table, o.overwrite, {".csv"});
-    const auto material = load_material(name, parsed_overrides(o.overrides));
+    const auto overrides = parsed_overrides(o.overrides);
+    const auto material = load_material(name, overrides);
     const auto& solver = chosen_profile_solver(o.solver, material);
     const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
     check_profile_export(name, bands, fit_request);
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths() : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
 
     const auto profiles =
-        solve_profiles_stoppable(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given), "export profile");
+        solve_profiles_stoppable(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given, overrides), "export profile");
     if (profiles.partial) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (the fit needs every channel's profile)\n";
         std::exit(InterruptGuard::exit_code());

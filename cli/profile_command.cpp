@@ -112,7 +112,7 @@ void run_profile(const ProfileOptions& o) {
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
     const auto& solver = chosen_profile_solver(o.solver, material);
-    const auto profiles = solve_profiles_stoppable(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given), "profile");
+    const auto profiles = solve_profiles_stoppable(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given, overrides), "profile");
     print_warning_summary(profiles.material, profiles.warnings);
     const auto csv = to_csv(profiles);
     if (o.output.empty()) {

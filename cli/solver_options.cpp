@@ -87,8 +87,9 @@ SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Ma
 }
 
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,
-                               std::uint64_t rays, std::uint64_t seed, std::vector<std::string> sampling_options) {
-    return ProfileRequest{wavelengths, radii_mm, transmittance, solver_switches(options), rays > 0 ? std::optional(rays) : std::nullopt, seed, nullptr, std::move(sampling_options), {}};
+                               std::uint64_t rays, std::uint64_t seed, std::vector<std::string> sampling_options, std::vector<MaterialOverride> overrides) {
+    return ProfileRequest{wavelengths, radii_mm, transmittance, solver_switches(options), rays > 0 ? std::optional(rays) : std::nullopt, seed, nullptr,
+                          std::move(sampling_options), {}, std::move(overrides)};
 }
 
 }  // namespace skinspec::cli

@@ -42,6 +42,6 @@ void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64
 // channels finished so far come back, partial; InterruptGuard says why).
 SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Material& material, ProfileRequest request, const std::string& label);
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,
-                               std::uint64_t rays, std::uint64_t seed, std::vector<std::string> sampling_options);
+                               std::uint64_t rays, std::uint64_t seed, std::vector<std::string> sampling_options, std::vector<MaterialOverride> overrides);
 
 }  // namespace skinspec::cli

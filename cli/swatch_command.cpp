@@ -69,9 +69,11 @@ void run_lit_swatch(const SwatchOptions& o) {
     auto view = lit_view(o.field_mm, o.pixels);
     const auto files = check_image_outputs(ImageOutputs{{o.outputs.begin(), o.outputs.end()}, o.space, o.half, o.display, o.view, o.overwrite});
 
-    const auto material = load_material(name, parsed_overrides(o.overrides));
+    const auto overrides = parsed_overrides(o.overrides);
+    const auto material = load_material(name, overrides);
     // A lit patch needs radial profiles: matched-multipole (band materials: the multipole) unless --mode names another solver.
     const auto& solver = chosen_profile_solver(o.solver, material);
+    check_overrides(solver, material, overrides);
     const auto switches = solver_switches(o.solver);
     if (measurement_geometry(o.solver, solver) != MeasurementGeometry::sci) {
         throw InputError("--geometry " + o.solver.geometry + ": a lit patch shows the light leaving every point of the surface (sci); "

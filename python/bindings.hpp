@@ -65,7 +65,7 @@ WavelengthGrid wavelength_argument(const py::object& wavelengths);
 SolverSwitches solver_switches(const py::kwargs& keywords);
 // A profile request as skinspec.profiles takes its keywords (rays, seed: None for the solver's defaults).
 ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const py::object& rays,
-                                        const py::object& seed, const py::kwargs& switches);
+                                        const py::object& seed, const py::kwargs& switches, std::vector<MaterialOverride> overrides);
 // The solver of a function that needs radial profiles: mode= by name, or (None) default_profile_solver for the material.
 const SpectralSolver& profile_solver_argument(const py::object& mode, const Material& material);
 // solve_profiles under run_interruptible (Ctrl-C stops it).

@@ -71,8 +71,9 @@ SolverSwitches solver_switches(const py::kwargs& keywords) {
 }
 
 ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const py::object& rays,
-                                        const py::object& seed, const py::kwargs& switches) {
+                                        const py::object& seed, const py::kwargs& switches, std::vector<MaterialOverride> overrides) {
     ProfileRequest request;
+    request.overrides = std::move(overrides);
     request.wavelengths = wavelengths;
     request.radii_mm = finite_vector(radii_mm, "radii_mm");
     request.transmittance = transmittance;

@@ -74,7 +74,7 @@ py::object export_profile(const py::object& material, const py::object& output, 
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths()
                                                               : (wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths));
     const auto radii = radii_mm.is_none() ? py::object(to_array(parse_radii_mm("0:10:0.01", "radii_mm"), {1001})) : radii_mm;
-    const auto profiles = solve_profiles_interruptible(solver, skin.material, profile_request_argument(grid, radii, false, rays, seed, switches));
+    const auto profiles = solve_profiles_interruptible(solver, skin.material, profile_request_argument(grid, radii, false, rays, seed, switches, skin.overrides));
     const auto exported = fit_profile_export(profiles, bands, fit_request);
     const auto document = profile_export_json(exported);
     if (!json_file.empty()) write_text_file(json_file, document.dump(2) + "\n", overwrite);

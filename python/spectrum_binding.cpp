@@ -249,7 +249,7 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
     const auto base = material_argument(material, "material");
     const auto& solver = profile_solver_argument(mode, base.material);
     const auto request = profile_request_argument(wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths),
-                                                  radii_mm, transmittance, rays, seed, switches);
+                                                  radii_mm, transmittance, rays, seed, switches, base.overrides);
     const auto p = solve_profiles_interruptible(solver, base.material, request);
     const auto rows = static_cast<py::ssize_t>(p.channels.size());
     const auto radii = static_cast<py::ssize_t>(p.radii_mm.size());

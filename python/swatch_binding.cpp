@@ -62,6 +62,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
     auto view = lit_view(field_mm, pixels);
     const auto files = check_image_outputs(ImageOutputs{output_paths(output, "output"), space, half, display, view_name, overwrite});
     const auto& solver = profile_solver_argument(mode, skin.material);
+    check_overrides(solver, skin.material, skin.overrides);
     const auto light = lighting_argument(lighting, pattern, spot_radius_mm, view);
     const auto grid = wavelength_argument(wavelengths);
     const auto solver_settings = solver_switches(switches);

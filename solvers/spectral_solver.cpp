@@ -334,6 +334,7 @@ void check_request(const SpectralSolver& solver, const Material& material, const
     }
     check_material(solver, material);
     check_switches(solver, request.switches);
+    check_overrides(solver, material, request.overrides);
     refuse_sampling_options(solver, request.sampling_options);
     if (!solver.capabilities().uncertainty && request.rays_per_wavelength) {
         throw InputError("solver '" + std::string(solver.name()) + "' is deterministic: it takes no ray count (Monte Carlo solvers with radial profiles: " +

@@ -66,6 +66,7 @@ struct ProfileRequest {
     const CancelFlag* cancel = nullptr;  // a stop leaves the channels finished so far (SpectralProfiles::partial)
     std::vector<std::string> sampling_options;  // as SolverRequest's
     std::function<void(const Progress&)> on_progress;  // channels (wavelengths or bands) done, and rays for the walks
+    std::vector<MaterialOverride> overrides;  // as SolverRequest's: one the solver would ignore is refused
 };
 
 class SpectralSolver {

@@ -404,6 +404,21 @@ TEST_CASE("a layer field read only with one kind of scattering is refused where 
     CHECK(refused > 20);
 }
 
+TEST_CASE("radial profiles refuse an override the solver does not read, as spectra do", "[solver]") {
+    const auto base = load_material("biospec-lightly");
+    const auto other = with_overrides(base, {{"epidermis.hg_g", "0.5"}});
+    ProfileRequest request;
+    request.radii_mm = {0.1, 0.5};
+    request.overrides = {{"epidermis.hg_g", "0.5"}};
+    CHECK_THROWS_WITH(solve_profiles(find_solver("multipole"), other, request), Catch::Contains("which solver 'multipole' does not read"));
+    // Not read indeed: the profile is the base's to the bit.
+    request.overrides.clear();
+    CHECK(solve_profiles(find_solver("multipole"), other, request).channels.front().reflectance_per_mm2 ==
+          solve_profiles(find_solver("multipole"), base, request).channels.front().reflectance_per_mm2);
+    request.overrides = {{"epidermis.melanosome_fraction", "0.1"}};
+    CHECK_NOTHROW(solve_profiles(find_solver("multipole"), with_overrides(base, {{"epidermis.melanosome_fraction", "0.1"}}), request));
+}
+
 TEST_CASE("a solver that reads only the top layer's refractive index refuses an override of a deeper one's", "[solver]") {
     const auto base = load_material("biospec-lightly");
     const auto& stack = std::get<LayerStack>(base);
