@@ -10,10 +10,10 @@ work="$(mktemp -d)"
 cd "$work" || exit 1
 sed 's|existing_output.csv|stopped.mco|' "$inputs/overwrite_check.mci" > long.mci
 failures=0
-# NAME | SIGNAL | OUTPUT (- for none) | WHAT MARKS IT PARTIAL (grep pattern, - for nothing to check) | ARGS...
-run() {
-    local name="$1" signal="$2" output="$3" mark="$4"
-    shift 4
+# The command started, sent SIGNAL after 2 s; sets rc and ms (from the signal to the end).
+stop_after_2s() {
+    local signal="$1"
+    shift
     "$program" "$@" > stdout.txt 2> stderr.txt &
     local pid=$!
     sleep 2
@@ -21,9 +21,27 @@ run() {
     t0=$(date +%s%N)
     kill "-$signal" "$pid"
     wait "$pid"
-    local rc=$? t1
+    rc=$?
+    local t1
     t1=$(date +%s%N)
-    local ms=$(( (t1 - t0) / 1000000 )) expected
+    ms=$(( (t1 - t0) / 1000000 ))
+}
+# NAME | SIGNAL | OUTPUT (- for none) | WHAT MARKS IT PARTIAL (grep pattern, - for nothing to check) | ARGS...
+run() {
+    local name="$1" signal="$2" output="$3" mark="$4"
+    shift 4
+    local rc ms
+    touch .before_run
+    stop_after_2s "$signal" "$@"
+    # Under the sanitizers, LeakSanitizer's own exit scan can crash beside OpenImageIO's threads, depending on the
+    # memory layout (docs/STABILITY.md; tests/cli/run_cli.cmake does the same): a failure of the tool after the
+    # program's own exit, not a finding. The command then runs once more without the leak scan, and says so.
+    if grep -q "LeakSanitizer has encountered a fatal error" stderr.txt; then
+        echo "note $name: LeakSanitizer's exit scan failed (a tool failure): running again without the leak scan"
+        find . -maxdepth 1 -type f -newer .before_run ! -name stdout.txt ! -name stderr.txt -delete  # what the first run wrote
+        ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" stop_after_2s "$signal" "$@"
+    fi
+    local expected
     expected=$(( 128 + $(kill -l "$signal") ))
     local problem=""
     [ "$rc" -eq "$expected" ] || problem="exit $rc, expected $expected"
