@@ -133,7 +133,7 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
         }
         if (c % per_solve == 0) {
             const auto grid = stack ? WavelengthGrid::list({wavelengths.nm()[c]}) : wavelengths;
-            auto part = solve_profiles(solver, material, ProfileRequest{grid, radii, false, switches, std::nullopt, 1, cancel, {}, {}});
+            auto part = solve_profiles(solver, material, ProfileRequest{grid, radii, false, switches, std::nullopt, 1, cancel, {}, {}, {}});
             out.profiles.model = part.model;
             out.profiles.radii_mm = part.radii_mm;
             out.profiles.max_pairs = std::max(out.profiles.max_pairs, part.max_pairs);
