@@ -26,7 +26,7 @@ struct CacheLineAllocator {
     CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
     static std::size_t bytes(std::size_t n) { return (n * sizeof(T) + line - 1) / line * line; }
     T* allocate(std::size_t n) { return static_cast<T*>(::operator new(bytes(n), std::align_val_t{line})); }
-    void deallocate(T* p, std::size_t n) noexcept { ::operator delete(p, bytes(n), std::align_val_t{line}); }
+    void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t{line}); }
     template <class U>
     bool operator==(const CacheLineAllocator<U>&) const noexcept { return true; }
 };
