@@ -129,6 +129,10 @@ const std::vector<ModelField>& model_fields() {
         {"redraw_reversals_in_stratum_corneum", "", &M::redraw_reversals_in_stratum_corneum, {},
          "re-draw an SC perturbation that reverses the travel sense (false: authors' code, the ray leaves / passes on)", false, ScatteringDescription::biospec},
         {"fold_formula", "", &M::fold_formula, {}, "skin-fold perturbation: biospec_2004 or authors_code", false, ScatteringDescription::biospec},
+        {"volumetric_matched_to_biospec", "", &M::volumetric_matched_to_biospec, {},
+         "volumetric solvers: solve a description derived from the BioSpec one (SC and epidermis mu_s d = 1 with the crossing's profile; "
+         "the dermis's mu_s scaled per wavelength so R_d equals biospec-adding-doubling's) instead of the layers' volumetric fields",
+         false, ScatteringDescription::volumetric},
     };
     return fields;
 }

@@ -42,6 +42,9 @@ struct ModelOptions {
     bool bottom_exit_fresnel = true;      // 3: false = light leaves the bottom (reflector off) with no Fresnel test
     bool redraw_reversals_in_stratum_corneum = true;  // 4: false = a reversing SC perturbation is kept (see walk)
     FoldFormula fold_formula = FoldFormula::biospec_2004;  // 5
+    // The volumetric solvers solve a description derived from the BioSpec one (transport/adding_doubling/
+    // matched_volumetric.hpp) instead of the layers' own volumetric fields.
+    bool volumetric_matched_to_biospec = false;
 
     bool operator==(const ModelOptions&) const = default;
 };

@@ -25,9 +25,12 @@ PathKey path_key(const LayerStack& stack) {
     s.name.clear();
     s.description.clear();
     s.model.variant.clear();  // a variant only names switch values; the switches themselves are compared
+    // A volumetric description matched to the BioSpec one scales the dermis's mu_s by what the absorbers do to R: no
+    // field changes mu_a alone there.
+    const bool absorbers_scatter = s.model.volumetric_matched_to_biospec;
     for (auto& layer : s.layers) {
         for (const auto& f : layer_number_fields()) {
-            if (f.absorption_only) layer.*f.member = 0.0;
+            if (f.absorption_only && !absorbers_scatter) layer.*f.member = 0.0;
             else mix(key.hash, layer.*f.member);
         }
     }
@@ -35,7 +38,7 @@ PathKey path_key(const LayerStack& stack) {
         std::visit(
             [&](auto member) {
                 using T = std::remove_cvref_t<decltype(s.model.*member)>;
-                if (f.absorption_only) s.model.*member = T{};
+                if (f.absorption_only && !absorbers_scatter) s.model.*member = T{};
                 else if constexpr (std::is_same_v<T, double>) mix(key.hash, s.model.*member);
             },
             f.member);
@@ -72,7 +75,7 @@ std::string path_difference(const LayerStack& a, const LayerStack& b) {
         if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
     }
     for (const auto& k : keys) {
-        if (k == "name" || k == "description" || k == "model.variant" || is_absorption_only_key(k)) continue;
+        if (k == "name" || k == "description" || k == "model.variant" || (is_absorption_only_key(k) && !a.model.volumetric_matched_to_biospec)) continue;
         try {
             if (material_field(ma, k) != material_field(mb, k)) return k;
         } catch (const InputError&) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "spectral/input_error.hpp"
+#include "transport/adding_doubling/biospec_adding_doubling.hpp"
 
 namespace skinspec {
 namespace {
@@ -86,9 +87,27 @@ SpectralResult adding_doubling_spectrum(const LayerStack& stack, const SpectralR
 
 SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const SpectralRequest& request, const AdOptions& options) {
     AdCache phases;
-    return adding_doubling_spectrum(stack, request, options, "adding-doubling", [&](double nm, const AdOptions& ad) {
-        return AdWavelength{solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, request.incidence_deg}, ad, &phases), 0.0};
+    const bool derived = stack.model.volumetric_matched_to_biospec;
+    auto result = adding_doubling_spectrum(stack, request, options, "adding-doubling", [&](double nm, const AdOptions& ad) {
+        auto solved = solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, request.incidence_deg}, ad, &phases);
+        if (derived) {
+            // The description derived from the BioSpec one reproduces its R_d at normal incidence (where it can): its
+            // miss at this request's incidence and geometry is part of the stated error.
+            const BiospecAdOptions exact{AdOptions{ad.channels, false, ad.cancel}, FoldIntoSkin::drop, std::nullopt};
+            const auto biospec = solve_biospec_adding_doubling(stack, nm, request.incidence_deg, exact, &phases).totals;
+            const bool specular = request.geometry != MeasurementGeometry::sce;
+            const double miss = solved.diffuse_reflectance - biospec.diffuse_reflectance +
+                                (specular ? solved.specular_reflectance - biospec.specular_reflectance : 0.0);
+            solved.accuracy = std::max(solved.accuracy, std::abs(miss));
+        }
+        return AdWavelength{solved, 0.0};
     });
+    if (derived && result.stated_error) {
+        static const auto meaning = std::make_shared<const std::string>(
+            *result.stated_error->meaning + ", or |R - R of biospec-adding-doubling| at any wavelength (the derived description's miss of the BioSpec model), if larger");
+        result.stated_error->meaning = meaning;
+    }
+    return result;
 }
 
 }  // namespace skinspec

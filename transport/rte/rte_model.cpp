@@ -5,6 +5,7 @@
 #include "spectral/input_error.hpp"
 #include "spectral/named_choice.hpp"
 #include "spectral/text_fields.hpp"
+#include "transport/adding_doubling/matched_volumetric.hpp"
 
 namespace skinspec {
 
@@ -39,6 +40,7 @@ RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
         if (o.phase_table) phase = {PhaseFunction::Kind::tabulated, *o.g, 0.0, 1.0, o.phase_table};
         out.layers.push_back({o.refractive_index, o.mu_a_per_cm, *o.mu_s_per_cm, o.thickness_cm, phase});
     }
+    if (stack.model.volumetric_matched_to_biospec) return match_volumetric_to_biospec(stack, out, wavelength_nm).stack;
     return out;
 }
 
