@@ -17,17 +17,19 @@ void mix(std::size_t& hash, double value) {
     hash ^= std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(value)) + 0x9e3779b97f4a7c15ULL + (hash << 6) + (hash >> 2);
 }
 
+bool absorbers_scatter_in(const LayerStack& stack, TracedPaths paths) {
+    return paths == TracedPaths::volumetric && stack.model.volumetric_matched_to_biospec;
+}
+
 }  // namespace
 
-PathKey path_key(const LayerStack& stack) {
+PathKey path_key(const LayerStack& stack, TracedPaths paths) {
     PathKey key{stack, 0};
     auto& s = key.stack;
     s.name.clear();
     s.description.clear();
     s.model.variant.clear();  // a variant only names switch values; the switches themselves are compared
-    // A volumetric description matched to the BioSpec one scales the dermis's mu_s by what the absorbers do to R: no
-    // field changes mu_a alone there.
-    const bool absorbers_scatter = s.model.volumetric_matched_to_biospec;
+    const bool absorbers_scatter = absorbers_scatter_in(s, paths);
     for (auto& layer : s.layers) {
         for (const auto& f : layer_number_fields()) {
             if (f.absorption_only && !absorbers_scatter) layer.*f.member = 0.0;
@@ -62,8 +64,8 @@ bool is_absorption_only_key(const std::string& key) {
                        [&](const NumberField<TissueLayer>& f) { return f.key == name && f.absorption_only; });
 }
 
-std::string path_difference(const LayerStack& a, const LayerStack& b) {
-    if (path_key(a) == path_key(b)) return {};
+std::string path_difference(const LayerStack& a, const LayerStack& b, TracedPaths paths) {
+    if (path_key(a, paths) == path_key(b, paths)) return {};
     if (a.layers.size() != b.layers.size()) return "the number of layers";
     for (std::size_t k = 0; k < a.layers.size(); ++k) {
         if (a.layers[k].name != b.layers[k].name) return "the name of layer " + std::to_string(k + 1);
@@ -75,7 +77,7 @@ std::string path_difference(const LayerStack& a, const LayerStack& b) {
         if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
     }
     for (const auto& k : keys) {
-        if (k == "name" || k == "description" || k == "model.variant" || (is_absorption_only_key(k) && !a.model.volumetric_matched_to_biospec)) continue;
+        if (k == "name" || k == "description" || k == "model.variant" || (is_absorption_only_key(k) && !absorbers_scatter_in(a, paths))) continue;
         try {
             if (material_field(ma, k) != material_field(mb, k)) return k;
         } catch (const InputError&) {
@@ -85,13 +87,13 @@ std::string path_difference(const LayerStack& a, const LayerStack& b) {
     return "a field";
 }
 
-void require_shared_paths(const std::vector<const LayerStack*>& stacks) {
+void require_shared_paths(const std::vector<const LayerStack*>& stacks, TracedPaths paths) {
     if (stacks.size() < 2) return;
-    const auto first = path_key(*stacks.front());
+    const auto first = path_key(*stacks.front(), paths);
     for (const auto* stack : stacks) {
-        if (path_key(*stack) == first) continue;
+        if (path_key(*stack, paths) == first) continue;
         throw InputError("absorption sets '" + stacks.front()->name + "' and '" + stack->name + "' differ in " +
-                         path_difference(*stacks.front(), *stack) + ", which changes paths (trace them separately)");
+                         path_difference(*stacks.front(), *stack, paths) + ", which changes paths (trace them separately)");
     }
 }
 

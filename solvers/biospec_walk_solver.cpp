@@ -41,7 +41,7 @@ public:
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         if (options(request.switches).estimator != AbsorptionEstimator::weighted) return SpectralSolver::solve_groups(materials, request);
-        return replay_groups(materials, max_replay_sets);
+        return replay_groups(materials, max_replay_sets, TracedPaths::biospec);
     }
 
 private:

@@ -181,12 +181,12 @@ std::vector<std::vector<std::size_t>> SpectralSolver::solve_groups(const std::ve
     return groups;
 }
 
-std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets) {
+std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets, TracedPaths paths) {
     std::vector<std::vector<std::size_t>> groups;
     std::vector<PathKey> keys;  // one per group
     std::unordered_multimap<std::size_t, std::size_t> by_hash;  // key hash -> the groups with that hash (the lowest index joins)
     for (std::size_t i = 0; i < materials.size(); ++i) {
-        auto key = path_key(std::get<LayerStack>(*materials[i]));
+        auto key = path_key(std::get<LayerStack>(*materials[i]), paths);
         std::optional<std::size_t> joined;
         const auto [first, last] = by_hash.equal_range(key.hash);
         for (auto it = first; it != last; ++it) {

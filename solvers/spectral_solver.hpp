@@ -14,6 +14,7 @@
 
 #include "materials/material_fields.hpp"
 #include "materials/material_file.hpp"
+#include "materials/path_key.hpp"
 #include "materials/parameter_sweep.hpp"
 #include "solvers/solver_switches.hpp"
 #include "solvers/work_share.hpp"
@@ -99,7 +100,7 @@ public:
 // For solve_groups implementations that replay absorption: the layered materials that trace alike (equal path
 // keys, materials/path_key.hpp: only absorption-only fields differ), at most `max_sets` per group, each joining
 // the first group it fits.
-std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets);
+std::vector<std::vector<std::size_t>> replay_groups(const std::vector<const Material*>& materials, std::size_t max_sets, TracedPaths paths);
 // For solve_many implementations that replay absorption: solves each of `groups` with `solve_group` (one result per
 // stack, in order) and returns the results in the materials' order, up to the first one not solved (cancelled).
 // `solve_group` gets the request for that group: its progress reports into the whole sweep's (PartProgress).

@@ -53,7 +53,7 @@ public:
     }
     std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const override {
         if (any_bands(materials)) return SpectralSolver::solve_groups(materials, request);
-        return replay_groups(materials, max_replay_sets);
+        return replay_groups(materials, max_replay_sets, TracedPaths::volumetric);
     }
 
 private:

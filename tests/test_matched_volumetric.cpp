@@ -70,14 +70,18 @@ TEST_CASE("adding-doubling on the derived description has the BioSpec model's di
     CHECK(previous_scale > 1.0);
 }
 
-TEST_CASE("a derived description makes the absorbers separate traced paths", "[matched_volumetric]") {
+TEST_CASE("a derived description makes the absorbers separate the volumetric walk's traced paths", "[matched_volumetric]") {
     const auto light = [](bool derived, const char* melanin) {
         std::vector<MaterialOverride> o{parse_override(std::string("epidermis.melanosome_fraction=") + melanin)};
         return derived ? matched("biospec-lightly", o) : std::get<LayerStack>(load_material("biospec-lightly", o));
     };
-    CHECK(path_key(light(false, "0.02")) == path_key(light(false, "0.2")));
-    CHECK_FALSE(path_key(light(true, "0.02")) == path_key(light(true, "0.2")));
-    CHECK(path_difference(light(true, "0.02"), light(true, "0.2")) == "epidermis.melanosome_fraction");
+    for (const auto paths : {TracedPaths::biospec, TracedPaths::volumetric}) {
+        CHECK(path_key(light(false, "0.02"), paths) == path_key(light(false, "0.2"), paths));
+    }
+    // The BioSpec walk does not read the derived description: its paths are still shared.
+    CHECK(path_key(light(true, "0.02"), TracedPaths::biospec) == path_key(light(true, "0.2"), TracedPaths::biospec));
+    CHECK_FALSE(path_key(light(true, "0.02"), TracedPaths::volumetric) == path_key(light(true, "0.2"), TracedPaths::volumetric));
+    CHECK(path_difference(light(true, "0.02"), light(true, "0.2"), TracedPaths::volumetric) == "epidermis.melanosome_fraction");
 }
 
 TEST_CASE("a derived description is refused where it cannot be derived, naming the switch", "[matched_volumetric]") {

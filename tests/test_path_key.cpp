@@ -19,8 +19,8 @@ TEST_CASE("stacks that differ only in absorption-only fields have equal path key
         INFO(key);
         CHECK(is_absorption_only_key(key));
         CHECK_FALSE(a == b);
-        CHECK(path_key(a) == path_key(b));
-        CHECK(path_difference(a, b).empty());
+        CHECK(path_key(a, TracedPaths::volumetric) == path_key(b, TracedPaths::volumetric));
+        CHECK(path_difference(a, b, TracedPaths::volumetric).empty());
     }
 }
 
@@ -28,21 +28,21 @@ TEST_CASE("every other field separates the keys and is named by its --set key", 
     const auto a = std::get<LayerStack>(load_material("biospec-moderately"));
     auto b = a;
     b.layers[1].thickness_cm *= 2.0;
-    CHECK_FALSE(path_key(a) == path_key(b));
-    CHECK(path_difference(a, b) == "epidermis.thickness_cm");
+    CHECK_FALSE(path_key(a, TracedPaths::volumetric) == path_key(b, TracedPaths::volumetric));
+    CHECK(path_difference(a, b, TracedPaths::volumetric) == "epidermis.thickness_cm");
     b = a;
     b.name = "renamed";
     b.description = "other words";
-    CHECK(path_difference(a, b).empty());
+    CHECK(path_difference(a, b, TracedPaths::volumetric).empty());
     b = a;
     b.model.dermal_rayleigh = false;
-    CHECK(path_difference(a, b) == "model.dermal_rayleigh");
+    CHECK(path_difference(a, b, TracedPaths::volumetric) == "model.dermal_rayleigh");
     b = a;
     b.layers.pop_back();
-    CHECK(path_difference(a, b) == "the number of layers");
+    CHECK(path_difference(a, b, TracedPaths::volumetric) == "the number of layers");
     b = a;
     b.layers[2].volumetric->g = 0.5;
-    CHECK(path_difference(a, b) == "papillary_dermis.volumetric_g");
+    CHECK(path_difference(a, b, TracedPaths::volumetric) == "papillary_dermis.volumetric_g");
     CHECK_FALSE(is_absorption_only_key("epidermis.thickness_cm"));
     CHECK_FALSE(is_absorption_only_key("surface.fold_aspect_ratio"));
 }

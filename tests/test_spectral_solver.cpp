@@ -454,7 +454,7 @@ TEST_CASE("a reduced-scattering sweep traces each value anew (issue 30)", "[solv
     for (const char* v : {"20", "200"}) materials.push_back(with_overrides(Material{stack}, {{"papillary_dermis.reduced_scattering_per_cm_at_500nm", v}}));
     const std::vector<const Material*> pointers{&materials[0], &materials[1]};
     CHECK(find_solver("rte").solve_groups(pointers, one_wavelength()) == std::vector<std::vector<std::size_t>>{{0}, {1}});
-    CHECK(path_difference(std::get<LayerStack>(materials[0]), std::get<LayerStack>(materials[1])) ==
+    CHECK(path_difference(std::get<LayerStack>(materials[0]), std::get<LayerStack>(materials[1]), TracedPaths::volumetric) ==
           "papillary_dermis.reduced_scattering_per_cm_at_500nm");
 }
 

@@ -119,7 +119,7 @@ BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets,
     if (sets_ > 1 && options.estimator != AbsorptionEstimator::weighted) {
         throw InputError("absorption replay needs the weighted estimator (the random test makes paths depend on absorption)");
     }
-    require_shared_paths(sets);
+    require_shared_paths(sets, TracedPaths::biospec);
     packet_.mu_a_per_cm.assign(layers_ * sets_, 0.0f);
     for (std::size_t s = 0; s < sets_; ++s) {
         for (std::size_t k = 0; k < layers_; ++k) {

@@ -555,7 +555,7 @@ std::vector<SpectralResult> solve_rte_spectra(const std::vector<const LayerStack
                                               BoundaryMode boundaries, bool white) {
     if (stacks.empty()) throw InputError("absorption replay: no stacks to simulate");
     const bool replay = stacks.size() > 1 || white;
-    require_shared_paths(stacks);
+    require_shared_paths(stacks, TracedPaths::volumetric);
     std::vector<SpectralResult> out;
     for (const auto* stack : stacks) {
         std::vector<std::string> layers;
