@@ -1,10 +1,10 @@
 #include "transport/adding_doubling/matched_volumetric.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <utility>
 
 #include "materials/measured_profile.hpp"
 #include "spectral/input_error.hpp"
@@ -16,7 +16,7 @@ namespace {
 
 bool is_dermal(CrossingScattering c) { return c == CrossingScattering::rayleigh_cosine || c == CrossingScattering::cosine; }
 
-// The dermal factor's search: ln(scale) on a grid of factors 1/64 .. 64, then bisection of the bracket to 1e-7 in R.
+// The dermal factor's search: ln(scale) on a grid of factors 1/64 .. 64, then the bracket refined to 1e-7 in R.
 constexpr int grid_lowest = -6, grid_highest = 6;  // powers of 2, stepped by 2
 constexpr double reflectance_tolerance = 1e-7;
 constexpr int max_refinements = 60;
@@ -30,53 +30,78 @@ struct DermalMatch {
     double miss = 0.0;  // 0 where a factor reaches the target, else R_d - target at the closest factor
 };
 
-// The largest grid interval where R_d crosses the target upward (R_d grows with the dermal scattering there; below it,
-// thinning the dermis can also brighten: more light reaches the reflector), refined by bisection; without one, the
-// factor that comes closest (golden section about the closest grid point), stopped early if it reaches the target.
-// A root of `miss` between `a` and `b`, where it has opposite signs, by bisection to reflectance_tolerance.
+// A root of `miss` between `a` and `b`, where it has the opposite signs `fa` and `fb`, to reflectance_tolerance: the
+// Illinois variant of regula falsi (Dowell & Jarratt 1971, BIT 11:168), superlinear and never leaving the bracket.
 template <class Miss>
-double bisect(const Miss& miss, double a, double b) {
-    const bool rising = miss(b) > miss(a);
-    double mid = 0.5 * (a + b);
-    for (int i = 0; i < max_refinements; ++i) {
-        mid = 0.5 * (a + b);
-        const double m = miss(mid);
-        if (std::abs(m) < reflectance_tolerance) break;
-        ((m < 0.0) == rising ? a : b) = mid;
+double refine_root(const Miss& miss, double a, double fa, double b, double fb) {
+    int kept = 0;  // the end kept by the last two steps: -1 a, +1 b (its value is halved when kept twice)
+    double c = a;
+    for (int i = 0; i < max_refinements && b - a != 0.0; ++i) {
+        c = (a * fb - b * fa) / (fb - fa);
+        const double fc = miss(c);
+        if (std::abs(fc) < reflectance_tolerance) break;
+        if ((fc > 0.0) == (fb > 0.0)) {
+            b = c;
+            fb = fc;
+            if (kept == -1) fa *= 0.5;
+            kept = -1;
+        } else {
+            a = c;
+            fa = fc;
+            if (kept == 1) fb *= 0.5;
+            kept = 1;
+        }
     }
-    return mid;
+    return c;
 }
 
 // The largest grid interval where R_d crosses the target upward (R_d grows with the dermal scattering there; below it,
-// thinning the dermis can also brighten: more light reaches the reflector), refined by bisection; without one, the
+// thinning the dermis can also brighten: more light reaches the reflector), refined; without one, the
 // factor that comes closest (golden section about the closest grid point; a crossing found on the way is refined).
 template <class Miss>
 DermalMatch match_dermis(const Miss& miss) {
     DermalMatch best{grid_lowest * std::numbers::ln2, miss(grid_lowest * std::numbers::ln2)};
     double previous_log = best.log_scale, previous = best.miss;
-    std::optional<std::pair<double, double>> bracket;
+    std::optional<std::array<double, 4>> bracket;  // ln(scale) and miss at both ends
     for (int k = grid_lowest + 2; k <= grid_highest; k += 2) {
         const double log_scale = k * std::numbers::ln2, m = miss(log_scale);
-        if (previous < 0.0 && m >= 0.0) bracket = {previous_log, log_scale};
+        if (previous < 0.0 && m >= 0.0) bracket = {previous_log, previous, log_scale, m};
         if (std::abs(m) < std::abs(best.miss)) best = {log_scale, m};
         previous_log = log_scale;
         previous = m;
     }
-    if (bracket) return {bisect(miss, bracket->first, bracket->second), 0.0};
+    if (bracket) return {refine_root(miss, (*bracket)[0], (*bracket)[1], (*bracket)[2], (*bracket)[3]), 0.0};
     const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-    const double closest = best.log_scale;
+    const auto closest = best;
     const bool above = best.miss > 0.0;
-    double a = closest - 2.0 * std::numbers::ln2, b = closest + 2.0 * std::numbers::ln2;
-    for (int i = 0; i < golden_steps; ++i) {
-        const double c = b - phi * (b - a), d = a + phi * (b - a);
-        const double fc = miss(c), fd = miss(d);
-        if ((fc > 0.0) != above) return {bisect(miss, closest, c), 0.0};
-        if ((fd > 0.0) != above) return {bisect(miss, closest, d), 0.0};
-        for (const auto& [x, f] : {std::pair{c, fc}, std::pair{d, fd}}) {
-            if (std::abs(f) < std::abs(best.miss)) best = {x, f};
+    // Golden section (one new point per step) for the smallest |miss|; a point on the other side ends it with a root.
+    const auto probe = [&](double x) -> std::optional<double> {
+        const double f = miss(x);
+        if ((f > 0.0) != above) return std::nullopt;
+        if (std::abs(f) < std::abs(best.miss)) best = {x, f};
+        return std::abs(f);
+    };
+    double a = closest.log_scale - 2.0 * std::numbers::ln2, b = closest.log_scale + 2.0 * std::numbers::ln2;
+    double c = b - phi * (b - a), d = a + phi * (b - a);
+    auto fc = probe(c), fd = fc ? probe(d) : std::nullopt;
+    for (int i = 0; i < golden_steps && fc && fd; ++i) {
+        if (*fc < *fd) {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - phi * (b - a);
+            fc = probe(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + phi * (b - a);
+            fd = probe(d);
         }
-        if (std::abs(fc) < std::abs(fd)) b = d;
-        else a = c;
+    }
+    if (!fc || !fd) {
+        const double x = fc ? d : c;
+        return {refine_root(miss, closest.log_scale, closest.miss, x, miss(x)), 0.0};
     }
     return best;
 }
