@@ -82,12 +82,29 @@ bool reads(const SolverCapabilities& caps, ScatteringDescription d) {
     return std::find(caps.descriptions.begin(), caps.descriptions.end(), d) != caps.descriptions.end();
 }
 
+// A volumetric description derived from the BioSpec one (matched_volumetric.hpp) reads the BioSpec description and,
+// of the layers' own volumetric and reduced fields, only the dermal layers' phase function: their mu_s is scaled to
+// the match, and the thin layers take mu_s d = 1 and their crossing's profile. Unset unless the stack derives it.
+std::optional<bool> derived_reads(const SolverCapabilities& caps, const LayerStack* stack, const std::string& key, ScatteringDescription d) {
+    if (!stack || !stack->model.volumetric_matched_to_biospec || !reads(caps, ScatteringDescription::volumetric) || key.starts_with("model.")) return std::nullopt;
+    if (d == ScatteringDescription::biospec) return true;
+    const auto head = std::string_view(key).substr(0, key.find('.'));
+    const auto field = std::string_view(key).substr(key.find('.') + 1);
+    if (field != "volumetric_g" && field != "volumetric_phase") return false;
+    return std::any_of(stack->layers.begin(), stack->layers.end(), [&](const TissueLayer& l) {
+        const auto c = crossing_in_effect(l, stack->model);
+        return layer_matches(l.name, head) && (c == CrossingScattering::rayleigh_cosine || c == CrossingScattering::cosine);
+    });
+}
+
 }  // namespace
 
 bool reads_field(const SolverCapabilities& caps, const Material& material, const std::string& key) {
     const auto d = scattering_description(key);
-    if (!d || reads(caps, *d)) return true;
+    if (!d) return true;
     const auto* stack = std::get_if<LayerStack>(&material);
+    if (const auto derived = derived_reads(caps, stack, key, *d)) return *derived;
+    if (reads(caps, *d)) return true;
     if (!stack || *d != ScatteringDescription::reduced || !reads(caps, ScatteringDescription::volumetric)) return false;
     const auto head = std::string_view(key).substr(0, key.find('.'));
     return std::any_of(stack->layers.begin(), stack->layers.end(), [&](const TissueLayer& l) {
@@ -121,6 +138,11 @@ void check_overrides(const SpectralSolver& solver, const Material& material, con
             continue;
         }
         const auto d = *scattering_description(o.key);
+        if (derived_reads(caps, stack, o.key, d)) {
+            throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", which " + who +
+                             " does not read: model.volumetric_matched_to_biospec = true derives the volumetric description from the BioSpec one, "
+                             "taking of the layers' own volumetric fields only the dermal layers' volumetric_phase and volumetric_g");
+        }
         throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", which " + who + " does not read: it belongs to " + std::string(to_string(d)) +
                          " (solvers that read it: " + offered_by([&](const SolverCapabilities& c) { return reads_field(c, material, o.key); }) + ")");
     }

@@ -135,7 +135,9 @@ std::string solver_names();
 
 // Whether a solver of `caps` reads the field `key` of `material` (after its overrides): a field of every description
 // of scattering, of one the solver declares, or a layer's reduced scattering from which that layer's volumetric mu_s is
-// derived. check_request refuses an override of a field it does not read.
+// derived; on a volumetric description derived from the BioSpec one, the BioSpec fields and the dermal layers' phase
+// function (transport/adding_doubling/matched_volumetric.hpp). check_request refuses an override of a field it does
+// not read.
 bool reads_field(const SolverCapabilities& caps, const Material& material, const std::string& key);
 // InputError for an override the solver would ignore: of a field it does not read, of the bottom by a solver without
 // one, of a deeper layer's refractive index by a solver that reads only the top's (check_request's, for the commands

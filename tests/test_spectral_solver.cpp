@@ -482,3 +482,19 @@ TEST_CASE("progress of a sweep's parts is progress of the whole: never back, ray
     PartProgress silent({}, 2);
     CHECK(!silent.part(SpectralRequest{}, 0).on_progress);
 }
+
+TEST_CASE("on a description derived from the BioSpec one, the volumetric solvers read the BioSpec fields and only the dermal phase", "[spectral_solver]") {
+    const auto check = [](const char* solver, const char* field) {
+        const std::vector<MaterialOverride> overrides{parse_override("model.volumetric_matched_to_biospec=true"), parse_override(field)};
+        check_overrides(find_solver(solver), load_material("biospec-lightly", overrides), overrides);
+    };
+    for (const char* solver : {"adding-doubling", "rte"}) {
+        INFO(solver);
+        CHECK_NOTHROW(check(solver, "dermis.collagen_fibre_fraction=0.3"));  // the match's target moves with it
+        CHECK_NOTHROW(check(solver, "dermis.volumetric_g=0.9"));
+        CHECK_THROWS_WITH(check(solver, "stratum_corneum.volumetric_phase=isotropic"),
+                          Catch::Contains("model.volumetric_matched_to_biospec = true derives the volumetric description"));
+        CHECK_THROWS_WITH(check(solver, "dermis.reduced_scattering_table=salomatina_epidermis"), Catch::Contains("only the dermal layers' volumetric_phase"));
+    }
+    CHECK_THROWS_WITH(check("biospec", "dermis.volumetric_g=0.9"), Catch::Contains("does not read"));
+}
