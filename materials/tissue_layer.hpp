@@ -20,6 +20,8 @@ enum class CrossingScattering {
     henyey_greenstein,         // HG with asymmetry hg_g about the current direction
 };
 std::string_view to_string(CrossingScattering kind);
+// The dermal kinds (a cosine turn, with or without Rayleigh), as against the thin layers' single deflection.
+constexpr bool is_dermal(CrossingScattering kind) { return kind == CrossingScattering::rayleigh_cosine || kind == CrossingScattering::cosine; }
 CrossingScattering parse_crossing_scattering(std::string_view text, std::string_view what);
 
 // Volumetric phase functions: HG (volumetric_g), isotropic, Rayleigh, or a measured profile (Bruls & van der Leun

@@ -91,10 +91,8 @@ std::optional<bool> derived_reads(const SolverCapabilities& caps, const LayerSta
     const auto head = std::string_view(key).substr(0, key.find('.'));
     const auto field = std::string_view(key).substr(key.find('.') + 1);
     if (field != "volumetric_g" && field != "volumetric_phase") return false;
-    return std::any_of(stack->layers.begin(), stack->layers.end(), [&](const TissueLayer& l) {
-        const auto c = crossing_in_effect(l, stack->model);
-        return layer_matches(l.name, head) && (c == CrossingScattering::rayleigh_cosine || c == CrossingScattering::cosine);
-    });
+    return std::any_of(stack->layers.begin(), stack->layers.end(),
+                       [&](const TissueLayer& l) { return layer_matches(l.name, head) && is_dermal(crossing_in_effect(l, stack->model)); });
 }
 
 }  // namespace

@@ -306,7 +306,8 @@ void skin_modes(Benchmark& bench) {
     solvers.insert(solvers.begin() + 2, matched);
     // A solver that needs no extra description solves the BioSpec one.
     const auto reference_of = [&](const std::string& solver) -> std::string {
-        if (solver == biospec_exact || solver == matched) return solver == matched ? std::string(biospec_exact) : solver;
+        if (solver == biospec_exact) return solver;
+        if (solver == matched) return std::string(biospec_exact);
         if (solver == volumetric_exact) return std::string(biospec_exact);  // the gap between the two descriptions
         return find_solver(solver).capabilities().material_needs.empty() ? std::string(biospec_exact) : std::string(volumetric_exact);
     };

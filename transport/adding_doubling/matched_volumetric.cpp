@@ -14,8 +14,6 @@
 namespace skinspec {
 namespace {
 
-bool is_dermal(CrossingScattering c) { return c == CrossingScattering::rayleigh_cosine || c == CrossingScattering::cosine; }
-
 // The dermal factor's search: ln(scale) on a grid of factors 1/64 .. 64, then the bracket refined to 1e-7 in R.
 constexpr int grid_lowest = -6, grid_highest = 6;  // powers of 2, stepped by 2
 constexpr double reflectance_tolerance = 1e-7;
@@ -75,9 +73,13 @@ DermalMatch match_dermis(const Miss& miss) {
     const auto closest = best;
     const bool above = best.miss > 0.0;
     // Golden section (one new point per step) for the smallest |miss|; a point on the other side ends it with a root.
+    DermalMatch crossed;
     const auto probe = [&](double x) -> std::optional<double> {
         const double f = miss(x);
-        if ((f > 0.0) != above) return std::nullopt;
+        if ((f > 0.0) != above) {
+            crossed = {x, f};
+            return std::nullopt;
+        }
         if (std::abs(f) < std::abs(best.miss)) best = {x, f};
         return std::abs(f);
     };
@@ -99,10 +101,7 @@ DermalMatch match_dermis(const Miss& miss) {
             fd = probe(d);
         }
     }
-    if (!fc || !fd) {
-        const double x = fc ? d : c;
-        return {refine_root(miss, closest.log_scale, closest.miss, x, miss(x)), 0.0};
-    }
+    if (!fc || !fd) return {refine_root(miss, closest.log_scale, closest.miss, crossed.log_scale, crossed.miss), 0.0};
     return best;
 }
 

@@ -3,8 +3,8 @@
 // "one skin"): what the volumetric solvers (adding-doubling, the volumetric walk, diffusion's stated error, the
 // renderer exports) solve when a material asks for it, so that they describe the skin the BioSpec walk describes.
 //  - A layer whose crossings deflect once by a profile (SC, epidermis: measured or HG crossings) scatters
-//    volumetrically with mu_s = 1 / d (one deflection per normal crossing, as the walk's one per crossing) and its
-//    own volumetric phase function (the presets: the same measured profile).
+//    volumetrically with mu_s = 1 / d (one deflection per normal crossing, as the walk's one per crossing) and the
+//    crossing's own redistribution as its phase function (the measured profile at the wavelength, or HG with hg_g).
 //  - The dermal layers (cosine and Rayleigh crossings, which no reciprocal medium reproduces: the walk's dermis
 //    transmits every upward crossing diffusely and reflects none) keep their phase function; their mu_s is scaled
 //    by one factor per wavelength, found so that adding-doubling's diffuse reflectance of the whole stack equals
