@@ -445,6 +445,7 @@ description = "BioSpec skin, {label} (melanosome fraction {melanosomes})"
 [model]
 variant = "biospec"                  # or "biospec-2004", "biospec-authors-code"; any switch below overrides it
 hemoglobin_molar_mass_g_per_mol = 66500
+volumetric_matched_to_biospec = true  # rte, adding-doubling, exports: the volumetric description derived from the BioSpec one
 
 [surface]
 above_refractive_index = 1.0         # air

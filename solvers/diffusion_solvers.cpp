@@ -151,7 +151,11 @@ public:
         const auto& rows = results.front().wavelengths;
         if (rows.empty() || !std::holds_alternative<LayerStack>(material_of(0))) return;
         const auto at = spread(rows.size(), model_error_wavelengths);
-        std::string meaning = fmt::format("largest |R - R of adding-doubling| (exact transport of the same skin's volumetric description, {} channels) at {} of the {} wavelengths",
+        // A description derived from the BioSpec one stands for that model, which measured_difference solves instead.
+        const bool derived = std::get<LayerStack>(material_of(0)).model.volumetric_matched_to_biospec;
+        const std::string reference = derived ? "biospec-adding-doubling" : "adding-doubling";
+        std::string meaning = fmt::format("largest |R - R of {}| (exact transport of the same skin's {}, {} channels) at {} of the {} wavelengths", reference,
+                                          derived ? "BioSpec description, from which its volumetric one is derived" : "volumetric description",
                                           model_error_channels, at.size(), rows.size());
         std::vector<double> nm;
         for (const auto& row : rows) nm.push_back(row.wavelength_nm);
@@ -198,15 +202,9 @@ public:
         std::sort(wanted.begin(), wanted.end());
         wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
         std::vector<std::optional<std::vector<double>>> wanted_differences(wanted.size());
-        // Adding-doubling's own accuracy, the largest at the sweep's corners (it changes little and smoothly with the
-        // swept values: 0.011-0.013 over melanosome fractions 0.01-0.3), or of the one member.
-        const auto corner = [&](std::size_t i) {
-            if (!shape) return i == 0;
-            for (std::size_t a = 0; a < shape->size(); ++a) {
-                if (positions[i][a] != 0 && positions[i][a] + 1 != (*shape)[a]) return false;
-            }
-            return true;
-        };
+        // Adding-doubling's own accuracy at each measured member (it changes with the swept values: on a description
+        // derived from the BioSpec one by up to 0.01 between neighbouring members); a member states the largest of those
+        // around it, as for the difference.
         std::vector<double> accuracies(wanted.size(), 0.0);
         parallel_indices(wanted.size(), [&](std::size_t k) {
             const auto i = wanted[k];
@@ -214,15 +212,17 @@ public:
             const auto& stack = std::get<LayerStack>(material);
             const double incidence = request.spectral.incidence_deg;
             wanted_differences[k] = measured_difference(stack, i < results.size() ? results[i].wavelengths : solve(material, request).wavelengths, at, incidence,
-                                                        corner(i) ? &accuracies[k] : nullptr);
+                                                        &accuracies[k]);
         });
-        const double accuracy = *std::max_element(accuracies.begin(), accuracies.end());
-        meaning += fmt::format(", plus adding-doubling's own accuracy there ({:.4f}: twice the change of its R with the channels doubled, at the middle measured wavelength{})",
-                               accuracy, members > 1 ? ", the largest at the sweep's corners" : "");
+        meaning += fmt::format(", plus {}'s own accuracy there (twice the change of its R with the channels doubled, at the middle measured wavelength{})",
+                               reference, members > 1 ? ", the largest of the measured members around it" : "");
         if (weights) meaning += "; the colour difference with that difference (interpolated between the measured wavelengths)";
         const auto shared_meaning = std::make_shared<const std::string>(std::move(meaning));
         const auto difference_of = [&](std::size_t i) -> const std::optional<std::vector<double>>& {
             return wanted_differences[static_cast<std::size_t>(std::lower_bound(wanted.begin(), wanted.end(), i) - wanted.begin())];
+        };
+        const auto accuracy_of = [&](std::size_t i) {
+            return accuracies[static_cast<std::size_t>(std::lower_bound(wanted.begin(), wanted.end(), i) - wanted.begin())];
         };
         parallel_indices(results.size(), [&](std::size_t i) {
             std::vector<const std::vector<double>*> differences;
@@ -231,6 +231,8 @@ public:
                 if (!d) return;
                 differences.push_back(&*d);
             }
+            double accuracy = 0.0;
+            for (const auto member : around_of[i]) accuracy = std::max(accuracy, accuracy_of(member));
             results[i].stated_error = stated_error(results[i].wavelengths, differences, at, weights, shared_meaning);
             results[i].stated_error->R += accuracy;
         });

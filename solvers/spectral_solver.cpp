@@ -83,16 +83,19 @@ bool reads(const SolverCapabilities& caps, ScatteringDescription d) {
 }
 
 // A volumetric description derived from the BioSpec one (matched_volumetric.hpp) reads the BioSpec description and,
-// of the layers' own volumetric and reduced fields, only the dermal layers' phase function: their mu_s is scaled to
-// the match, and the thin layers take mu_s d = 1 and their crossing's profile. Unset unless the stack derives it.
+// of the layers' own volumetric and reduced fields, only the dermal layers' (as on their own description): their
+// phase function, and their mu_s, which one factor scales, so that the dermal layers keep their mu_s relative to one
+// another. The thin layers take mu_s d = 1 and their crossing's profile. Unset unless the stack derives it, or for a
+// dermal layer's field.
 std::optional<bool> derived_reads(const SolverCapabilities& caps, const LayerStack* stack, const std::string& key, ScatteringDescription d) {
-    if (!stack || !stack->model.volumetric_matched_to_biospec || !reads(caps, ScatteringDescription::volumetric) || key.starts_with("model.")) return std::nullopt;
+    if (!stack || !stack->model.volumetric_matched_to_biospec || !reads(caps, ScatteringDescription::volumetric)) return std::nullopt;
     if (d == ScatteringDescription::biospec) return true;
+    if (key.starts_with("model.")) return std::nullopt;
     const auto head = std::string_view(key).substr(0, key.find('.'));
-    const auto field = std::string_view(key).substr(key.find('.') + 1);
-    if (field != "volumetric_g" && field != "volumetric_phase") return false;
-    return std::any_of(stack->layers.begin(), stack->layers.end(),
-                       [&](const TissueLayer& l) { return layer_matches(l.name, head) && is_dermal(crossing_in_effect(l, stack->model)); });
+    const bool dermal = std::any_of(stack->layers.begin(), stack->layers.end(),
+                                    [&](const TissueLayer& l) { return layer_matches(l.name, head) && is_dermal(crossing_in_effect(l, stack->model)); });
+    if (dermal) return std::nullopt;
+    return false;
 }
 
 }  // namespace
@@ -139,7 +142,8 @@ void check_overrides(const SpectralSolver& solver, const Material& material, con
         if (derived_reads(caps, stack, o.key, d)) {
             throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", which " + who +
                              " does not read: model.volumetric_matched_to_biospec = true derives the volumetric description from the BioSpec one, "
-                             "taking of the layers' own volumetric fields only the dermal layers' volumetric_phase and volumetric_g");
+                             "taking of the layers' own scattering fields only the dermal layers' (their phase and their mu_s relative to one another; "
+                             "the thin layers scatter once per crossing by their crossing's profile)");
         }
         throw InputError(o.origin + " sets " + o.key + " = " + o.value + ", which " + who + " does not read: it belongs to " + std::string(to_string(d)) +
                          " (solvers that read it: " + offered_by([&](const SolverCapabilities& c) { return reads_field(c, material, o.key); }) + ")");

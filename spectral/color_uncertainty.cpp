@@ -106,7 +106,8 @@ ColorUncertainty color_uncertainty(const TristimulusWeights& weights, std::span<
     const XYZ xyz = weights.integrate(samples);
     const Matrix3 j = lab_jacobian(xyz, weights.white());
     const Matrix3 lab_covariance = product(j, product(out.xyz_covariance, transposed(j)));
-    out.lab = {std::sqrt(lab_covariance[0][0]), std::sqrt(lab_covariance[1][1]), std::sqrt(lab_covariance[2][2])};
+    // A variance that is 0 exactly (a grey spectrum shifted by a common error keeps a* = b* = 0) can round below it.
+    out.lab = {std::sqrt(std::max(lab_covariance[0][0], 0.0)), std::sqrt(std::max(lab_covariance[1][1], 0.0)), std::sqrt(std::max(lab_covariance[2][2], 0.0))};
     // E[d^T G d] = trace(G Cov(Lab)).
     const Matrix3 g = ciede2000_metric(xyz_to_lab(xyz, weights.white()));
     double expected = 0.0;

@@ -81,3 +81,25 @@ TEST_CASE("zero standard errors give zero colour uncertainty", "[color_uncertain
     CHECK(ciede2000_uncertainty(weights, r, se) == 0.0);
     CHECK_THROWS(ciede2000_uncertainty(weights, r, std::vector<double>{0.0}));
 }
+
+TEST_CASE("a common error on a grey spectrum moves only L*: finite a* and b* uncertainties of 0, L*'s by the CIE slope", "[color_uncertainty]") {
+    // A grey (constant) spectrum stays grey when shifted by a common error: a* = b* = 0 exactly, so their variance is 0
+    // (it rounded below 0: b* uncertainty NaN in `export lut`'s spectra of dark skin). L* = 116 f(Y) - 16 with
+    // Y = R for a grey of reflectance R under any illuminant; below (6/29)^3 L* = (29/3)^3 Y (CIE 015:2018 Eq. 8.1).
+    std::vector<double> nm;
+    for (double w = 380.0; w <= 780.0; w += 5.0) nm.push_back(w);
+    const TristimulusWeights weights(nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
+    const std::vector<double> se(nm.size(), 0.0);
+    for (const double grey : {0.002, 0.005, 0.05, 0.3}) {
+        INFO("R = " << grey);
+        const std::vector<double> r(nm.size(), grey);
+        const double stated = 1e-4;
+        const auto u = color_uncertainty(weights, r, se, stated);
+        CHECK(std::isfinite(u.lab.a));
+        CHECK(std::isfinite(u.lab.b));
+        CHECK(u.lab.a < 1e-6);
+        CHECK(u.lab.b < 1e-6);
+        const double slope = grey > std::pow(6.0 / 29.0, 3) ? 116.0 / 3.0 * std::pow(grey, -2.0 / 3.0) : std::pow(29.0 / 3.0, 3);
+        CHECK(u.lab.L == Approx(slope * stated).epsilon(1e-3));
+    }
+}

@@ -20,10 +20,16 @@ const LayerStack& moderately() {
     return m;
 }
 
+// The preset's own volumetric description (its layers' fields), not the one derived from the BioSpec description.
+const LayerStack& moderately_own() {
+    static const auto m = std::get<LayerStack>(load_material("biospec-moderately", {parse_override("model.volumetric_matched_to_biospec=false")}));
+    return m;
+}
+
 }  // namespace
 
 TEST_CASE("renderer media carry the layers' coefficients in 1/mm and thickness in mm", "[renderer_media]") {
-    const auto& stack = moderately();
+    const auto& stack = moderately_own();
     const auto media = renderer_media(stack, MediaRequest{{450.0, 550.0}});
     REQUIRE(media.layers.size() == stack.layers.size());
     for (std::size_t k = 0; k < stack.layers.size(); ++k) {
@@ -46,6 +52,19 @@ TEST_CASE("renderer media carry the layers' coefficients in 1/mm and thickness i
     const auto hg = renderer_media(stack, MediaRequest{{550.0}, false, 550.0, PhaseExport::hg});
     CHECK(hg.layers[0].phase.kind == RendererPhase::Kind::henyey_greenstein);
     CHECK(hg.layers[0].phase.g == Approx(*stack.optics(0, 550.0).g));
+    // The preset's derived description (matched_volumetric.hpp): one deflection per normal crossing of each thin layer
+    // (mu_s d = 1 at 450-550 nm, where the dermis alone matches), the same absorption.
+    const auto derived = renderer_media(moderately(), MediaRequest{{450.0, 550.0}});
+    for (std::size_t k = 0; k < 2; ++k) {
+        const auto& l = derived.layers[k];
+        for (std::size_t w = 0; w < 2; ++w) {
+            const double nm = derived.wavelengths_nm[w];
+            INFO(l.name << " at " << nm << " nm");
+            const double g = (k == 0 ? MeasuredProfile::stratum_corneum() : MeasuredProfile::epidermis()).inverse_table(nm).mean_cos();
+            CHECK(l.sigma_s_per_mm[w] * (1.0 - l.phase.g) * l.thickness_mm == Approx(1.0 - g).epsilon(1e-12));
+            CHECK(l.sigma_a_per_mm[w] == Approx(stack.optics(k, nm).mu_a_per_cm / 10.0).epsilon(1e-15));
+        }
+    }
 }
 
 TEST_CASE("a tabulated phase is normalised over the sphere and, as a renderer interpolates it, has the profile's mean cosine to 1e-4",

@@ -219,15 +219,26 @@ TEST_CASE("sweep members: every combination, the first axis fastest, each checke
 }
 
 TEST_CASE("solve groups: replaying solvers group what shares paths, the others solve each material alone", "[solver]") {
-    std::vector<Material> materials;
-    for (const char* v : {"0.02", "0.05"}) materials.push_back(load_material("biospec-moderately", {{"epidermis.melanosome_fraction", v}}));
-    materials.push_back(load_material("biospec-moderately", {{"epidermis.thickness_cm", "0.02"}}));
-    std::vector<const Material*> pointers;
+    // Two melanin levels and another epidermis, on the preset's derived volumetric description or on its own one.
+    const auto three = [](const char* derived) {
+        std::vector<Material> m;
+        for (const char* v : {"0.02", "0.05"}) {
+            m.push_back(load_material("biospec-moderately", {{"epidermis.melanosome_fraction", v}, {"model.volumetric_matched_to_biospec", derived}}));
+        }
+        m.push_back(load_material("biospec-moderately", {{"epidermis.thickness_cm", "0.02"}, {"model.volumetric_matched_to_biospec", derived}}));
+        return m;
+    };
+    const auto materials = three("true"), own = three("false");
+    std::vector<const Material*> pointers, own_pointers;
     for (const auto& m : materials) pointers.push_back(&m);
+    for (const auto& m : own) own_pointers.push_back(&m);
     const auto request = one_wavelength(100);
     using Groups = std::vector<std::vector<std::size_t>>;
     CHECK(find_solver("biospec").solve_groups(pointers, request) == Groups{{0, 1}, {2}});
-    CHECK(find_solver("rte").solve_groups(pointers, request) == Groups{{0, 1}, {2}});
+    // The derived description's dermal scattering follows the absorbers (path_key.hpp): the volumetric walk shares
+    // paths between melanin levels only on the layers' own description.
+    CHECK(find_solver("rte").solve_groups(pointers, request) == Groups{{0}, {1}, {2}});
+    CHECK(find_solver("rte").solve_groups(own_pointers, request) == Groups{{0, 1}, {2}});
     CHECK(find_solver("multipole").solve_groups(pointers, {}) == Groups{{0}, {1}, {2}});
     auto per_crossing = request;
     per_crossing.switches.estimator = AbsorptionEstimator::random_test;
@@ -307,9 +318,11 @@ TEST_CASE("a two-member sweep equals two direct runs for every field of every la
                 continue;
             }
             REQUIRE(swept.size() == 2);
-            // Grouping follows the declaration: absorption-only fields share one trace, every other field is traced anew.
+            // Grouping follows the declaration: absorption-only fields share one trace, every other field is traced anew
+            // (and every field for the volumetric walk on a derived description: its dermal mu_s follows the absorbers).
             if (!solver->capabilities().replay_fields.empty()) {
-                CHECK(solver->solve_groups(pair, single).size() == (is_absorption_only_key(key) ? 1u : 2u));
+                const bool derived_walk = solver->name() == "rte" && stack.model.volumetric_matched_to_biospec;
+                CHECK(solver->solve_groups(pair, single).size() == (is_absorption_only_key(key) && !derived_walk ? 1u : 2u));
             }
             for (std::size_t i = 0; i < 2; ++i) {
                 const auto direct = solve_spectrum(*solver, *pair[i], single);
@@ -483,7 +496,7 @@ TEST_CASE("progress of a sweep's parts is progress of the whole: never back, ray
     CHECK(!silent.part(SpectralRequest{}, 0).on_progress);
 }
 
-TEST_CASE("on a description derived from the BioSpec one, the volumetric solvers read the BioSpec fields and only the dermal phase", "[spectral_solver]") {
+TEST_CASE("on a description derived from the BioSpec one, the volumetric solvers read the BioSpec fields and only the dermal layers' own", "[spectral_solver]") {
     const auto check = [](const char* solver, const char* field) {
         const std::vector<MaterialOverride> overrides{parse_override("model.volumetric_matched_to_biospec=true"), parse_override(field)};
         check_overrides(find_solver(solver), load_material("biospec-lightly", overrides), overrides);
@@ -494,7 +507,9 @@ TEST_CASE("on a description derived from the BioSpec one, the volumetric solvers
         CHECK_NOTHROW(check(solver, "dermis.volumetric_g=0.9"));
         CHECK_THROWS_WITH(check(solver, "stratum_corneum.volumetric_phase=isotropic"),
                           Catch::Contains("model.volumetric_matched_to_biospec = true derives the volumetric description"));
-        CHECK_THROWS_WITH(check(solver, "dermis.reduced_scattering_table=salomatina_epidermis"), Catch::Contains("only the dermal layers' volumetric_phase"));
+        // The dermal layers' mu_s: one factor scales them, so their ratio stays (papillary vs reticular).
+        CHECK_NOTHROW(check(solver, "papillary_dermis.reduced_scattering_table=salomatina_epidermis"));
+        CHECK_THROWS_WITH(check(solver, "epidermis.reduced_scattering_table=salomatina_dermis"), Catch::Contains("only the dermal layers'"));
     }
     CHECK_THROWS_WITH(check("biospec", "dermis.volumetric_g=0.9"), Catch::Contains("does not read"));
 }

@@ -4,6 +4,7 @@
 
 #include "spectral/input_error.hpp"
 #include "transport/adding_doubling/biospec_adding_doubling.hpp"
+#include "transport/adding_doubling/matched_volumetric.hpp"
 
 namespace skinspec {
 namespace {
@@ -93,11 +94,7 @@ SpectralResult solve_adding_doubling_spectrum(const LayerStack& stack, const Spe
         if (derived) {
             // The description derived from the BioSpec one reproduces its R_d at normal incidence (where it can): its
             // miss at this request's incidence and geometry is part of the stated error.
-            const BiospecAdOptions exact{AdOptions{ad.channels, false, ad.cancel}, FoldIntoSkin::drop, std::nullopt};
-            const auto biospec = solve_biospec_adding_doubling(stack, nm, request.incidence_deg, exact, &phases).totals;
-            const bool specular = request.geometry != MeasurementGeometry::sce;
-            const double miss = solved.diffuse_reflectance - biospec.diffuse_reflectance +
-                                (specular ? solved.specular_reflectance - biospec.specular_reflectance : 0.0);
+            const double miss = derived_description_miss(stack, solved, nm, request.incidence_deg, request.geometry != MeasurementGeometry::sce, ad, &phases);
             solved.accuracy = std::max(solved.accuracy, std::abs(miss));
         }
         return AdWavelength{solved, 0.0};

@@ -129,7 +129,7 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
     }
     if (dermal.empty()) {
         throw InputError("model.volumetric_matched_to_biospec = true needs a dermal layer (scattering = rayleigh_cosine or cosine) to match; '" +
-                         stack.name + "' has none");
+                         stack.name + "' has none (--set model.volumetric_matched_to_biospec=false solves the layers' own volumetric description)");
     }
     AdCache cache;
     const AdOptions ad{matched_volumetric_channels, false};
@@ -137,7 +137,8 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
     try {
         target = solve_biospec_adding_doubling(stack, wavelength_nm, 0.0, BiospecAdOptions{ad, FoldIntoSkin::drop, std::nullopt}, &cache).totals.diffuse_reflectance;
     } catch (const InputError& e) {
-        throw InputError(std::string("model.volumetric_matched_to_biospec = true matches biospec-adding-doubling, which refuses this material: ") + e.what());
+        throw InputError(std::string("model.volumetric_matched_to_biospec = true matches biospec-adding-doubling, which refuses this material: ") + e.what() +
+                         " (--set model.volumetric_matched_to_biospec=false solves the layers' own volumetric description)");
     }
     const auto derived = [&](double log_thin, double log_dermal) {
         auto s = out.stack;
@@ -152,28 +153,36 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
     };
     auto best = match_dermis([&](double log_dermal) { return miss(0.0, log_dermal); });
     double log_thin = 0.0;
-    if (best.miss != 0.0) {
-        // No dermal factor reaches R: the thin layers scatter more (R too high: longer paths through the melanin) or
-        // less, by the least change that lets one (bisection on ln u; continuous where the match starts to need it).
-        const double far = (best.miss > 0.0 ? 1.0 : -1.0) * max_log_thin_change;
+    // Where no dermal factor reaches R, the thin layers scatter more (R too high: longer paths through the melanin) or
+    // less, by the least change that lets one: bisection on ln u toward `far` (continuous where the match starts to
+    // need it). Returns the change and its match (miss != 0 where even `far` does not reach).
+    const auto move_thin = [&](double far) -> std::pair<double, DermalMatch> {
         auto at_far = match_dermis([&](double log_dermal) { return miss(far, log_dermal); });
-        if (at_far.miss != 0.0) {
-            log_thin = far;
-            best = at_far;
-        } else {
-            double reached = far, not_reached = 0.0;
-            for (int i = 0; i < thin_refinements; ++i) {
-                const double mid = 0.5 * (reached + not_reached);
-                const auto m = match_dermis([&](double log_dermal) { return miss(mid, log_dermal); });
-                if (m.miss == 0.0) {
-                    reached = mid;
-                    at_far = m;
-                } else {
-                    not_reached = mid;
-                }
+        if (at_far.miss != 0.0) return {far, at_far};
+        double reached = far, not_reached = 0.0;
+        for (int i = 0; i < thin_refinements; ++i) {
+            const double mid = 0.5 * (reached + not_reached);
+            const auto m = match_dermis([&](double log_dermal) { return miss(mid, log_dermal); });
+            if (m.miss == 0.0) {
+                reached = mid;
+                at_far = m;
+            } else {
+                not_reached = mid;
             }
-            log_thin = reached;
-            best = at_far;
+        }
+        return {reached, at_far};
+    };
+    if (best.miss != 0.0) {
+        // The expected direction first; the other where it does not reach (where the stratum corneum's own
+        // reflection is what is too high: very heavily pigmented skin in the blue); else the closest of the three.
+        const double expected = (best.miss > 0.0 ? 1.0 : -1.0) * max_log_thin_change;
+        for (const double far : {expected, -expected}) {
+            const auto [moved, match] = move_thin(far);
+            if (std::abs(match.miss) < std::abs(best.miss)) {
+                log_thin = moved;
+                best = match;
+            }
+            if (best.miss == 0.0) break;
         }
     }
     out.stack = derived(log_thin, best.log_scale);
@@ -181,6 +190,13 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
     out.dermal_scale = std::exp(best.log_scale);
     out.residual = std::abs(best.miss);
     return out;
+}
+
+double derived_description_miss(const LayerStack& stack, const AdResult& derived, double wavelength_nm, double incidence_deg, bool specular,
+                                const AdOptions& options, AdCache* cache) {
+    const BiospecAdOptions exact{AdOptions{options.channels, false, options.cancel}, FoldIntoSkin::drop, std::nullopt};
+    const auto biospec = solve_biospec_adding_doubling(stack, wavelength_nm, incidence_deg, exact, cache).totals;
+    return derived.diffuse_reflectance - biospec.diffuse_reflectance + (specular ? derived.specular_reflectance - biospec.specular_reflectance : 0.0);
 }
 
 }  // namespace skinspec

@@ -15,6 +15,7 @@
 // paths through the melanin as the walk's deflections do.
 // The dermal factor follows the Rayleigh law the BioSpec dermis scatters by (~lambda^-4; docs/ADDING_DOUBLING.md).
 #include "materials/layer_stack.hpp"
+#include "transport/adding_doubling/adding_doubling.hpp"
 #include "transport/rte/rte_model.hpp"
 
 namespace skinspec {
@@ -32,5 +33,12 @@ inline constexpr std::size_t matched_volumetric_channels = 16;
 // `tables`: the layers' own volumetric description at `wavelength_nm` (rte_stack_from). InputError when the stack
 // has no dermal layer to scale or a model switch biospec-adding-doubling does not model.
 MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const RteStack& tables, double wavelength_nm);
+
+// The derived description's miss of the BioSpec model at one wavelength and incidence: R of `derived` (adding-doubling
+// of the derived description at `incidence_deg`) less R of biospec-adding-doubling of `stack` there, at the same
+// channels; the specular reflection counts unless `specular` is false (geometry sce). 0 to the match's tolerance at
+// normal incidence where a factor reaches R_d; up to ~0.04 at 60 deg (docs/ADDING_DOUBLING.md).
+double derived_description_miss(const LayerStack& stack, const AdResult& derived, double wavelength_nm, double incidence_deg, bool specular,
+                                const AdOptions& options, AdCache* cache = nullptr);
 
 }  // namespace skinspec
