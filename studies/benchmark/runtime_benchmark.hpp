@@ -74,11 +74,16 @@ struct ColourTiming {
 };
 
 // One preset's spectrum (400-700 nm / 10 nm, SCI) by one solver, against the exact solution of its description.
+// The row of adding-doubling on a preset's own volumetric description (its layers' fields, not the one derived from
+// the BioSpec description): the gap between the two descriptions, which the derived one closes.
+inline constexpr std::string_view own_description_row = "adding-doubling, own description";
+
 struct SkinModeRow {
     std::string material;
-    std::string solver;                 // registry name
-    std::string reference;              // biospec-adding-doubling (the BioSpec description; for adding-doubling: the gap
-                                        // between the descriptions) or adding-doubling (the volumetric one); itself: none
+    std::string solver;                 // registry name, or own_description_row
+    std::string reference;              // biospec-adding-doubling (the BioSpec description; for adding-doubling: the
+                                        // derived description's miss, for own_description_row the gap between the
+                                        // descriptions) or adding-doubling (the volumetric one); itself: none
     double seconds_one_thread = 0.0;    // the whole spectrum
     std::uint64_t rays = 0;             // walks: over all wavelengths
     double uncertainty = 0.0;           // walks: largest standard error of R; adding-doubling: its stated accuracy
