@@ -36,10 +36,10 @@ std::vector<std::size_t> spread(std::size_t n, std::size_t k) {
 
 // R_diffusion - R_adding-doubling (the exact transport of the same skin's volumetric description) at the
 // wavelengths `at` of `rows`, interpolated linearly in wavelength between them. None without a volumetric
-// description in every layer (adding-doubling cannot solve it). With `accuracy`, adding-doubling's own accuracy
-// estimate at the middle of `at` goes there (its 8 channels are ~0.007 off on skin: the stated error includes it).
+// description in every layer (adding-doubling cannot solve it). `accuracy`: adding-doubling's own accuracy estimate at
+// the middle of `at` (its 8 channels are ~0.007 off on skin: the stated error includes it).
 std::optional<std::vector<double>> measured_difference(const LayerStack& stack, const std::vector<WavelengthResult>& rows,
-                                                       const std::vector<std::size_t>& at, double incidence_deg, double* accuracy = nullptr) {
+                                                       const std::vector<std::size_t>& at, double incidence_deg, double& accuracy) {
     if (!std::all_of(stack.layers.begin(), stack.layers.end(), [](const TissueLayer& l) { return l.volumetric.has_value(); })) return std::nullopt;
     // The expanded phase functions depend on neither mu_a nor mu_s: one cache per thread serves every spectrum and
     // every member of a sweep (it compares entries by content and holds at most 16).
@@ -47,7 +47,7 @@ std::optional<std::vector<double>> measured_difference(const LayerStack& stack, 
     std::vector<double> difference(rows.size(), 0.0);
     for (std::size_t k = 0; k < at.size(); ++k) {
         const auto i = at[k];
-        const bool check = accuracy && k == at.size() / 2;
+        const bool check = k == at.size() / 2;
         const double nm = rows[i].wavelength_nm;
         const AdOptions options{model_error_channels, check};
         // A description derived from the BioSpec one stands for that model (matched_volumetric.hpp): the model solved
@@ -56,7 +56,7 @@ std::optional<std::vector<double>> measured_difference(const LayerStack& stack, 
                             ? solve_biospec_adding_doubling(stack, nm, incidence_deg, BiospecAdOptions{options, FoldIntoSkin::drop, std::nullopt}, &phases).totals
                             : solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, incidence_deg}, options, &phases);
         difference[i] = rows[i].reflectance.value - (ad.diffuse_reflectance + ad.specular_reflectance);
-        if (check) *accuracy = ad.accuracy;
+        if (check) accuracy = ad.accuracy;
     }
     for (std::size_t s = 0; s + 1 < at.size(); ++s) {
         for (std::size_t i = at[s] + 1; i < at[s + 1]; ++i) {
@@ -212,27 +212,22 @@ public:
             const auto& stack = std::get<LayerStack>(material);
             const double incidence = request.spectral.incidence_deg;
             wanted_differences[k] = measured_difference(stack, i < results.size() ? results[i].wavelengths : solve(material, request).wavelengths, at, incidence,
-                                                        &accuracies[k]);
+                                                        accuracies[k]);
         });
         meaning += fmt::format(", plus {}'s own accuracy there (twice the change of its R with the channels doubled, at the middle measured wavelength{})",
                                reference, members > 1 ? ", the largest of the measured members around it" : "");
         if (weights) meaning += "; the colour difference with that difference (interpolated between the measured wavelengths)";
         const auto shared_meaning = std::make_shared<const std::string>(std::move(meaning));
-        const auto difference_of = [&](std::size_t i) -> const std::optional<std::vector<double>>& {
-            return wanted_differences[static_cast<std::size_t>(std::lower_bound(wanted.begin(), wanted.end(), i) - wanted.begin())];
-        };
-        const auto accuracy_of = [&](std::size_t i) {
-            return accuracies[static_cast<std::size_t>(std::lower_bound(wanted.begin(), wanted.end(), i) - wanted.begin())];
-        };
+        const auto wanted_index = [&](std::size_t i) { return static_cast<std::size_t>(std::lower_bound(wanted.begin(), wanted.end(), i) - wanted.begin()); };
         parallel_indices(results.size(), [&](std::size_t i) {
             std::vector<const std::vector<double>*> differences;
-            for (const auto member : around_of[i]) {
-                const auto& d = difference_of(member);
-                if (!d) return;
-                differences.push_back(&*d);
-            }
             double accuracy = 0.0;
-            for (const auto member : around_of[i]) accuracy = std::max(accuracy, accuracy_of(member));
+            for (const auto member : around_of[i]) {
+                const auto k = wanted_index(member);
+                if (!wanted_differences[k]) return;
+                differences.push_back(&*wanted_differences[k]);
+                accuracy = std::max(accuracy, accuracies[k]);
+            }
             results[i].stated_error = stated_error(results[i].wavelengths, differences, at, weights, shared_meaning);
             results[i].stated_error->R += accuracy;
         });

@@ -94,8 +94,7 @@ std::optional<bool> derived_reads(const SolverCapabilities& caps, const LayerSta
     const auto head = std::string_view(key).substr(0, key.find('.'));
     const bool dermal = std::any_of(stack->layers.begin(), stack->layers.end(),
                                     [&](const TissueLayer& l) { return layer_matches(l.name, head) && is_dermal(crossing_in_effect(l, stack->model)); });
-    if (dermal) return std::nullopt;
-    return false;
+    return dermal ? std::nullopt : std::optional<bool>(false);
 }
 
 }  // namespace

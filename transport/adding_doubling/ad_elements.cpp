@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -171,11 +172,17 @@ double opposite_azimuthal_mean(const TableCells& cells, double mu_i, double mu_j
     const double a = -mu_i * mu_j;
     const double b = std::sqrt(std::max(0.0, (1.0 - mu_i * mu_i) * (1.0 - mu_j * mu_j)));
     const auto arc = [&](double x) { return std::asin(std::clamp((x - a) / b, -1.0, 1.0)); };
+    // Only the cells that meet [a - b, a + b] (bounds fall with k; most of a forward profile's mass lies above a + b),
+    // each bound's arcsine once (a cell's lower bound is the next one's upper).
+    const auto& bounds = cells.bounds;
+    const auto below_top = std::upper_bound(bounds.begin(), bounds.end(), a + b, std::greater<>());  // first bound < a + b
+    std::size_t k = below_top == bounds.begin() ? 0 : static_cast<std::size_t>(below_top - bounds.begin()) - 1;
     double h = 0.0;
-    for (std::size_t k = 0; k < cells.mass.size(); ++k) {
-        const double hi = cells.bounds[k], lo = cells.bounds[k + 1];
-        if (lo >= a + b || hi <= a - b) continue;
-        h += cells.mass[k] / (hi - lo) * (arc(hi) - arc(lo));
+    double arc_hi = arc(bounds[k]);
+    for (; k < cells.mass.size() && bounds[k] > a - b; ++k) {
+        const double arc_lo = arc(bounds[k + 1]);
+        h += cells.mass[k] / (bounds[k] - bounds[k + 1]) * (arc_hi - arc_lo);
+        arc_hi = arc_lo;
     }
     return h / std::numbers::pi;
 }
@@ -223,17 +230,19 @@ AdCache::Entry redistribution(AdCache::Entry e, const AdChannels& c, std::vector
     // The truncated series of a strongly forward phase function dips below zero in places (g -> 1): those entries
     // are set to 0 (a redistribution is a probability) before the energy renormalisation below.
     AdMatrix same = (pl * even.asDiagonal() * pl.transpose()).cwiseMax(0.0);
-    AdMatrix opposite = (pl * odd.asDiagonal() * pl.transpose()).cwiseMax(0.0);
     // A tabulated phase (the measured thin-layer profiles) turns no light back, but its truncated series rings into
     // the backward directions, and what rings above 0 was kept: one layer of the stratum corneum's profile, mu_s d = 1,
     // R_d 0.0053 at 16 channels against the walk's 0.00099 (docs/ADDING_DOUBLING.md). Between opposite hemispheres the
     // forward delta that delta-M removes plays no part, so there the truncated phase is p / (1 - f) exactly: taken
     // from the table over the azimuth instead of from the series.
+    AdMatrix opposite(m, m);
     if (e.phase.kind == PhaseFunction::Kind::tabulated && e.phase.table && e.moments.empty() && e.f < 1.0) {
         const auto cells = table_cells(*e.phase.table);
         for (Eigen::Index i = 0; i < m; ++i) {
             for (Eigen::Index j = 0; j < m; ++j) opposite(i, j) = opposite_azimuthal_mean(cells, mu(i), mu(j)) / (1.0 - e.f);
         }
+    } else {
+        opposite = (pl * odd.asDiagonal() * pl.transpose()).cwiseMax(0.0);
     }
     // Energy: scattered light from every direction j integrates to 1 (correction on the diagonal, Prahl 1995).
     for (Eigen::Index j = 0; j < m; ++j) {

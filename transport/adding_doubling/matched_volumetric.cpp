@@ -175,8 +175,8 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
         return {reached, at_far};
     };
     if (best.miss != 0.0) {
-        // The expected direction first; the other where it does not reach (where the stratum corneum's own
-        // reflection is what is too high: very heavily pigmented skin in the blue); else the closest of the three.
+        // The expected direction first; the other where it does not reach (very heavily pigmented skin, where more
+        // thin-layer scattering missed by more); else the closest of the three.
         const double expected = (best.miss > 0.0 ? 1.0 : -1.0) * max_log_thin_change;
         for (const double far : {expected, -expected}) {
             const auto [moved, match] = move_thin(far);
