@@ -7,6 +7,10 @@
 
 #include <hwy/highway.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
 #include "transport/biospec/biospec_packet.hpp"
 #include "transport/lane_stream_seed.hpp"
 #include "transport/simd_lanes-inl.h"
@@ -26,7 +30,6 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
     const VF tiny_cos = hn::Set(df, 1e-12f);
     const VI last = hn::Set(di, model.layers - 1);
     const MF none = hn::FirstN(df, 0);
-    const auto sets = static_cast<std::size_t>(model.sets);
     std::uint64_t flags = 0;
     const bool permute = static_cast<std::size_t>(model.layers) <= n;
     const PerLayer<DI> scattering{model.scattering.data(), permute}, redraw{model.redraw.data(), permute},
@@ -36,7 +39,7 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         table_weights{model.table_upper_weight.data(), permute}, rayleigh_mfp{model.rayleigh_mean_free_path_cm.data(), permute},
         eta_down{model.eta_down.data(), permute}, eta_up{model.eta_up.data(), permute}, inverse_eta_down{model.inverse_eta_down.data(), permute},
         inverse_eta_up{model.inverse_eta_up.data(), permute};
-    const auto mu_a_of = [&](std::size_t set) { return PerLayer<DF>{model.mu_a_per_cm.data() + set * model.layer_stride, permute}; };
+    const PerLayer<DF> mu_a_first{model.mu_a_per_cm.data(), permute}, mu_a_bound{model.mu_a_bound_per_cm.data(), permute};
 
     for (std::size_t base = 0; base < BiospecPacket::lanes; base += n) {
         const MF active = FromInt(hn::LoadU(di, p.active + base) != hn::Zero(di));
@@ -156,19 +159,21 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         path = hn::IfThenElseZero(hn::AndNot(hn::Or(reversed, retry), crossed), path);
         const MF leaves_reversed = hn::And(reversed, was_down);  // leaves as reflectance, no Fresnel, no absorption
 
-        // Step 4: absorption along the crossing, per set (weighted), or the per-crossing test (random).
+        // Step 4: absorption along the crossing. Weighted: the path length in the layer, which serves every set at the
+        // same cost (the caller turns it into each set's weight at exits and roulette), and the bound on every set's
+        // optical depth; random: the per-crossing test.
         MF absorbed = none;
         MF over_limit = absorbed;
         if (model.weighted) {
-            for (std::size_t set = 0; set < sets; ++set) {
-                float* tau_ptr = p.tau.data() + set * BiospecPacket::lanes + base;
-                const VF mu_a = mu_a_of(set).at(k);
-                const VF tau = hn::MulAdd(mu_a, path, hn::LoadU(df, tau_ptr));
-                hn::StoreU(tau, df, tau_ptr);
-                over_limit = hn::Or(over_limit, tau > hn::LoadU(df, p.limit.data() + set * BiospecPacket::lanes + base));
+            for (std::int32_t layer = 0; layer < model.layers; ++layer) {
+                float* slot = p.path_cm.data() + static_cast<std::size_t>(layer) * BiospecPacket::lanes + base;
+                hn::StoreU(hn::Add(hn::LoadU(df, slot), hn::IfThenElseZero(FromInt(k == hn::Set(di, layer)), path)), df, slot);
             }
+            const VF bound = hn::MulAdd(mu_a_bound.at(k), path, hn::LoadU(df, p.depth_bound + base));
+            hn::StoreU(bound, df, p.depth_bound + base);
+            over_limit = bound > hn::LoadU(df, p.look_at + base);
         } else {
-            const VF mu_a = mu_a_of(0).at(k);
+            const VF mu_a = mu_a_first.at(k);
             const MF testing = hn::AndNot(leaves_reversed, hn::And(crossed, mu_a > zero));
             const VF survive = hn::Exp(df, hn::Neg(hn::Mul(mu_a, path)));
             absorbed = hn::And(testing, random.uniform(testing) >= survive);
@@ -251,6 +256,29 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
 
 const char* TargetImpl() { return hwy::TargetName(HWY_TARGET); }
 
+void SetsImpl(const SetArrays& a) {
+    const hn::ScalableTag<double> dd;
+    if (a.due) std::fill_n(a.due, (a.set_stride + 63) / 64, std::uint64_t{0});
+    for (std::size_t s = 0; s < a.sets; s += hn::Lanes(dd)) {
+        auto tau = hn::Zero(dd);
+        for (std::size_t k = 0; k < a.layers; ++k) tau = hn::MulAdd(hn::LoadU(dd, a.mu_a_per_cm + k * a.set_stride + s), hn::Set(dd, a.path_cm[k]), tau);
+        hn::StoreU(tau, dd, a.depth + s);
+        if (a.due) {
+            std::uint8_t bits[8] = {};
+            hn::StoreMaskBits(dd, tau > hn::LoadU(dd, a.limit + s), bits);
+            a.due[s / 64] |= static_cast<std::uint64_t>(bits[0]) << (s % 64);
+        }
+        if (a.weight) hn::StoreU(hn::Exp(dd, hn::Sub(hn::LoadU(dd, a.boost_log + s), tau)), dd, a.weight + s);
+    }
+}
+
+double SetMarginImpl(std::size_t set_stride, const double* limit, const double* depth) {
+    const hn::ScalableTag<double> dd;
+    auto margin = hn::Set(dd, HUGE_VAL);
+    for (std::size_t s = 0; s < set_stride; s += hn::Lanes(dd)) margin = hn::Min(margin, hn::Sub(hn::LoadU(dd, limit + s), hn::LoadU(dd, depth + s)));
+    return hn::GetLane(hn::MinOfLanes(dd, margin));
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace skinspec
 HWY_AFTER_NAMESPACE();
@@ -260,6 +288,8 @@ namespace skinspec {
 
 HWY_EXPORT(StepImpl);
 HWY_EXPORT(TargetImpl);
+HWY_EXPORT(SetsImpl);
+HWY_EXPORT(SetMarginImpl);
 
 std::uint64_t step_biospec_packet(const BiospecPacketModel& model, BiospecPacket& packet) {
     return HWY_DYNAMIC_DISPATCH(StepImpl)(model, packet);
@@ -267,18 +297,19 @@ std::uint64_t step_biospec_packet(const BiospecPacketModel& model, BiospecPacket
 
 const char* biospec_packet_target() { return HWY_DYNAMIC_DISPATCH(TargetImpl)(); }
 
+void biospec_sets(const SetArrays& a) { HWY_DYNAMIC_DISPATCH(SetsImpl)(a); }
+
+double biospec_set_margin(std::size_t set_stride, const double* limit, const double* depth) {
+    return HWY_DYNAMIC_DISPATCH(SetMarginImpl)(set_stride, limit, depth);
+}
+
 void BiospecPacketModel::pad() {
     layer_stride = (static_cast<std::size_t>(layers) + widest_vector - 1) / widest_vector * widest_vector;
     for (auto* v : {&scattering, &redraw, &table_offset, &table_offset_upper, &table_size}) v->resize(layer_stride, 0);
-    for (auto* v : {&thickness_cm, &eta_down, &eta_up, &inverse_eta_down, &inverse_eta_up, &rayleigh_mean_free_path_cm, &hg_g, &table_upper_weight}) {
+    for (auto* v : {&thickness_cm, &eta_down, &eta_up, &inverse_eta_down, &inverse_eta_up, &rayleigh_mean_free_path_cm, &hg_g, &table_upper_weight,
+                    &mu_a_per_cm, &mu_a_bound_per_cm}) {
         v->resize(layer_stride, 0.0f);
     }
-    const auto rows = static_cast<std::size_t>(sets);
-    std::vector<float> mu_a(rows * layer_stride, 0.0f);
-    for (std::size_t s = 0; s < rows; ++s) {
-        for (std::size_t k = 0; k < static_cast<std::size_t>(layers); ++k) mu_a[s * layer_stride + k] = mu_a_per_cm[s * static_cast<std::size_t>(layers) + k];
-    }
-    mu_a_per_cm = std::move(mu_a);
 }
 
 void BiospecPacket::seed_lane(std::size_t lane, std::uint64_t key) { seed_lane_stream(rng, lane, key); }

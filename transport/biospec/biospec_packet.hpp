@@ -2,7 +2,7 @@
 // The BioSpec walk's inner loop on packets of rays in SIMD lanes (Google Highway, dispatched at run time to the
 // widest instruction set of the machine). One call advances every active lane of a packet by one event: the
 // crossing's scattering (measured profile table, Henyey-Greenstein, Rayleigh + cosine, cosine; same-hemisphere
-// re-draws), the optical depth of every absorption set along the crossing, and the interface the ray then meets
+// re-draws), the path length the crossing adds in its layer, and the interface the ray then meets
 // (bottom reflector, Fresnel reflection or refraction, moving on or leaving). What happens once per ray or rarely
 // (entry, exits, Russian roulette, the event limit, tallies) stays with the caller (biospec_walk.cpp), per lane.
 //
@@ -40,7 +40,6 @@ struct BiospecPacketModel {
     static constexpr std::size_t widest_vector = 16;  // floats in an AVX-512 vector
     std::int32_t layers = 0;
     std::size_t layer_stride = widest_vector;  // a multiple of widest_vector, >= layers
-    std::int32_t sets = 1;
     std::vector<std::int32_t> scattering;    // PacketScattering
     std::vector<std::int32_t> redraw;        // 1: re-draw perturbations that reverse the travel sense; 0: keep them
     // A measured profile is a mixture of two tabulated tables (MeasuredProfile::Mixture): the upper one with
@@ -55,9 +54,11 @@ struct BiospecPacketModel {
     std::vector<float> eta_down, eta_up, inverse_eta_down, inverse_eta_up;
     const float* table_cos = nullptr;  // the measured-profile inverse-CDF tables, concatenated (owned by the walk)
     const float* table_sin = nullptr;
-    std::vector<float> mu_a_per_cm;           // [set * layer_stride + layer]
+    // Absorption per layer: the first set's (the random estimator's per-crossing test) and the largest of every set's
+    // (rounded up), which bounds every set's optical depth (BiospecPacket::depth_bound).
+    std::vector<float> mu_a_per_cm, mu_a_bound_per_cm;
 
-    // Sets layer_stride for `layers` and pads every per-layer array to it (mu_a_per_cm: `sets` rows of it).
+    // Sets layer_stride for `layers` and pads every per-layer array to it.
     void pad();
     bool reflector = false;
     bool bottom_exit_fresnel = true;
@@ -72,7 +73,7 @@ struct BiospecPacketModel {
 // A packet's lanes in structure-of-arrays form; the caller fills and empties lanes between events.
 struct BiospecPacket {
     static constexpr std::size_t lanes = 64;  // a multiple of every target's lane count (AVX-512: 16 floats)
-    explicit BiospecPacket(std::size_t sets) : tau(sets * lanes, 0.0f), limit(sets * lanes, 0.0f) {}
+    explicit BiospecPacket(std::size_t layers) : path_cm(layers * lanes, 0.0f) {}
 
     alignas(64) float dx[lanes] = {}, dy[lanes] = {}, dz[lanes] = {};
     alignas(64) float exit_cos[lanes] = {};
@@ -80,12 +81,16 @@ struct BiospecPacket {
     alignas(64) std::int32_t crossing_layer[lanes] = {};  // the layer of the event's crossing (absorption charged there)
     alignas(64) std::int32_t status[lanes] = {};          // LaneStatus after the event
     alignas(64) std::int32_t active[lanes] = {};          // 1 while the lane holds a ray
-    alignas(64) std::int32_t roulette_due[lanes] = {};    // 1 when a set's depth passed its limit at a roulette look
+    alignas(64) std::int32_t roulette_due[lanes] = {};    // 1 when depth_bound passed look_at at a roulette look
     alignas(64) std::uint32_t event[lanes] = {};          // events so far (the roulette key of the last one is event - 1)
     alignas(64) std::int32_t attempts[lanes] = {};        // same-hemisphere re-draws of the current crossing so far
     alignas(64) std::uint32_t rng[4][lanes] = {};         // xoshiro128+ state
-    std::vector<float> tau;    // [set * lanes + lane]: optical depth of each absorption set
-    std::vector<float> limit;  // [set * lanes + lane]: depth beyond which the set plays roulette (+inf: lost)
+    // The roulette look's screen: depth_bound, the sum over crossings of the model's mu_a_bound_per_cm times the path,
+    // grows at least as fast as the optical depth of every set, so no set can pass its roulette depth before
+    // depth_bound passes look_at (set by the caller from the sets' margins).
+    alignas(64) float depth_bound[lanes] = {};
+    alignas(64) float look_at[lanes] = {};
+    std::vector<float> path_cm;  // [layer * lanes + lane]: the ray's path length in each layer so far
 
     // Seeds lane `lane`'s stream from a ray key (SplitMix64 of the key; never the all-zero state).
     void seed_lane(std::size_t lane, std::uint64_t key);
@@ -97,5 +102,26 @@ std::uint64_t step_biospec_packet(const BiospecPacketModel& model, BiospecPacket
 
 // The name of the instruction set the walk's packets run on here (e.g. "AVX3", "AVX2").
 const char* biospec_packet_target();
+
+// Doubles in the widest vector a target has (AVX-512); set_stride below is a multiple of it.
+inline constexpr std::size_t widest_double_vector = 8;
+
+// One ray's absorption sets at once, vectorised over the sets (arrays of set_stride values; the first `sets` are
+// meant, the rest are padding): its optical depths, depth[s] = sum over layers of mu_a_per_cm[k * set_stride + s] *
+// path_cm[k]; with `due` (else null), the sets past `limit`, bit s % 64 of due[s / 64]; with `weight` (else null),
+// the sets' weights, weight[s] = exp(boost_log[s] - depth[s]) (the set's roulette boosts times Beer-Lambert);
+struct SetArrays {
+    const double* mu_a_per_cm;
+    std::size_t set_stride, sets, layers;
+    const double* path_cm;
+    const double* limit;
+    const double* boost_log;
+    double* depth;
+    std::uint64_t* due;
+    double* weight;
+};
+void biospec_sets(const SetArrays& a);
+// the smallest margin limit[s] - depth[s] (limit +inf for a set that is out).
+double biospec_set_margin(std::size_t set_stride, const double* limit, const double* depth);
 
 }  // namespace skinspec

@@ -12,6 +12,7 @@
 #include "transport/fresnel.hpp"
 #include "transport/skin_fold.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/text_fields.hpp"
 
 namespace skinspec {
 namespace {
@@ -48,26 +49,41 @@ BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::s
     count = static_cast<std::size_t>(next);
 }
 
-// The walk-side bookkeeping of a packet's lanes, in double precision: each ray's key, the log of its sets' roulette
-// boosts, the weight its per-layer absorptance was last charged to, how many of its sets are still alive, and its
-// per-ray score (channels a ray reaches more than once).
+// The walk-side bookkeeping of a packet's lanes, in double precision: each ray's key, and per ray and absorption set
+// (the sets of one ray contiguous, set_stride apart) the log of the set's roulette boosts, the optical depth beyond
+// which it plays roulette next (+inf: it lost), the weight its per-layer absorptance was last charged to; how many of
+// its sets are still alive, and its per-ray score (channels a ray reaches more than once). `depth` and `weight` hold
+// one ray's sets as find() last found them.
 struct BiospecWavelength::Lanes {
     static constexpr std::size_t count = BiospecPacket::lanes;
-    Lanes(std::size_t sets, std::size_t channels)
-        : sets(sets), channels(channels), packet(sets), boost_log(sets * count), charged(sets * count), scores(count, RayScore(channels)) {}
-    std::size_t sets, channels;
+    Lanes(std::size_t layers, std::size_t sets, std::size_t set_stride, std::size_t channels)
+        : layers(layers), sets(sets), set_stride(set_stride), channels(channels), packet(layers), boost_log(set_stride * count),
+          limit(set_stride * count, dead_limit), charged(set_stride * count), path_cm(layers), depth(set_stride), weight(set_stride), due((set_stride + 63) / 64),
+          scores(count, RayScore(channels)) {}
+    std::size_t layers, sets, set_stride, channels;
     BiospecPacket packet;
     std::uint64_t key[count] = {};
-    std::vector<double> boost_log;  // [set * count + lane]
-    std::vector<double> charged;    // [set * count + lane]
+    std::vector<double> boost_log, limit, charged;  // [lane * set_stride + set]
     std::size_t alive[count] = {};
+    std::vector<double> path_cm, depth, weight;
+    std::vector<std::uint64_t> due;  // the sets of a roulette look past their depth, one bit each
     std::vector<RayScore> scores;
-    std::vector<double> path_cm;  // recording: one exit's paths per layer
 
-    double weight(std::size_t set, std::size_t lane) const {
-        return std::exp(boost_log[set * count + lane] - static_cast<double>(packet.tau[set * count + lane]));
+    bool alive_set(std::size_t set, std::size_t lane) const { return limit[lane * set_stride + set] != dead_limit; }
+    // The ray's path per layer and every set's optical depth, into path_cm and depth; the sets past their roulette
+    // depth into due (with_due), every set's weight into weight (with_weights).
+    void find(std::size_t lane, const std::vector<double>& mu_a_per_cm, bool with_due, bool with_weights) {
+        for (std::size_t k = 0; k < layers; ++k) path_cm[k] = packet.path_cm[k * count + lane];
+        biospec_sets({mu_a_per_cm.data(), set_stride, sets, layers, path_cm.data(), limit.data() + lane * set_stride,
+                      boost_log.data() + lane * set_stride, depth.data(), with_due ? due.data() : nullptr, with_weights ? weight.data() : nullptr});
     }
-    bool alive_set(std::size_t set, std::size_t lane) const { return packet.limit[set * count + lane] != dead_limit; }
+    // After a roulette look (depth as found): where the packet's depth bound must look next. Every set's depth grows no
+    // faster than the bound, so none can pass its roulette depth before the bound has grown by the smallest margin;
+    // 1e-5 of it is kept back for the rounding of both sums.
+    void set_look(std::size_t lane) {
+        const double margin = biospec_set_margin(set_stride, limit.data() + lane * set_stride, depth.data());
+        packet.look_at[lane] = static_cast<float>((packet.depth_bound[lane] + margin) * (1.0 - 1e-5));
+    }
 };
 
 // Single-precision copies of the SC and epidermis profile tables at every tabulated wavelength, concatenated.
@@ -103,10 +119,8 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
                                      const BiospecOptions& options)
     : BiospecWavelength(stack, wavelength_nm, incidence_deg, geometry, options, BiospecChannels(Quantities{}, stack.layers.size(), 0), {}) {
     if (options.estimator != AbsorptionEstimator::weighted) throw InputError("path recording needs the weighted estimator");
-    // One indicator "absorption set" per layer: set s's optical depth is the ray's path length in layer s.
-    sets_ = layers_;
-    packet_.mu_a_per_cm.assign(sets_ * layers_, 0.0f);
-    for (std::size_t k = 0; k < sets_; ++k) packet_.mu_a_per_cm[k * layers_ + k] = 1.0f;
+    // No absorption: the exits keep the ray's path length in each layer.
+    set_absorption(std::vector<double>(layers_, 0.0));
     recording_ = true;
     finish_model();
 }
@@ -120,13 +134,39 @@ BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets,
         throw InputError("absorption replay needs the weighted estimator (the random test makes paths depend on absorption)");
     }
     require_shared_paths(sets, TracedPaths::biospec);
-    packet_.mu_a_per_cm.assign(layers_ * sets_, 0.0f);
+    std::vector<double> mu_a(sets_ * layers_);
     for (std::size_t s = 0; s < sets_; ++s) {
         for (std::size_t k = 0; k < layers_; ++k) {
-            packet_.mu_a_per_cm[s * layers_ + k] = static_cast<float>(absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model));
+            const double value = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
+            if (!std::isfinite(value)) {
+                throw InputError("layer '" + sets[s]->layers[k].name + "': its absorbers give mu_a = " + format_number(value) + " /cm at " +
+                                 format_number(wavelength_nm) + " nm, which the walk cannot compute (a finite value is needed)");
+            }
+            mu_a[s * layers_ + k] = value;
         }
     }
+    set_absorption(mu_a);
     finish_model();
+}
+
+void BiospecWavelength::set_absorption(const std::vector<double>& mu_a_per_cm) {
+    sets_ = mu_a_per_cm.size() / layers_;
+    set_stride_ = (sets_ + widest_double_vector - 1) / widest_double_vector * widest_double_vector;
+    set_mu_a_per_cm_.assign(layers_ * set_stride_, 0.0);
+    packet_.mu_a_per_cm.assign(layers_, 0.0f);
+    packet_.mu_a_bound_per_cm.assign(layers_, 0.0f);
+    for (std::size_t k = 0; k < layers_; ++k) {
+        double largest = 0.0;
+        for (std::size_t s = 0; s < sets_; ++s) {
+            set_mu_a_per_cm_[k * set_stride_ + s] = mu_a_per_cm[s * layers_ + k];
+            largest = std::max(largest, mu_a_per_cm[s * layers_ + k]);
+        }
+        packet_.mu_a_per_cm[k] = static_cast<float>(mu_a_per_cm[k]);
+        // Rounded up, so that the bound holds in single precision too.
+        float bound = static_cast<float>(largest);
+        if (static_cast<double>(bound) < largest) bound = std::nextafter(bound, std::numeric_limits<float>::infinity());
+        packet_.mu_a_bound_per_cm[k] = bound;
+    }
 }
 
 BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
@@ -213,7 +253,6 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
 
 void BiospecWavelength::finish_model() {
     auto& m = packet_;
-    m.sets = static_cast<std::int32_t>(sets_);
     m.reflector = reflector_;
     m.bottom_exit_fresnel = model_.bottom_exit_fresnel;
     m.weighted = options_.estimator == AbsorptionEstimator::weighted;
@@ -259,8 +298,8 @@ void BiospecWavelength::walk(RandomStream& random, std::uint64_t rays, RayTally&
     // The lanes' buffers are this thread's, kept from batch to batch (a spectrum of many wavelengths with few rays
     // each would otherwise spend its time allocating them); every lane is empty between two walks.
     thread_local std::unique_ptr<Lanes> scratch;
-    if (!scratch || scratch->sets != sets_ || scratch->channels != channels_.count * sets_) {
-        scratch = std::make_unique<Lanes>(sets_, channels_.count * sets_);
+    if (!scratch || scratch->layers != layers_ || scratch->sets != sets_ || scratch->channels != channels_.count * sets_) {
+        scratch = std::make_unique<Lanes>(layers_, sets_, set_stride_, channels_.count * sets_);
     }
     Lanes& lanes = *scratch;
     auto& packet = lanes.packet;
@@ -334,13 +373,14 @@ bool BiospecWavelength::enter(std::size_t lane, std::uint64_t key, Lanes& lanes,
     p.attempts[lane] = 0;
     p.active[lane] = 1;
     p.seed_lane(lane, key);
-    for (std::size_t s = 0; s < sets_; ++s) {
-        const std::size_t i = s * Lanes::count + lane;
-        p.tau[i] = 0.0f;
-        p.limit[i] = static_cast<float>(roulette_depth);
+    p.depth_bound[lane] = 0.0f;
+    for (std::size_t i = lane * set_stride_; i < lane * set_stride_ + sets_; ++i) {
         lanes.boost_log[i] = 0.0;
+        lanes.limit[i] = roulette_depth;
         lanes.charged[i] = 1.0;
     }
+    for (std::size_t k = 0; k < layers_; ++k) p.path_cm[k * Lanes::count + lane] = 0.0f;
+    p.look_at[lane] = static_cast<float>(roulette_depth * (1.0 - 1e-5));
     lanes.key[lane] = key;
     lanes.alive[lane] = sets_;
     return true;
@@ -357,15 +397,15 @@ void BiospecWavelength::leave_top(std::size_t lane, double cos_exit, Lanes& lane
     const double f = geometry_factor(cos_exit, false);
     if (paths) {
         if (f > 0.0) {
-            lanes.path_cm.resize(sets_);
-            for (std::size_t s = 0; s < sets_; ++s) lanes.path_cm[s] = lanes.packet.tau[s * Lanes::count + lane];
+            for (std::size_t k = 0; k < layers_; ++k) lanes.path_cm[k] = lanes.packet.path_cm[k * Lanes::count + lane];
             paths->add_exit(lanes.path_cm);
         }
         return;
     }
+    lanes.find(lane, set_mu_a_per_cm_, false, true);
     for (std::size_t s = 0; s < sets_; ++s) {
         if (!lanes.alive_set(s, lane)) continue;
-        const double w = lanes.weight(s, lane);
+        const double w = lanes.weight[s];
         tally_exit(tally, s, channels_.reflectance, w * f, channels_.brdf_first_bin, cos_exit, w);
     }
 }
@@ -381,52 +421,62 @@ bool BiospecWavelength::settle(std::size_t lane, Lanes& lanes, RayTally& tally, 
     const auto k = static_cast<std::size_t>(p.crossing_layer[lane]);
     // Step 4's absorptance: the weight lost on this crossing, from the depths the packet step accumulated.
     if (packet_.flag_every_event) {
+        lanes.find(lane, set_mu_a_per_cm_, false, true);
         for (std::size_t s = 0; s < sets_; ++s) {
             if (!lanes.alive_set(s, lane)) continue;
-            const double w = lanes.weight(s, lane);
-            absorb(s, k, lanes.charged[s * Lanes::count + lane] - w);
-            lanes.charged[s * Lanes::count + lane] = w;
+            const double w = lanes.weight[s];
+            absorb(s, k, lanes.charged[lane * set_stride_ + s] - w);
+            lanes.charged[lane * set_stride_ + s] = w;
         }
     }
     // Russian roulette for the sets whose weight fell below roulette_weight, conserving each ray's energy exactly:
     // a survivor's added weight is taken back from this layer's absorption, a loser's weight is absorbed; both
-    // unbiased. One number per (ray, event) for all sets.
+    // unbiased. One number per (ray, event) for all sets. The step flags a lane when the depth bound says some set
+    // may be due; the sets' own depths decide.
     if (p.roulette_due[lane]) {
+        // The weights before the roulette are needed only for the absorptance, which found them above.
+        const bool absorptance = packet_.flag_every_event;
+        lanes.find(lane, set_mu_a_per_cm_, true, false);  // the sets that lost (and the padding) have limit inf: never due
         const double u = RandomStream::keyed_uniform(lanes.key[lane], p.event[lane] - 1);
-        for (std::size_t s = 0; s < sets_; ++s) {
-            const std::size_t i = s * Lanes::count + lane;
-            if (!(p.tau[i] > p.limit[i])) continue;  // also skips the sets that lost (limit inf)
-            const double w = lanes.weight(s, lane);
+        for (std::size_t word = 0; word < lanes.due.size(); ++word) {
+          for (std::uint64_t bits = lanes.due[word]; bits != 0; bits &= bits - 1) {
+            const std::size_t s = word * 64 + static_cast<std::size_t>(std::countr_zero(bits));
+            const std::size_t i = lane * set_stride_ + s;
+            const double w = absorptance ? lanes.weight[s] : 0.0;
             if (u < roulette_survival) {
                 lanes.boost_log[i] += boost_log;
-                p.limit[i] += static_cast<float>(boost_log);
-                lanes.charged[i] = lanes.weight(s, lane);
+                lanes.limit[i] += boost_log;
+                lanes.charged[i] = w / roulette_survival;
                 absorb(s, k, w - lanes.charged[i]);
             } else {
                 absorb(s, k, w);
-                p.limit[i] = dead_limit;
+                lanes.limit[i] = dead_limit;
                 --lanes.alive[lane];
             }
+          }
         }
         if (lanes.alive[lane] == 0) return true;
+        lanes.set_look(lane);
     }
     switch (static_cast<LaneStatus>(p.status[lane])) {
         case LaneStatus::walking: return false;
         case LaneStatus::left_top: leave_top(lane, p.exit_cos[lane], lanes, tally, paths); return true;
         case LaneStatus::left_bottom:
             if (paths) return true;
+            lanes.find(lane, set_mu_a_per_cm_, false, true);
             for (std::size_t s = 0; s < sets_; ++s) {
                 if (!lanes.alive_set(s, lane)) continue;
-                const double w = lanes.weight(s, lane);
+                const double w = lanes.weight[s];
                 tally_exit(tally, s, channels_.transmittance, w, channels_.btdf_first_bin, p.exit_cos[lane], w);
             }
             return true;
         case LaneStatus::absorbed: absorb(0, k, 1.0); return true;
         case LaneStatus::truncated:
             if (paths) return true;
+            lanes.find(lane, set_mu_a_per_cm_, false, true);
             for (std::size_t s = 0; s < sets_; ++s) {
                 if (!lanes.alive_set(s, lane)) continue;
-                absorb(s, static_cast<std::size_t>(p.layer[lane]), lanes.weight(s, lane));
+                absorb(s, static_cast<std::size_t>(p.layer[lane]), lanes.weight[s]);
                 score.add(s * channels_.count + static_cast<std::size_t>(channels_.truncated), 1.0);
             }
             return true;

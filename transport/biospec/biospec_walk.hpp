@@ -6,10 +6,12 @@
 //
 // Absorption replay (Alerstam et al. 2008's "white Monte Carlo" for this walk): with the weighted estimator a
 // ray's path does not depend on absorption, so one traced path serves several absorption sets (stacks that
-// differ only in absorbers): set s keeps the ray's optical depth tau_s = sum over crossings of
-// mu_a,s,layer * d / |cos| and its weight is w_s = b_s exp(-tau_s) (b_s its roulette boosts). Each ray has its
-// own random stream, and Russian roulette (looked at every 8 crossings) draws a number keyed by (ray, event)
-// shared by all sets, so a set's numbers equal those of its own run to rounding.
+// differ only in absorbers): the ray keeps its path length L_k in each layer, set s's optical depth is
+// tau_s = sum_k mu_a,s,k L_k and its weight w_s = b_s exp(-tau_s) (b_s its roulette boosts), all sets at once in
+// vector operations at exits and roulette looks, so a crossing costs the same for one set or hundreds. Each ray has
+// its own random stream, and Russian roulette (looked at every 8 crossings, once a bound on every set's depth says
+// some set may be due) draws a number keyed by (ray, event) shared by all sets, so a set's numbers equal those of
+// its own run to rounding.
 //
 // Path recording (white Monte Carlo proper, for fitting): the walk traced without absorption keeps, for every ray
 // that leaves the top into the measurement geometry, its path length in each layer, so that R for any absorption
@@ -78,6 +80,8 @@ private:
     // from `first_bin` (either channel -1: not requested).
     void tally_exit(RayTally& tally, std::size_t set, int channel, double value, int first_bin, double cos_exit, double bin_value) const;
     void finish_model();
+    // The absorption sets, mu_a_per_cm[set * layers + layer]: the table the exits and the roulette weigh by.
+    void set_absorption(const std::vector<double>& mu_a_per_cm);
     std::size_t exit_bin(double cos_exit) const;
     // What a ray leaving the top with |cos| = cos_exit adds to R per unit weight in the geometry (0 outside it).
     double geometry_factor(double cos_exit, bool first_surface) const;
@@ -88,6 +92,8 @@ private:
     double entry_reflectance_ = 0.0;  // Fresnel of the incident beam at the top (step 1), the same for every ray
     Direction entry_direction_;       // the refracted beam
     std::size_t sets_ = 1;
+    std::size_t set_stride_ = widest_double_vector;  // sets rounded up to whole vectors of doubles
+    std::vector<double> set_mu_a_per_cm_;            // [layer * set_stride_ + set]
     struct ProfileArena;
     // The measured profiles' tables at their tabulated wavelengths, for every wavelength and walk (per entry count).
     static std::shared_ptr<const ProfileArena> profile_arena(std::size_t entries);
