@@ -70,10 +70,14 @@ struct BiospecWavelength::Lanes {
     std::vector<RayScore> scores;
 
     bool alive_set(std::size_t set, std::size_t lane) const { return limit[lane * set_stride + set] != dead_limit; }
+    // The ray's path length per layer, into path_cm.
+    void gather_path(std::size_t lane) {
+        for (std::size_t k = 0; k < layers; ++k) path_cm[k] = packet.path_cm[k * count + lane];
+    }
     // The ray's path per layer and every set's optical depth, into path_cm and depth; the sets past their roulette
     // depth into due (with_due), every set's weight into weight (with_weights).
     void find(std::size_t lane, const std::vector<double>& mu_a_per_cm, bool with_due, bool with_weights) {
-        for (std::size_t k = 0; k < layers; ++k) path_cm[k] = packet.path_cm[k * count + lane];
+        gather_path(lane);
         biospec_sets({mu_a_per_cm.data(), set_stride, sets, layers, path_cm.data(), limit.data() + lane * set_stride,
                       boost_log.data() + lane * set_stride, depth.data(), with_due ? due.data() : nullptr, with_weights ? weight.data() : nullptr});
     }
@@ -397,7 +401,7 @@ void BiospecWavelength::leave_top(std::size_t lane, double cos_exit, Lanes& lane
     const double f = geometry_factor(cos_exit, false);
     if (paths) {
         if (f > 0.0) {
-            for (std::size_t k = 0; k < layers_; ++k) lanes.path_cm[k] = lanes.packet.path_cm[k * Lanes::count + lane];
+            lanes.gather_path(lane);
             paths->add_exit(lanes.path_cm);
         }
         return;
@@ -419,9 +423,11 @@ bool BiospecWavelength::settle(std::size_t lane, Lanes& lanes, RayTally& tally, 
         }
     };
     const auto k = static_cast<std::size_t>(p.crossing_layer[lane]);
+    // The sets' depths, once: their weights for the absorptance, the sets past their roulette depth for the roulette.
+    const bool absorptance = packet_.flag_every_event;
+    if (absorptance || p.roulette_due[lane]) lanes.find(lane, set_mu_a_per_cm_, p.roulette_due[lane] != 0, absorptance);
     // Step 4's absorptance: the weight lost on this crossing, from the depths the packet step accumulated.
-    if (packet_.flag_every_event) {
-        lanes.find(lane, set_mu_a_per_cm_, false, true);
+    if (absorptance) {
         for (std::size_t s = 0; s < sets_; ++s) {
             if (!lanes.alive_set(s, lane)) continue;
             const double w = lanes.weight[s];
@@ -434,13 +440,10 @@ bool BiospecWavelength::settle(std::size_t lane, Lanes& lanes, RayTally& tally, 
     // unbiased. One number per (ray, event) for all sets. The step flags a lane when the depth bound says some set
     // may be due; the sets' own depths decide.
     if (p.roulette_due[lane]) {
-        // The weights before the roulette are needed only for the absorptance, which found them above.
-        const bool absorptance = packet_.flag_every_event;
-        lanes.find(lane, set_mu_a_per_cm_, true, false);  // the sets that lost (and the padding) have limit inf: never due
+        // The sets that lost (and the padding) have limit inf: never due. The weights before the roulette are needed
+        // only for the absorptance, which has them.
         const double u = RandomStream::keyed_uniform(lanes.key[lane], p.event[lane] - 1);
-        for (std::size_t word = 0; word < lanes.due.size(); ++word) {
-          for (std::uint64_t bits = lanes.due[word]; bits != 0; bits &= bits - 1) {
-            const std::size_t s = word * 64 + static_cast<std::size_t>(std::countr_zero(bits));
+        const auto play = [&](std::size_t s) {
             const std::size_t i = lane * set_stride_ + s;
             const double w = absorptance ? lanes.weight[s] : 0.0;
             if (u < roulette_survival) {
@@ -453,7 +456,9 @@ bool BiospecWavelength::settle(std::size_t lane, Lanes& lanes, RayTally& tally, 
                 lanes.limit[i] = dead_limit;
                 --lanes.alive[lane];
             }
-          }
+        };
+        for (std::size_t word = 0; word < lanes.due.size(); ++word) {
+            for (std::uint64_t bits = lanes.due[word]; bits != 0; bits &= bits - 1) play(word * 64 + static_cast<std::size_t>(std::countr_zero(bits)));
         }
         if (lanes.alive[lane] == 0) return true;
         lanes.set_look(lane);
