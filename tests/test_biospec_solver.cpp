@@ -184,6 +184,32 @@ TEST_CASE("the published shape of skin reflectance", "[biospec_solver]") {
     CHECK(r[4].reflectance.value < 0.7);
 }
 
+TEST_CASE("one set without the absorptance carries its depth whole: the same rays as with paths per layer", "[biospec_solver]") {
+    // R and T only: the packet keeps the set's optical depth (no path per layer); with the absorptance it keeps the
+    // paths and forms the depth from them. The same rays, so equal up to the rounding of the two sums.
+    for (const char* bottom : {"diffuse_reflector", "exit"}) {
+        INFO(bottom);
+        const auto stack = std::get<LayerStack>(load_material("biospec-heavily", {{"bottom.boundary", bottom}}));
+        auto with_paths = all_quantities({420, 550, 650}, 40'000);
+        auto depth_only = with_paths;
+        depth_only.quantities = Quantities{true, true, false, false};
+        const auto a = solve_biospec(stack, with_paths), b = solve_biospec(stack, depth_only);
+        for (std::size_t i = 0; i < a.wavelengths.size(); ++i) {
+            INFO(a.wavelengths[i].wavelength_nm << " nm");
+            CHECK(b.wavelengths[i].reflectance.value == Approx(a.wavelengths[i].reflectance.value).epsilon(1e-5));
+            CHECK(b.wavelengths[i].transmittance.value == Approx(a.wavelengths[i].transmittance.value).epsilon(1e-5).margin(1e-9));
+        }
+    }
+    // A mu_a beyond single precision keeps the paths per layer (a depth of inf * 0 would be NaN): the surface's light only.
+    const auto dark = std::get<LayerStack>(load_material("biospec-moderately", {{"epidermis.eumelanin_mg_per_ml", "1e40"}}));
+    auto request = all_quantities({550}, 20'000);
+    request.quantities = Quantities{true, false, false, false};
+    const double r = solve_biospec(dark, request).wavelengths[0].reflectance.value;
+    CHECK(std::isfinite(r));
+    CHECK(r > 0.03);
+    CHECK(r < 0.06);
+}
+
 TEST_CASE("extreme inputs finish with finite results in [0, 1] and conserved energy", "[biospec_solver]") {
     struct Case { const char* what; std::vector<MaterialOverride> overrides; double incidence; std::vector<double> nm; };
     const std::vector<Case> cases{

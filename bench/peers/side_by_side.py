@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """skinspec side by side with its peers, one run, alternating (docs/PERFORMANCE.md, "Side by side with the peers").
 
-    python3 bench/peers/side_by_side.py --mcml /path/to/mcml --ad /path/to/ad [--skinspec build/skinspec] [--runs 3]
+    python3 bench/peers/side_by_side.py --mcml /path/to/mcml --ad /path/to/ad --rise /path/to/rise_biospec [--skinspec build/skinspec]
+                                        [--runs 3]
 
 Fetches nothing and builds nothing: give the paths of peers built outside the repository (docs/PERFORMANCE.md says
 how). Every row is CPU time (user + system) of one process on one thread, peer and skinspec alternating, the median
@@ -15,8 +16,10 @@ both tools computed the same thing before its time is believed.
          total reflection and transmission within skinspec's stated accuracy plus 1e-5 of `ad -q 64` (untimed).
   sweep  `skinspec spectrum` with a --levels-level melanosome sweep against one level (no peer: the ratio is the
          sweep's cost in levels' worth of one level).
-  biospec  BioSpec walk throughput (rays per second, one thread) of the default model and of the authors'-code
-         variant; no peer here (the authors' RISE is not built by this script), the figure to set beside it.
+  biospec  the model authors' own code (RISE's BioSpecSkinSPF through bench/peers/rise_biospec.cpp, --rise) against
+         `skinspec spectrum` at 550 nm, --rays rays, one thread: the default model and the authors'-code variant, whose
+         R must agree with the peer's within 4 combined standard errors (the peer is that code). Without --rise: the
+         two throughputs alone.
 """
 import argparse
 import json
@@ -155,12 +158,41 @@ def row_sweep(a, work):
 
 
 def row_biospec(a, work):
-    def rate(extra):
-        return cpu_seconds([a.skinspec, "spectrum", "--preset", "biospec-moderately", "--wavelengths", "550", "--rays", str(a.rays),
-                            "--threads", "1", "--quantities", "R"] + extra, work)[0]
-    default, authors = alternate(a.runs, lambda: rate([]), lambda: rate(["--variant", "biospec-authors-code"]))
-    return ("BioSpec walk (no peer)", f"rays/s, 550 nm, {a.rays:g} rays: default {a.rays / default:.3g}, authors'-code variant {a.rays / authors:.3g}",
-            None, None, "(set beside the authors' RISE BioSpecSkinSPF, built by hand)", True)
+    result = {}
+
+    def ours(extra):
+        def run():
+            seconds, out = cpu_seconds([a.skinspec, "spectrum", "--preset", "biospec-moderately", "--wavelengths", "550", "--rays", str(a.rays),
+                                        "--threads", "1", "--quantities", "R", "--json"] + extra, work)
+            r = json.loads(out)["results"][0]
+            result[tuple(extra)] = (r["R"][0], r["R_stderr"][0])
+            return seconds
+        return run
+
+    default, authors = ours([]), ours(["--variant", "biospec-authors-code"])
+    if a.rise is None:
+        t_default, t_authors = alternate(a.runs, default, authors)
+        return [("BioSpec walk (no --rise)", f"rays/s, 550 nm, {a.rays:g} rays: default {a.rays / t_default:.3g}, "
+                 f"authors'-code variant {a.rays / t_authors:.3g}", None, None, "", True)]
+
+    def peer():
+        # biospec-moderately's melanosome fraction; every other parameter of the preset is the peer's built-in one.
+        seconds, out = cpu_seconds([a.rise, "550", str(a.rays), "0.052"], work)
+        fields = out.split()
+        result["peer"] = (float(fields[1]), float(fields[3]))
+        return seconds
+
+    times = {"peer": [], "default": [], "authors": []}
+    for _ in range(a.runs):
+        for name, run in (("peer", peer), ("default", default), ("authors", authors)):
+            times[name].append(run())
+    t_peer, t_default, t_authors = (statistics.median(times[n]) for n in ("peer", "default", "authors"))
+    (r_p, se_p), (r_a, se_a), (r_d, _) = result["peer"], result[("--variant", "biospec-authors-code")], result[()]
+    z = abs(r_a - r_p) / (se_a ** 2 + se_p ** 2) ** 0.5
+    check = f"R {r_a:.5f} (variant) vs {r_p:.5f} (RISE): {z:.1f} sigma"
+    case = f"550 nm, {a.rays:g} rays, biospec-moderately"
+    return [("BioSpec walk vs the authors' RISE", f"{case}, default model (R {r_d:.5f})", t_peer, t_default, "", True),
+            ("BioSpec walk vs the authors' RISE", f"{case}, authors'-code variant", t_peer, t_authors, check, z < 4)]
 
 
 def main():
@@ -168,6 +200,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--mcml", help="MCML 1.2 executable (row skipped without it)")
     p.add_argument("--ad", help="Prahl's ad executable (row skipped without it)")
+    p.add_argument("--rise", help="bench/peers/rise_biospec.cpp built against RISE (the biospec row without a peer without it)")
     p.add_argument("--skinspec", default=os.path.join(here, "..", "..", "build", "skinspec"))
     p.add_argument("--runs", type=int, default=3, help="alternating runs per row; the median is reported (default 3)")
     p.add_argument("--photons", type=int, default=1000000)
@@ -190,10 +223,11 @@ def main():
             if name in ("mcml", "ad") and getattr(a, name) is None:
                 print(f"{name:32} skipped: no --{name} given")
                 continue
-            what, case, t_peer, t_ours, check, ok = rows[name](a, work)
-            failed |= not ok
-            times = f"{t_peer:9.4g} {t_ours:11.4g} {t_peer / t_ours:6.2f}x" if t_peer is not None else f"{'':9} {'':11} {'':7}"
-            print(f"{what:32} {case:52} {times}  {check}{'' if ok else '  DISAGREE'}", flush=True)
+            produced = rows[name](a, work)
+            for what, case, t_peer, t_ours, check, ok in produced if isinstance(produced, list) else [produced]:
+                failed |= not ok
+                times = f"{t_peer:9.4g} {t_ours:11.4g} {t_peer / t_ours:6.2f}x" if t_peer is not None else f"{'':9} {'':11} {'':7}"
+                print(f"{what:32} {case:52} {times}  {check}{'' if ok else '  DISAGREE'}", flush=True)
     sys.exit(1 if failed else 0)
 
 

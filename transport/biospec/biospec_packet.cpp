@@ -161,11 +161,11 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
 
         // Step 4: absorption along the crossing. Weighted: the path length in the layer, which serves every set at the
         // same cost (the caller turns it into each set's weight at exits and roulette), and the bound on every set's
-        // optical depth; random: the per-crossing test.
+        // optical depth (one set without layer paths: its depth); random: the per-crossing test.
         MF absorbed = none;
         MF over_limit = absorbed;
         if (model.weighted) {
-            for (std::int32_t layer = 0; layer < model.layers; ++layer) {
+            for (std::int32_t layer = 0; model.layer_paths && layer < model.layers; ++layer) {
                 float* slot = p.path_cm.data() + static_cast<std::size_t>(layer) * BiospecPacket::lanes + base;
                 hn::StoreU(hn::Add(hn::LoadU(df, slot), hn::IfThenElseZero(FromInt(k == hn::Set(di, layer)), path)), df, slot);
             }

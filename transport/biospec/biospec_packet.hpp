@@ -55,7 +55,8 @@ struct BiospecPacketModel {
     const float* table_cos = nullptr;  // the measured-profile inverse-CDF tables, concatenated (owned by the walk)
     const float* table_sin = nullptr;
     // Absorption per layer: the first set's (the random estimator's per-crossing test) and the largest of every set's
-    // (rounded up), which bounds every set's optical depth (BiospecPacket::depth_bound).
+    // (rounded up), which bounds every set's optical depth (BiospecPacket::depth_bound); without layer_paths, the one
+    // set's own, so that depth_bound is its optical depth.
     std::vector<float> mu_a_per_cm, mu_a_bound_per_cm;
 
     // Sets layer_stride for `layers` and pads every per-layer array to it.
@@ -65,6 +66,9 @@ struct BiospecPacketModel {
     bool weighted = true;            // weighted estimator (else the random per-crossing absorption test)
     bool roulette = true;            // flag lanes for Russian roulette (off when recording paths)
     bool flag_every_event = false;   // hand every lane to the caller after every event (per-layer absorptance)
+    // Weighted: add each crossing's path to the ray's length in that layer (BiospecPacket::path_cm), which several
+    // absorption sets, the per-layer absorptance and path recording need; without it one set's depth is depth_bound.
+    bool layer_paths = true;
     RayleighTurn rayleigh_turn = RayleighTurn::sampled_depth;
     std::uint32_t max_events = 0;
     std::uint32_t roulette_every = 8;  // events between two roulette looks (a power of 2)
@@ -87,10 +91,11 @@ struct BiospecPacket {
     alignas(64) std::uint32_t rng[4][lanes] = {};         // xoshiro128+ state
     // The roulette look's screen: depth_bound, the sum over crossings of the model's mu_a_bound_per_cm times the path,
     // grows at least as fast as the optical depth of every set, so no set can pass its roulette depth before
-    // depth_bound passes look_at (set by the caller from the sets' margins).
+    // depth_bound passes look_at (set by the caller from the sets' margins). Without the model's layer_paths it is the
+    // one set's optical depth.
     alignas(64) float depth_bound[lanes] = {};
     alignas(64) float look_at[lanes] = {};
-    std::vector<float> path_cm;  // [layer * lanes + lane]: the ray's path length in each layer so far
+    std::vector<float> path_cm;  // [layer * lanes + lane]: the ray's path length in each layer so far (layer_paths)
 
     // Seeds lane `lane`'s stream from a ray key (SplitMix64 of the key; never the all-zero state).
     void seed_lane(std::size_t lane, std::uint64_t key);

@@ -53,14 +53,16 @@ BiospecChannels::BiospecChannels(const Quantities& q, std::size_t layers, std::s
 // (the sets of one ray contiguous, set_stride apart) the log of the set's roulette boosts, the optical depth beyond
 // which it plays roulette next (+inf: it lost), the weight its per-layer absorptance was last charged to; how many of
 // its sets are still alive, and its per-ray score (channels a ray reaches more than once). `depth` and `weight` hold
-// one ray's sets as find() last found them.
+// one ray's sets as find() last found them. Without layer paths (BiospecPacketModel::layer_paths) the packet's
+// depth_bound is the one set's optical depth.
 struct BiospecWavelength::Lanes {
     static constexpr std::size_t count = BiospecPacket::lanes;
-    Lanes(std::size_t layers, std::size_t sets, std::size_t set_stride, std::size_t channels)
-        : layers(layers), sets(sets), set_stride(set_stride), channels(channels), packet(layers), boost_log(set_stride * count),
+    Lanes(std::size_t layers, std::size_t sets, std::size_t set_stride, std::size_t channels, bool layer_paths)
+        : layers(layers), sets(sets), set_stride(set_stride), channels(channels), layer_paths(layer_paths), packet(layers), boost_log(set_stride * count),
           limit(set_stride * count, dead_limit), charged(set_stride * count), path_cm(layers), depth(set_stride), weight(set_stride), due((set_stride + 63) / 64),
           scores(count, RayScore(channels)) {}
     std::size_t layers, sets, set_stride, channels;
+    bool layer_paths;
     BiospecPacket packet;
     std::uint64_t key[count] = {};
     std::vector<double> boost_log, limit, charged;  // [lane * set_stride + set]
@@ -77,6 +79,13 @@ struct BiospecWavelength::Lanes {
     // The ray's path per layer and every set's optical depth, into path_cm and depth; the sets past their roulette
     // depth into due (with_due), every set's weight into weight (with_weights).
     void find(std::size_t lane, const std::vector<double>& mu_a_per_cm, bool with_due, bool with_weights) {
+        if (!layer_paths) {
+            const std::size_t i = lane * set_stride;
+            depth[0] = packet.depth_bound[lane];
+            due[0] = with_due && depth[0] > limit[i] ? 1 : 0;
+            if (with_weights) weight[0] = std::exp(boost_log[i] - depth[0]);
+            return;
+        }
         gather_path(lane);
         biospec_sets({mu_a_per_cm.data(), set_stride, sets, layers, path_cm.data(), limit.data() + lane * set_stride,
                       boost_log.data() + lane * set_stride, depth.data(), with_due ? due.data() : nullptr, with_weights ? weight.data() : nullptr});
@@ -262,6 +271,11 @@ void BiospecWavelength::finish_model() {
     m.weighted = options_.estimator == AbsorptionEstimator::weighted;
     m.roulette = !recording_;
     m.flag_every_event = channels_.absorptance_first_layer >= 0 && m.weighted;
+    // One set needs no per-layer paths unless the absorptance or a recording asks for them, or a mu_a beyond single
+    // precision would make its depth inf * 0 at a crossing of no length (the per-layer paths keep depths in double).
+    const bool single_precision = std::all_of(m.mu_a_per_cm.begin(), m.mu_a_per_cm.end(), [](float mu) { return std::isfinite(mu); });
+    m.layer_paths = sets_ > 1 || m.flag_every_event || recording_ || !single_precision;
+    if (!m.layer_paths) m.mu_a_bound_per_cm = m.mu_a_per_cm;
     m.rayleigh_turn = model_.rayleigh_turn;
     m.max_events = options_.max_events_per_ray;
     m.roulette_every = roulette_every;
@@ -302,8 +316,9 @@ void BiospecWavelength::walk(RandomStream& random, std::uint64_t rays, RayTally&
     // The lanes' buffers are this thread's, kept from batch to batch (a spectrum of many wavelengths with few rays
     // each would otherwise spend its time allocating them); every lane is empty between two walks.
     thread_local std::unique_ptr<Lanes> scratch;
-    if (!scratch || scratch->layers != layers_ || scratch->sets != sets_ || scratch->channels != channels_.count * sets_) {
-        scratch = std::make_unique<Lanes>(layers_, sets_, set_stride_, channels_.count * sets_);
+    if (!scratch || scratch->layers != layers_ || scratch->sets != sets_ || scratch->channels != channels_.count * sets_ ||
+        scratch->layer_paths != packet_.layer_paths) {
+        scratch = std::make_unique<Lanes>(layers_, sets_, set_stride_, channels_.count * sets_, packet_.layer_paths);
     }
     Lanes& lanes = *scratch;
     auto& packet = lanes.packet;
