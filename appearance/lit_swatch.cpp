@@ -46,11 +46,11 @@ LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wave
 }
 
 void write_lit_swatch(const LitSwatch& swatch, const std::string& material, const Illumination& light, double field_mm,
-                      const std::string& wavelengths_text, const ImageOutputs& files) {
+                      const std::string& wavelengths_text, const ImageOutputs& files, const std::string& profile_shape) {
     const auto& cm = ColorManagement::builtin();
     const auto lighting = light.description();
     const auto& model = swatch.patch.profiles.model;
-    const ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
+    ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
                                  {"skinspec:model", model},
                                  {"skinspec:material", material},
                                  {"skinspec:lighting", lighting},
@@ -59,6 +59,7 @@ void write_lit_swatch(const LitSwatch& swatch, const std::string& material, cons
                                  {"skinspec:wavelengths", swatch.bands ? std::string("bands R, G, B") : wavelengths_text},
                                  {"ImageDescription", fmt::format("skinspec lit swatch: {} under {} ({} mode; diffuse exitance, "
                                                                   "no specular)", material, lighting, model)}};
+    if (!profile_shape.empty()) metadata.emplace_back("skinspec:profile_shape", profile_shape);
     for (const auto& out : files.files) {
         if (out.extension() == ".exr") write_linear_image(out, swatch.image, files.space, files.half, metadata, cm);
         else write_image_grid(out, {swatch.image}, 1, {fmt::format("{}\n{}, {:g} mm", material, lighting, field_mm)}, files.space, files.display, files.view, metadata, cm);

@@ -34,8 +34,9 @@ LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wave
                             const std::atomic<bool>* cancel = nullptr);
 
 // Writes the swatch's image to every file of `outputs` (as check_image_outputs returned them; the display-referred
-// ones labelled), with its provenance (material, model, lighting, field, wavelengths).
+// ones labelled), with its provenance (material, model, lighting, field, wavelengths) and, unless empty, the profiles'
+// stated shape error (metadata skinspec:profile_shape).
 void write_lit_swatch(const LitSwatch& swatch, const std::string& material, const Illumination& light, double field_mm,
-                      const std::string& wavelengths_text, const ImageOutputs& outputs);
+                      const std::string& wavelengths_text, const ImageOutputs& outputs, const std::string& profile_shape = {});
 
 }  // namespace skinspec

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "appearance/profile_shape_report.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
@@ -94,6 +95,7 @@ nlohmann::ordered_json profile_export_json(const ProfileExport& e) {
     document["radii_mm"] = {{"first", e.radii_mm.front()}, {"last", e.radii_mm.back()}, {"count", e.radii_mm.size()}};
     document["variances_mm2"] = e.fit.variances_mm2;
     document["fit"] = channels;
+    if (e.shape) document["profile_shape"] = profile_shape_json(*e.shape);
     document["units"] = {{"variances", "mm^2"}, {"r", "mm"}, {"R(r)", "1/mm^2"}, {"weights", "unitless"}};
     return document;
 }

@@ -4,12 +4,14 @@
 // at each radius, in a linear RGB space) or per wavelength. `skinspec export profile` and skinspec.export_profile
 // write the same JSON and table from here.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "inverse/gaussian_sum/gaussian_sum_fit.hpp"
+#include "solvers/profile_shape_check.hpp"
 #include "spectral/colorimetry.hpp"
 #include "transport/diffusion/diffusion_profiles.hpp"
 
@@ -35,6 +37,7 @@ struct ProfileExport {
     std::vector<double> radii_mm;
     std::vector<double> total_reflectance;  // per channel: the solver's total diffuse R (the whole plane)
     GaussianSumFit fit;
+    std::optional<ProfileShapeCheck> shape;  // the profiles' shape against the exact transport, where it was checked
 };
 
 // The wavelengths an RGB fit needs: CIE 015:2018 Sec. 7.1's 380-780 nm, every 10 nm.
@@ -45,7 +48,8 @@ void check_profile_export(const std::string& material, bool bands, const Profile
 // check_profile_export and fit_gaussian_sum.
 ProfileExport fit_profile_export(const SpectralProfiles& profiles, bool bands, const ProfileExportRequest& request);
 
-// The fit as `skinspec export profile -o F.json` writes it: variances, per channel weights and the fit's errors.
+// The fit as `skinspec export profile -o F.json` writes it: variances, per channel weights and the fit's errors, and the
+// profiles' shape check where there is one (appearance/profile_shape_report.hpp).
 nlohmann::ordered_json profile_export_json(const ProfileExport& exported);
 // "# skinspec ... sum-of-N-Gaussians fit of R(r): material ..., model ..., channels ..., r A-B mm" (one line).
 std::string profile_export_header(const ProfileExport& exported);

@@ -9,6 +9,8 @@
 #include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
+#include "appearance/profile_shape_report.hpp"
+#include "cli/profile_shape_output.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
@@ -69,8 +71,18 @@ void run_export_profile(const ProfileExportOptions& o) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (the fit needs every channel's profile)\n";
         std::exit(InterruptGuard::exit_code());
     }
-    print_warning_summary(profiles.material, profiles.warnings);
-    const auto exported = fit_profile_export(profiles, bands, fit_request);
+    ProfileShapeCheck shape;
+    {
+        const InterruptGuard interrupt;
+        shape = stated_profile_shape(solver, material, grid, solver_switches(o.solver), &InterruptGuard::cancel_flag());
+    }
+    if (shape.stopped) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (stopped in the profiles' shape check)\n";
+        std::exit(InterruptGuard::exit_code());
+    }
+    print_profile_summary(profiles.material, profiles.warnings, shape);
+    auto exported = fit_profile_export(profiles, bands, fit_request);
+    if (profile_shape_checked(solver, material)) exported.shape = shape;
     const auto document = profile_export_json(exported);
     if (!o.output.empty()) {
         write_text_file(o.output, document.dump(2) + "\n", o.overwrite);

@@ -9,6 +9,8 @@
 
 #include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
+#include "appearance/profile_shape_report.hpp"
+#include "cli/profile_shape_output.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
@@ -43,7 +45,7 @@ std::string column_tag(const ChannelProfile& c) {
     return c.wavelength_nm > 0.0 ? fmt::format("{:g}nm", c.wavelength_nm) : "band" + c.label;
 }
 
-std::string to_csv(const SpectralProfiles& p) {
+std::string to_csv(const SpectralProfiles& p, const ProfileShapeCheck& shape) {
     std::string out = fmt::format("# skinspec {} radial profiles: material {}, model {}, partial {}\n", version, p.material, p.model, p.partial);
     out += "# units: r_mm [mm]; R_*, T_* [1/mm^2 per unit incident power, entry Fresnel transmittance included]\n";
     for (const auto& c : p.channels) {
@@ -65,6 +67,7 @@ std::string to_csv(const SpectralProfiles& p) {
         out += "# converged: NO\n";
     }
     for (const auto& w : summarise_warnings(p.warnings)) out += "# warning: " + w + "\n";
+    for (const auto& line : profile_shape_lines(shape)) out += "# " + line + "\n";
     // Monte Carlo profiles add a standard-error column after each value column.
     const bool errors = !p.channels.empty() && !p.channels.front().reflectance_stderr_per_mm2.empty();
     out += "r_mm";
@@ -113,8 +116,13 @@ void run_profile(const ProfileOptions& o) {
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
     const auto& solver = chosen_profile_solver(o.solver, material);
     const auto profiles = solve_profiles_stoppable(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given, overrides), "profile");
-    print_warning_summary(profiles.material, profiles.warnings);
-    const auto csv = to_csv(profiles);
+    ProfileShapeCheck shape;
+    if (!profiles.partial) {
+        const InterruptGuard interrupt;
+        shape = stated_profile_shape(solver, material, grid, solver_switches(o.solver), &InterruptGuard::cancel_flag());
+    }
+    print_profile_summary(profiles.material, profiles.warnings, shape);
+    const auto csv = to_csv(profiles, shape);
     if (o.output.empty()) {
         std::cout << csv;
     } else {
@@ -128,6 +136,10 @@ void run_profile(const ProfileOptions& o) {
     if (profiles.partial) {
         std::cerr << fmt::format("skinspec: {}: the {} of {} channels finished were written, marked partial\n", InterruptGuard::reason(),
                                  profiles.channels.size(), profile_channel_count(material, grid));
+        std::exit(InterruptGuard::exit_code());
+    }
+    if (shape.stopped) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": the profiles were written; their shape check stopped (its finished wavelengths stated)\n";
         std::exit(InterruptGuard::exit_code());
     }
 }

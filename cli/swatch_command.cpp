@@ -13,6 +13,8 @@
 #include "cli/color_output.hpp"
 #include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
+#include "appearance/profile_shape_report.hpp"
+#include "cli/profile_shape_output.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
 #include "cli/spectral_output.hpp"
@@ -99,8 +101,16 @@ void run_lit_swatch(const SwatchOptions& o) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& patch = swatch.patch;
-    print_warning_summary(name, patch.profiles.warnings);
-    write_lit_swatch(swatch, name, light, o.field_mm, o.wavelengths, files);
+    ProfileShapeCheck shape;
+    shape = stated_profile_shape(solver, material, grid, switches, &InterruptGuard::cancel_flag());
+    if (shape.stopped) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (stopped in the profiles' shape check)\n";
+        std::exit(InterruptGuard::exit_code());
+    }
+    print_profile_summary(name, patch.profiles.warnings, shape);
+    std::string shape_text;
+    for (const auto& line : profile_shape_lines(shape)) shape_text += (shape_text.empty() ? "" : "\n") + line;
+    write_lit_swatch(swatch, name, light, o.field_mm, o.wavelengths, files, shape_text);
     for (const auto& out : o.outputs) std::cerr << "wrote " << out << '\n';
     const auto lighting = light.description();
     const bool bands = swatch.bands;

@@ -11,6 +11,7 @@
 #include "appearance/profile_export.hpp"
 #include "formats/scene_export.hpp"
 #include "python/bindings.hpp"
+#include "solvers/profile_shape_check.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/color_management.hpp"
@@ -75,7 +76,13 @@ py::object export_profile(const py::object& material, const py::object& output, 
                                                               : (wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths));
     const auto radii = radii_mm.is_none() ? py::object(to_array(parse_radii_mm("0:10:0.01", "radii_mm"), {1001})) : radii_mm;
     const auto profiles = solve_profiles_interruptible(solver, skin.material, profile_request_argument(grid, radii, false, rays, seed, switches, skin.overrides));
-    const auto exported = fit_profile_export(profiles, bands, fit_request);
+    auto exported = fit_profile_export(profiles, bands, fit_request);
+    if (profile_shape_checked(solver, skin.material)) {
+        const auto switch_values = solver_switches(switches);
+        run_interruptible([&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) {
+            exported.shape = stated_profile_shape(solver, skin.material, grid, switch_values, &cancel);
+        }, py::none());
+    }
     const auto document = profile_export_json(exported);
     if (!json_file.empty()) write_text_file(json_file, document.dump(2) + "\n", overwrite);
     if (!table_file.empty()) write_text_file(table_file, profile_export_table_csv(exported), overwrite);

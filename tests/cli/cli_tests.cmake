@@ -74,6 +74,10 @@ skinspec_cli_test("export pbrt --json lists the media" 0 "\"sigma_a_per_mm\".*\"
 skinspec_cli_test("export mitsuba rgb" 0 "tabulated \\(1441 points, mean cos 0.9591, as interpolated 0.95903\\).*read back: largest relative difference" export mitsuba --rgb 650,550,450 -o ${CMAKE_CURRENT_BINARY_DIR}/skin.xml --overwrite)
 skinspec_cli_test("export profile from the volumetric walk" 0 "550 nm: profile error \\(relative L2, r dr\\) [0-9.]+ %" export profile --mode rte --rays 5000 --per wavelength --wavelengths 550 --radii 0:5:0.05 --gaussians 3 -o ${CMAKE_CURRENT_BINARY_DIR}/profile_rte.json --overwrite)
 skinspec_cli_test("profile of the volumetric walk" 0 "r_mm,R_550nm_per_mm2,R_550nm_stderr_per_mm2" profile --mode rte --rays 2000 --wavelengths 550 --radii 0:1:0.5)
+# A diffusion profile states its shape against the volumetric walk (solvers/profile_shape_check.hpp), on the terminal and
+# in the files; the walk's own profile states none ("rte profile header has no diffusion figures" below).
+skinspec_cli_test("profile states its shape against the exact transport" 0 "warning: biospec-lightly:   550 nm: the share of R leaving within a radius r is off by up to [+-]0\\.[0-9]+ \\+- 0\\.0[0-9]+ \\(r = [0-9.]+ mm\\); within 0\\.1 mm [0-9]+ % \\(exact [0-9]+ %\\)" profile --preset biospec-lightly --wavelengths 550 --radii 0:1:0.5)
+skinspec_cli_test("export profile's JSON carries the shape check" 0 "\"profile_shape\": \\{\n *\"reference\": \"the volumetric walk[^\n]*\n *\"stopped\": false,\n *\"wavelengths\": \\[\n *\\{\n *\"wavelength_nm\": 550\\.0,\n *\"photons\": 100000,\n *\"largest_share_difference\": [-0-9.e]+" export profile --per wavelength --wavelengths 550 --radii 0:5:0.05 --gaussians 3 --json)
 # Only what was asked is reported (issue 33): the volumetric walk tallies T and A on the way, R alone is shown.
 skinspec_cli_test("rte reports only R when R is asked" 0 "wavelength_nm +R +R_specular +rays\n" spectrum --mode rte --preset biospec-lightly --wavelengths 550 --rays 500)
 # Skin colours a person can place (issue 33): ITA and its category with every colour. biospec-lightly is Lab 62.4 10.0
