@@ -16,4 +16,15 @@ std::string PhaseFunction::describe() const {
     return "?";
 }
 
+double PhaseFunction::mean_cosine() const {
+    switch (kind) {
+        case Kind::henyey_greenstein:
+        case Kind::tabulated: return g;
+        case Kind::two_term_hg: return weight * g + (1.0 - weight) * g2;
+        case Kind::isotropic:
+        case Kind::rayleigh: return 0.0;
+    }
+    return 0.0;
+}
+
 }  // namespace skinspec

@@ -21,6 +21,9 @@ struct PhaseFunction {
     static PhaseFunction isotropic() { return {Kind::isotropic, 0.0, 0.0, 1.0, nullptr}; }
 
     std::string describe() const;
+    // The mean cosine of the scattering angle: g for HG and for a tabulated phase (which carries its table's), the
+    // weighted mean of two-term HG's, 0 for the isotropic and Rayleigh phases (symmetric about 90 deg).
+    double mean_cosine() const;
 };
 
 }  // namespace skinspec

@@ -41,10 +41,11 @@ def test_lit_swatch_conserves_energy_and_writes_its_files(tmp_path):
     assert lit["rgb"].shape == (64, 64, 3) and lit["exitance"].shape == (31, 64, 64) and lit["model"] == "matched-multipole"
     assert lit["files"] == [str(tmp_path / "edge.exr"), str(tmp_path / "edge.png")] and all(os.path.getsize(f) > 0 for f in lit["files"])
     # Far into the lit half, a uniformly lit half-space returns the whole diffuse reflectance (R without the
-    # first-surface reflection: the lit swatch has no specular); far into the shadow, nothing.
+    # first-surface reflection: the lit swatch has no specular); 13 mm into the shadow, almost nothing (the red, which
+    # the dermis scatters least, reaches furthest: 5e-5 of the lit half at 700 nm).
     plane = skinspec.spectrum("biospec-moderately", mode="matched-multipole")
     np.testing.assert_allclose(lit["exitance"][:, 32, -3], plane.R - plane.R_specular, rtol=1e-4)
-    assert np.all(lit["exitance"][:, 32, 2] < 1e-6)
+    assert np.all(lit["exitance"][:, 32, 2] < 1e-4 * lit["exitance"][:, 32, -3])
     # A pattern sets the view's aspect: 16 x 32 pixels of irradiance -> 32 x 64.
     pattern = skinspec.lit_swatch("biospec-moderately", "pattern", pattern=np.ones((16, 32)), pixels=64, mode="dipole")
     assert pattern["rgb"].shape == (32, 64, 3) and pattern["files"] == []
