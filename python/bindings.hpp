@@ -18,6 +18,7 @@
 #include "appearance/swatch_chart.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/wavelength_grid.hpp"
+#include "solvers/profile_shape_check.hpp"
 #include "solvers/spectral_solver.hpp"
 #include "transport/spectral_request.hpp"
 
@@ -70,6 +71,11 @@ ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const
 const SpectralSolver& profile_solver_argument(const py::object& mode, const Material& material);
 // solve_profiles under run_interruptible (Ctrl-C stops it).
 SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
+// stated_profile_shape (solvers/profile_shape_check.hpp: a diffusion profile's shape against the volumetric walk) under
+// run_interruptible; as a dict (profile_shape_json), None where nothing is checked (a walk's profile, band materials).
+ProfileShapeCheck stated_profile_shape_interruptible(const SpectralSolver& solver, const Material& material, const WavelengthGrid& wavelengths,
+                                                     const SolverSwitches& switches);
+py::object profile_shape_object(const SpectralSolver& solver, const Material& material, const ProfileShapeCheck& shape);
 // A string of comma-separated names or a sequence of strings ("R,T" or ["R", "T"]).
 std::vector<std::string> name_list(const py::handle& value, std::string_view what);
 // InputError "WHAT = V is outside [LO, HI]" unless lo <= v <= hi.

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "appearance/profile_shape_report.hpp"
 #include "python/bindings.hpp"
 #include "solvers/matched_multipole_solver.hpp"
 #include "solvers/spectral_solver.hpp"
@@ -96,6 +97,18 @@ SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, cons
         },
         py::none());
     return p;
+}
+
+ProfileShapeCheck stated_profile_shape_interruptible(const SpectralSolver& solver, const Material& material, const WavelengthGrid& wavelengths,
+                                                     const SolverSwitches& switches) {
+    ProfileShapeCheck shape;
+    run_interruptible([&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) { shape = stated_profile_shape(solver, material, wavelengths, switches, &cancel); },
+                      py::none());
+    return shape;
+}
+
+py::object profile_shape_object(const SpectralSolver& solver, const Material& material, const ProfileShapeCheck& shape) {
+    return profile_shape_checked(solver, material) ? json_object(profile_shape_json(shape)) : py::object(py::none());
 }
 
 WavelengthGrid wavelength_argument(const py::object& wavelengths) {

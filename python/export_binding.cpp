@@ -11,7 +11,6 @@
 #include "appearance/profile_export.hpp"
 #include "formats/scene_export.hpp"
 #include "python/bindings.hpp"
-#include "solvers/profile_shape_check.hpp"
 #include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/color_management.hpp"
@@ -77,12 +76,7 @@ py::object export_profile(const py::object& material, const py::object& output, 
     const auto radii = radii_mm.is_none() ? py::object(to_array(parse_radii_mm("0:10:0.01", "radii_mm"), {1001})) : radii_mm;
     const auto profiles = solve_profiles_interruptible(solver, skin.material, profile_request_argument(grid, radii, false, rays, seed, switches, skin.overrides));
     auto exported = fit_profile_export(profiles, bands, fit_request);
-    if (profile_shape_checked(solver, skin.material)) {
-        const auto switch_values = solver_switches(switches);
-        run_interruptible([&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) {
-            exported.shape = stated_profile_shape(solver, skin.material, grid, switch_values, &cancel);
-        }, py::none());
-    }
+    if (profile_shape_checked(solver, skin.material)) exported.shape = stated_profile_shape_interruptible(solver, skin.material, grid, solver_switches(switches));
     const auto document = profile_export_json(exported);
     if (!json_file.empty()) write_text_file(json_file, document.dump(2) + "\n", overwrite);
     if (!table_file.empty()) write_text_file(table_file, profile_export_table_csv(exported), overwrite);

@@ -283,6 +283,7 @@ py::object profiles(const py::object& material, const py::object& radii_mm, cons
     d["model"] = p.model;
     d["material"] = p.material;
     d["warnings"] = summarise_warnings(p.warnings);
+    d["shape"] = profile_shape_object(solver, base.material, stated_profile_shape_interruptible(solver, base.material, request.wavelengths, request.switches));
     return result_object("Profiles", d);
 }
 

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "appearance/lit_swatch.hpp"
+#include "appearance/profile_shape_report.hpp"
 #include "appearance/swatch_files.hpp"
 #include "python/bindings.hpp"
 #include "spectral/color_management.hpp"
@@ -74,9 +75,11 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
                                        [&report](std::size_t done, std::size_t total) { report(Progress{0, 0, done, total}); }, &cancel);
         },
         progress);
-    std::string wavelengths_text;
+    const auto shape = stated_profile_shape_interruptible(solver, skin.material, grid, solver_settings);
+    std::string wavelengths_text, shape_text;
     for (const double nm : grid.nm()) wavelengths_text += (wavelengths_text.empty() ? "" : ",") + format_number(nm);
-    write_lit_swatch(swatch, material_name(skin.material), light, field_mm, wavelengths.is_none() ? "400:700:10" : wavelengths_text, files);
+    for (const auto& line : profile_shape_lines(shape)) shape_text += (shape_text.empty() ? "" : "\n") + line;
+    write_lit_swatch(swatch, material_name(skin.material), light, field_mm, wavelengths.is_none() ? "400:700:10" : wavelengths_text, files, shape_text);
     const auto& patch = swatch.patch;
     const auto h = static_cast<py::ssize_t>(view.height_px), w = static_cast<py::ssize_t>(view.width_px);
     std::vector<double> exitance;
@@ -98,6 +101,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
     d["wavelength_nm"] = swatch.bands ? py::object(py::none())
                                       : py::object(to_array(std::vector<double>(grid.nm().begin(), grid.nm().end()), {static_cast<py::ssize_t>(grid.size())}));
     d["pixel_mm"] = view.pixel_mm;
+    d["shape"] = profile_shape_object(solver, skin.material, shape);
     d["kernel_reach_mm"] = patch.kernel_radius_px * view.pixel_mm;
     d["largest_kernel_correction"] = patch.largest_kernel_correction;
     d["files"] = written;

@@ -57,6 +57,7 @@ class Profiles:
     model: str
     material: str
     warnings: list
+    shape: Optional[dict]  # a deterministic solver's R(r) shape against the volumetric walk (docs/DIFFUSION.md); None for the walk, bands
 
     def __repr__(self) -> str:
         return f"<skinspec.Profiles {self.material} by {self.solver}: {len(self.labels)} channels x {len(self.radii_mm)} radii>"

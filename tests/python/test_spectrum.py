@@ -144,6 +144,10 @@ def test_profiles_equal_the_cli_profile_table():
     np.testing.assert_allclose(ours.R_per_mm2.T, rows[:, 1:3], rtol=1e-8)
     # 2 pi int R(r) r dr over all r is the total diffuse R; the profile integrates to it (most of it within 2 mm).
     assert ours.total_R.shape == (2,) and np.all(ours.total_R > 0.1)
+    # The diffusion profile's shape against the walk, as the command states it (its CSV comments), one per wavelength.
+    assert [w["wavelength_nm"] for w in ours.shape["wavelengths"]] == [550.0, 650.0]
+    stated = [line for line in table.splitlines() if line.startswith("#   650 nm: the share of R")][0]
+    assert f"{ours.shape['wavelengths'][1]['largest_share_difference']:+.3f}" in stated
     with pytest.raises(skinspec.InputError, match="radial"):
         skinspec.profiles("biospec-moderately", radii, mode="biospec")
 
@@ -158,6 +162,7 @@ def test_volumetric_profiles_equal_the_cli_with_standard_errors():
     rows = np.array([[float(v) for v in line.split(",")] for line in table.splitlines() if line and line[0].isdigit()])
     np.testing.assert_allclose(ours.R_per_mm2[0], rows[:, 1], rtol=1e-8)
     np.testing.assert_allclose(ours.R_stderr_per_mm2[0], rows[:, 2], rtol=1e-2)
+    assert ours.shape is None  # the walk's profile is the reference itself
     assert skinspec.profiles("biospec-moderately", radii, [550]).R_stderr_per_mm2 is None
     with pytest.raises(skinspec.InputError, match="deterministic: it takes no ray count"):
         skinspec.profiles("biospec-moderately", radii, [550], rays=100)

@@ -40,6 +40,8 @@ def test_lit_swatch_conserves_energy_and_writes_its_files(tmp_path):
     lit = skinspec.lit_swatch("biospec-moderately", "edge", pixels=64, field_mm=30, output=[tmp_path / "edge.exr", tmp_path / "edge.png"])
     assert lit["rgb"].shape == (64, 64, 3) and lit["exitance"].shape == (31, 64, 64) and lit["model"] == "matched-multipole"
     assert lit["files"] == [str(tmp_path / "edge.exr"), str(tmp_path / "edge.png")] and all(os.path.getsize(f) > 0 for f in lit["files"])
+    # Its profiles' shape against the walk, as `swatch --lit` states it (docs/DIFFUSION.md).
+    assert [w["wavelength_nm"] for w in lit["shape"]["wavelengths"]] == [450.0, 550.0, 650.0]
     # Far into the lit half, a uniformly lit half-space returns the whole diffuse reflectance (R without the
     # first-surface reflection: the lit swatch has no specular); 13 mm into the shadow, almost nothing (the red, which
     # the dermis scatters least, reaches furthest: 5e-5 of the lit half at 700 nm).
