@@ -15,6 +15,10 @@ std::vector<std::string> profile_shape_lines(const ProfileShapeCheck& check) {
         "within 5 mm){}; `--mode rte` gives the exact profile with standard errors:",
         static_cast<double>(check.errors.front().photons), check.stopped ? ", stopped: the wavelengths finished" : "")};
     for (const auto& e : check.errors) {
+        if (!e.compared) {
+            lines.push_back(fmt::format("  {:g} nm: no light leaves within 5 mm in the walk's or the solver's profile: nothing to compare", e.wavelength_nm));
+            continue;
+        }
         lines.push_back(fmt::format("  {:g} nm: the share of R leaving within a radius r is off by up to {:+.3f} +- {:.3f} (r = {:.3g} mm); "
                                     "within 0.1 mm {:.0f} % (exact {:.0f} %), beyond 1 mm {:.0f} % (exact {:.0f} %)",
                                     e.wavelength_nm, e.largest_share_difference, e.walk_share_stderr, e.at_radius_mm,
@@ -39,6 +43,7 @@ nlohmann::ordered_json profile_shape_json(const ProfileShapeCheck& check) {
     for (const auto& e : check.errors) {
         out["wavelengths"].push_back({{"wavelength_nm", e.wavelength_nm},
                                       {"photons", e.photons},
+                                      {"compared", e.compared},
                                       {"largest_share_difference", e.largest_share_difference},
                                       {"at_radius_mm", e.at_radius_mm},
                                       {"walk_share_stderr", e.walk_share_stderr},

@@ -84,6 +84,7 @@ ProfileShapeCheck check_profile_shape(const SpectralSolver& solver, const Materi
         e.wavelength_nm = w.wavelength_nm;
         e.photons = photons;
         if (!(walk_total > 0.0) || !(model_total > 0.0)) {
+            e.compared = false;
             check.errors.push_back(e);
             continue;
         }

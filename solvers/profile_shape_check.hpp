@@ -17,6 +17,7 @@ namespace skinspec {
 struct ProfileShapeError {
     double wavelength_nm = 0.0;
     std::uint64_t photons = 0;  // of the walk
+    bool compared = true;       // false: the walk's or the solver's profile carries no light within 5 mm (all below 0)
     // The largest difference, over the rings' outer radii up to 5 mm, of the share of R leaving within that radius
     // (the solver's minus the walk's), where it is largest in size, and the walk's standard error of its share there
     // (rings taken as independent: a photon leaves once).

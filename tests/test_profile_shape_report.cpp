@@ -31,6 +31,9 @@ TEST_CASE("the shape check's lines name the reference and each wavelength's shar
     CHECK(lines[1] == "  550 nm: the share of R leaving within a radius r is off by up to +0.388 +- 0.003 (r = 0.215 mm); "
                       "within 0.1 mm 40 % (exact 12 %), beyond 1 mm 2 % (exact 8 %)");
     CHECK(profile_shape_lines(ProfileShapeCheck{}).empty());
+    auto dark = check_with(0.0);
+    dark.errors.front().compared = false;
+    CHECK(profile_shape_lines(dark)[1] == "  550 nm: no light leaves within 5 mm in the walk's or the solver's profile: nothing to compare");
 }
 
 TEST_CASE("a share off by more than diffusion at its best is a warning, a check not made too", "[profile_shape_report]") {
