@@ -137,7 +137,8 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
                                      a.photons, a.radii, 100.0 * a.share_within_15_percent, 100.0 * a.worst_relative_error,
                                      100.0 * a.relative_error_at_0_1_mm, 100.0 * a.median_relative_error_1_to_5_mm);
         }
-        std::cout << "  (the walk solves the volumetric description, as the multipole and dipole do; matched-multipole's totals are the BioSpec model's)\n";
+        std::cout << "  (the walk solves the volumetric description, on the presets the one derived from the BioSpec model, by whose reduced scattering "
+                     "matched-multipole spreads (its totals are the BioSpec model's); the multipole and dipole spread by the layers' own reduced scattering)\n";
     }
     if (report.partial) std::cout << "\nstopped early: the figures above are what finished\n";
 }
