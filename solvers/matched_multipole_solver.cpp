@@ -4,8 +4,8 @@
 
 #include "solvers/biospec_adding_doubling_solver.hpp"
 #include "solvers/diffusion_solvers.hpp"
-#include "transport/rte/rte_model.hpp"
 #include "spectral/input_error.hpp"
+#include "transport/rte/rte_model.hpp"
 
 namespace skinspec {
 namespace {
