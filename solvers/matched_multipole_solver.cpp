@@ -1,5 +1,7 @@
 #include "solvers/matched_multipole_solver.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "solvers/biospec_adding_doubling_solver.hpp"
@@ -72,10 +74,21 @@ private:
     // spreads by the derived layers' reduced scattering mu_s (1 - g) there (rte_stack_from), the skin every other
     // solver of this material describes (its dermis scatters 2-4x less in the red than the layers' Salomatina tables;
     // the share of R within a radius then comes 0.14-0.53 off the volumetric walk's on the three paper presets instead
-    // of 0.32-0.68, docs/DIFFUSION.md). Otherwise the layers' own reduced scattering.
+    // of 0.32-0.68, docs/DIFFUSION.md). Otherwise, and for a stack without a dermal layer (which has no derived
+    // description: e.g. the stratum corneum and epidermis alone, as measured in vitro), the layers' own reduced
+    // scattering; the latter says so in a warning.
     static SpectralProfiles shapes(const LayerStack& stack, ProfileRequest request) {
         request.switches = {};
-        if (!stack.model.volumetric_matched_to_biospec) return multipole_solver().profiles(stack, request);
+        const bool dermal = std::any_of(stack.layers.begin(), stack.layers.end(),
+                                        [&](const TissueLayer& l) { return is_dermal(crossing_in_effect(l, stack.model)); });
+        if (!stack.model.volumetric_matched_to_biospec || !dermal) {
+            auto own = multipole_solver().profiles(stack, request);
+            if (stack.model.volumetric_matched_to_biospec) {
+                own.warnings.push_back({"spread by the layers' own reduced scattering: no dermal layer, so no volumetric description derived from the "
+                                        "BioSpec one (model.volumetric_matched_to_biospec)", stack.name, "every wavelength", 0.0});
+            }
+            return own;
+        }
         SpectralProfiles out;
         const auto wavelengths = request.wavelengths;
         const auto progress = request.on_progress;

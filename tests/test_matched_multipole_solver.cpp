@@ -1,6 +1,7 @@
 // matched-multipole: the multipole's profile shapes carrying the BioSpec model's exact totals.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -86,4 +87,19 @@ TEST_CASE("matched-multipole spreads by the skin its totals are of: nearer the w
     CHECK(std::abs(matched.largest_share_difference) < 0.25);
     CHECK(std::abs(own.largest_share_difference) > 0.45);
     CHECK(std::abs(matched.walk_share_beyond_1_mm - matched.solver_share_beyond_1_mm) < 0.15);
+}
+
+TEST_CASE("matched-multipole profiles a stack without a dermis by its own reduced scattering, and says so", "[matched_multipole]") {
+    // The stratum corneum and epidermis alone (as measured in vitro) have no derived description (nothing to match):
+    // their profiles spread by the layers' own reduced scattering, with a warning, instead of being refused.
+    auto stack = std::get<LayerStack>(load_material("biospec-moderately"));
+    stack.layers.resize(2);
+    ProfileRequest request;
+    request.wavelengths = WavelengthGrid::list({550.0});
+    request.radii_mm = {0.0, 0.5, 1.0};
+    const auto profiles = solve_profiles(matched_multipole_solver(), stack, request);
+    REQUIRE(profiles.channels.size() == 1);
+    CHECK(profiles.channels.front().total_reflectance > 0.0);
+    CHECK(std::any_of(profiles.warnings.begin(), profiles.warnings.end(),
+                      [](const ResultWarning& w) { return w.kind.find("no dermal layer") != std::string::npos; }));
 }
