@@ -28,6 +28,12 @@ std::vector<std::string> profile_shape_lines(const ProfileShapeCheck& check) {
     return lines;
 }
 
+std::string profile_shape_text(const ProfileShapeCheck& check) {
+    std::string text;
+    for (const auto& line : profile_shape_lines(check)) text += (text.empty() ? "" : "\n") + line;
+    return text;
+}
+
 bool profile_shape_warns(const ProfileShapeCheck& check) {
     return !check.not_checked.empty() || std::any_of(check.errors.begin(), check.errors.end(), [](const ProfileShapeError& e) {
                return std::abs(e.largest_share_difference) > profile_shape_worth_a_warning;

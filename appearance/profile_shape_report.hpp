@@ -17,6 +17,8 @@ inline constexpr double profile_shape_worth_a_warning = 0.15;
 // One line that says what was compared, then one per checked wavelength; or the one line of not_checked; empty when
 // nothing was checked.
 std::vector<std::string> profile_shape_lines(const ProfileShapeCheck& check);
+// The lines joined by newlines (a lit swatch's image metadata).
+std::string profile_shape_text(const ProfileShapeCheck& check);
 // Whether the lines are a warning: a share off by more than profile_shape_worth_a_warning, or no check possible.
 bool profile_shape_warns(const ProfileShapeCheck& check);
 nlohmann::ordered_json profile_shape_json(const ProfileShapeCheck& check);

@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
+#include "appearance/profile_shape_report.hpp"
 #include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
-#include "appearance/profile_shape_report.hpp"
 #include "cli/profile_shape_output.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"

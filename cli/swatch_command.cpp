@@ -9,11 +9,11 @@
 #include <tbb/global_control.h>
 
 #include "appearance/lit_swatch.hpp"
+#include "appearance/profile_shape_report.hpp"
 #include "appearance/swatch_files.hpp"
 #include "cli/color_output.hpp"
 #include "cli/common_options.hpp"
 #include "cli/material_options.hpp"
-#include "appearance/profile_shape_report.hpp"
 #include "cli/profile_shape_output.hpp"
 #include "cli/progress.hpp"
 #include "cli/solver_options.hpp"
@@ -101,16 +101,13 @@ void run_lit_swatch(const SwatchOptions& o) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& patch = swatch.patch;
-    ProfileShapeCheck shape;
-    shape = stated_profile_shape(solver, material, grid, switches, &InterruptGuard::cancel_flag());
+    const auto shape = stated_profile_shape(solver, material, grid, switches, &InterruptGuard::cancel_flag());
     if (shape.stopped) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (stopped in the profiles' shape check)\n";
         std::exit(InterruptGuard::exit_code());
     }
     print_profile_summary(name, patch.profiles.warnings, shape);
-    std::string shape_text;
-    for (const auto& line : profile_shape_lines(shape)) shape_text += (shape_text.empty() ? "" : "\n") + line;
-    write_lit_swatch(swatch, name, light, o.field_mm, o.wavelengths, files, shape_text);
+    write_lit_swatch(swatch, name, light, o.field_mm, o.wavelengths, files, profile_shape_text(shape));
     for (const auto& out : o.outputs) std::cerr << "wrote " << out << '\n';
     const auto lighting = light.description();
     const bool bands = swatch.bands;

@@ -76,10 +76,10 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
         },
         progress);
     const auto shape = stated_profile_shape_interruptible(solver, skin.material, grid, solver_settings);
-    std::string wavelengths_text, shape_text;
+    std::string wavelengths_text;
     for (const double nm : grid.nm()) wavelengths_text += (wavelengths_text.empty() ? "" : ",") + format_number(nm);
-    for (const auto& line : profile_shape_lines(shape)) shape_text += (shape_text.empty() ? "" : "\n") + line;
-    write_lit_swatch(swatch, material_name(skin.material), light, field_mm, wavelengths.is_none() ? "400:700:10" : wavelengths_text, files, shape_text);
+    write_lit_swatch(swatch, material_name(skin.material), light, field_mm, wavelengths.is_none() ? "400:700:10" : wavelengths_text, files,
+                     profile_shape_text(shape));
     const auto& patch = swatch.patch;
     const auto h = static_cast<py::ssize_t>(view.height_px), w = static_cast<py::ssize_t>(view.width_px);
     std::vector<double> exitance;

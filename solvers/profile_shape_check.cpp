@@ -11,14 +11,18 @@ namespace {
 
 constexpr double ring_mm = 0.01, reach_mm = 5.0;
 
-// The share of R leaving within each ring's outer radius, from ring means R_i (per mm^2) at radii r_i = i h (ring
-// [r_i - h/2, r_i + h/2), the disc of radius h/2 at 0: transport/rte/rte_profiles.hpp), and the reflectance per ring.
-std::vector<double> ring_reflectance(const std::vector<double>& radii_mm, const std::vector<double>& per_mm2) {
+// The area of each ring (mm^2) whose mean R_i (per mm^2) stands at r_i = i h: [r_i - h/2, r_i + h/2), the disc of radius
+// h/2 at 0 (transport/rte/rte_profiles.hpp).
+std::vector<double> ring_areas_mm2(const std::vector<double>& radii_mm) {
     std::vector<double> out(radii_mm.size());
-    for (std::size_t i = 0; i < radii_mm.size(); ++i) {
-        const double area = i == 0 ? std::numbers::pi * 0.25 * ring_mm * ring_mm : 2.0 * std::numbers::pi * radii_mm[i] * ring_mm;
-        out[i] = per_mm2[i] * area;
-    }
+    for (std::size_t i = 0; i < radii_mm.size(); ++i) out[i] = i == 0 ? std::numbers::pi * 0.25 * ring_mm * ring_mm : 2.0 * std::numbers::pi * radii_mm[i] * ring_mm;
+    return out;
+}
+
+// Per ring: values per mm^2 times the ring's area, squared with `squared` (a variance from a standard error).
+std::vector<double> per_ring(const std::vector<double>& per_mm2, const std::vector<double>& areas_mm2, bool squared = false) {
+    std::vector<double> out(areas_mm2.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = squared ? std::pow(per_mm2[i] * areas_mm2[i], 2) : per_mm2[i] * areas_mm2[i];
     return out;
 }
 
@@ -70,15 +74,12 @@ ProfileShapeCheck check_profile_shape(const SpectralSolver& solver, const Materi
     const std::size_t n = walk.radii_mm.size();
     // Ring i stands for radius r_i (its mean): within 0.1 mm are the rings of r_i <= 0.1 mm, beyond 1 mm those of r_i >= 1 mm.
     const auto rings_within = [&](double r_mm) { return static_cast<std::size_t>(std::floor(r_mm / ring_mm + 1e-9)) + 1; };
+    const auto areas = ring_areas_mm2(walk.radii_mm);
     for (std::size_t c = 0; c < walk.channels.size(); ++c) {
         const auto& w = walk.channels[c];
-        const auto walk_rings = ring_reflectance(walk.radii_mm, w.reflectance_per_mm2);
-        const auto model_rings = ring_reflectance(walk.radii_mm, model.channels[c].reflectance_per_mm2);
-        std::vector<double> walk_variance(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            const double se = w.reflectance_stderr_per_mm2[i] * walk_rings[i] / (w.reflectance_per_mm2[i] != 0.0 ? w.reflectance_per_mm2[i] : 1.0);
-            walk_variance[i] = w.reflectance_per_mm2[i] != 0.0 ? se * se : 0.0;
-        }
+        const auto walk_rings = per_ring(w.reflectance_per_mm2, areas);
+        const auto model_rings = per_ring(model.channels[c].reflectance_per_mm2, areas);
+        const auto walk_variance = per_ring(w.reflectance_stderr_per_mm2, areas, true);
         const double walk_total = sum(walk_rings, 0, n), model_total = sum(model_rings, 0, n);
         ProfileShapeError e;
         e.wavelength_nm = w.wavelength_nm;
