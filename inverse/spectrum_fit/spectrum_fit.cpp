@@ -291,11 +291,16 @@ std::vector<Estimate> SpectrumFitter::replayed_model(const std::vector<double>& 
         }
         jacobian->assign(n, std::vector<double>(free, 0.0));
     }
+    // dR/dm_k only where a free parameter reaches (the others would be multiplied by 0 below).
+    std::vector<bool> reached(layers, false);
+    for (const auto& h : handles_) {
+        for (const auto k : h.layers) reached[k] = true;
+    }
     std::vector<Estimate> out;
     out.reserve(n);
     std::vector<double> d_r;
     for (std::size_t w = 0; w < n; ++w) {
-        out.push_back(paths_[w].reflectance(mu[w], scale, jacobian ? &d_r : nullptr));
+        out.push_back(paths_[w].reflectance(mu[w], scale, jacobian ? &d_r : nullptr, reached));
         if (!jacobian) continue;
         for (std::size_t j = 0; j < free; ++j) {
             double g = 0.0;

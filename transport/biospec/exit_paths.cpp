@@ -1,18 +1,131 @@
-// Compiled with -ffast-math (CMakeLists.txt) so that the exponential of the re-weighting loop vectorises
-// (glibc's libmvec); nothing here depends on IEEE corner cases: every input is finite and non-negative.
-#include "transport/biospec/exit_paths.hpp"
+// The re-weighting kernel is compiled once per instruction set by Highway's foreach_target and dispatched at run time
+// (every input is finite and non-negative: the exponential below needs no IEEE corner cases).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "transport/biospec/exit_paths.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/aligned_allocator.h>
+#include <hwy/highway.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "transport/biospec/exit_paths.hpp"
 #include "transport/random_stream.hpp"
 
+HWY_BEFORE_NAMESPACE();
 namespace skinspec {
-namespace {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
 
+// Optical depths beyond 80 weigh below 2e-35 (nothing at float precision).
 constexpr float max_optical_depth = 80.0f;
 
-}  // namespace
+// Partial sums in float over this many exits, then in double.
+constexpr std::size_t chunk = 256;
+
+// exp(-tau) for tau in [0, max_optical_depth]: e^r 2^n with n = round(-tau log2(e)) (2^n >= 2^-116 built in the
+// exponent field, a normal float) and r = -tau - n ln 2 in [-ln2 / 2, ln2 / 2], reduced with ln 2 split in two parts
+// (Cody & Waite 1980, Software Manual for the Elementary Functions, ch. 6) so that r carries no more error than tau;
+// e^r by its Taylor series to degree 6 (remainder below (ln2 / 2)^7 / 7! = 1.2e-7 relative, a float's precision;
+// tests/test_exit_paths.cpp checks it against std::exp over the range). No overflow, NaN or subnormal cases arise in
+// this range, so none is handled.
+template <class D, class V>
+HWY_INLINE V ExpOfNegativeDepth(D d, V tau) {
+    const hn::RebindToSigned<D> di;
+    const auto n = hn::Round(hn::Mul(tau, hn::Set(d, -1.44269504088896341f)));
+    auto r = hn::MulAdd(n, hn::Set(d, -0.693145751953125f), hn::Neg(tau));  // ln 2's leading bits: n times it is exact
+    r = hn::MulAdd(n, hn::Set(d, -1.4286068202862268e-6f), r);
+    auto p = hn::Set(d, 1.0f / 720.0f);
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 120.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 24.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 6.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 0.5f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
+    const auto scale = hn::ShiftLeft<23>(hn::ConvertTo(di, n));  // n added to e^r's exponent field
+    return hn::BitCast(d, hn::Add(hn::BitCast(di, p), scale));
+}
+
+// The weights' sum and sum of squares over the exits and, with `gradient` (one per entry of `gradient_paths`), the
+// sums of path times weight, in one pass: each exit's optical depth sum_k mu_k L_k over the `layers` entries of
+// `paths` and `mu` in a register, its weight exp(-depth), four vectors at a time (their exponentials' chains of
+// multiply-adds interleave).
+void ReweighImpl(const float* const* paths, const float* mu, std::size_t layers, const float* const* gradient_paths, std::size_t gradient_layers,
+                 std::size_t n, double* sums, double* gradient) {
+    const hn::ScalableTag<float> df;
+    const std::size_t lanes = hn::Lanes(df);
+    const auto cap = hn::Set(df, max_optical_depth);
+    const std::size_t padded_layers = std::max(layers, gradient_layers);
+    const auto layer_sums = hwy::AllocateAligned<float>(std::max<std::size_t>(1, gradient_layers) * lanes);  // a vector of sums per gradient entry
+    const auto tail = hwy::AllocateAligned<float>(std::max<std::size_t>(1, padded_layers) * lanes);  // the last exits, zero-padded
+    for (std::size_t start = 0; start < n; start += chunk) {
+        const std::size_t m = std::min(chunk, n - start);
+        auto s = hn::Zero(df), s2 = hn::Zero(df);
+        std::fill_n(layer_sums.get(), gradient_layers * lanes, 0.0f);
+        std::size_t i = 0;
+        for (; i + 4 * lanes <= m; i += 4 * lanes) {
+            auto t0 = hn::Zero(df), t1 = hn::Zero(df), t2 = hn::Zero(df), t3 = hn::Zero(df);
+            for (std::size_t k = 0; k < layers; ++k) {
+                const float* p = paths[k] + start + i;
+                const auto mu_k = hn::Set(df, mu[k]);
+                t0 = hn::MulAdd(mu_k, hn::LoadU(df, p), t0);
+                t1 = hn::MulAdd(mu_k, hn::LoadU(df, p + lanes), t1);
+                t2 = hn::MulAdd(mu_k, hn::LoadU(df, p + 2 * lanes), t2);
+                t3 = hn::MulAdd(mu_k, hn::LoadU(df, p + 3 * lanes), t3);
+            }
+            const auto w0 = ExpOfNegativeDepth(df, hn::Min(t0, cap)), w1 = ExpOfNegativeDepth(df, hn::Min(t1, cap));
+            const auto w2 = ExpOfNegativeDepth(df, hn::Min(t2, cap)), w3 = ExpOfNegativeDepth(df, hn::Min(t3, cap));
+            s = hn::Add(s, hn::Add(hn::Add(w0, w1), hn::Add(w2, w3)));
+            s2 = hn::MulAdd(w0, w0, hn::MulAdd(w1, w1, hn::MulAdd(w2, w2, hn::MulAdd(w3, w3, s2))));
+            if (!gradient) continue;
+            for (std::size_t k = 0; k < gradient_layers; ++k) {
+                const float* p = gradient_paths[k] + start + i;
+                float* g = layer_sums.get() + k * lanes;
+                auto acc = hn::MulAdd(hn::LoadU(df, p), w0, hn::Load(df, g));
+                acc = hn::MulAdd(hn::LoadU(df, p + lanes), w1, acc);
+                acc = hn::MulAdd(hn::LoadU(df, p + 2 * lanes), w2, acc);
+                hn::Store(hn::MulAdd(hn::LoadU(df, p + 3 * lanes), w3, acc), df, g);
+            }
+        }
+        // The rest a vector at a time; the last one (fewer exits than lanes) through zero-padded copies (no read past
+        // the end), its empty lanes weighing 0.
+        for (; i < m; i += lanes) {
+            const std::size_t here = std::min(lanes, m - i);
+            const auto at = [&](const float* const* from, std::size_t k) {
+                const float* p = from[k] + start + i;
+                if (here == lanes) return p;
+                float* padded = tail.get() + k * lanes;
+                std::fill_n(padded, lanes, 0.0f);
+                std::copy_n(p, here, padded);
+                return static_cast<const float*>(padded);
+            };
+            auto tau = hn::Zero(df);
+            for (std::size_t k = 0; k < layers; ++k) tau = hn::MulAdd(hn::Set(df, mu[k]), hn::LoadU(df, at(paths, k)), tau);
+            const auto w = hn::IfThenElseZero(hn::FirstN(df, here), ExpOfNegativeDepth(df, hn::Min(tau, cap)));
+            s = hn::Add(s, w);
+            s2 = hn::MulAdd(w, w, s2);
+            if (!gradient) continue;
+            for (std::size_t k = 0; k < gradient_layers; ++k) {
+                float* g = layer_sums.get() + k * lanes;
+                hn::Store(hn::MulAdd(hn::LoadU(df, at(gradient_paths, k)), w, hn::Load(df, g)), df, g);
+            }
+        }
+        sums[0] += static_cast<double>(hn::GetLane(hn::SumOfLanes(df, s)));
+        sums[1] += static_cast<double>(hn::GetLane(hn::SumOfLanes(df, s2)));
+        if (!gradient) continue;
+        for (std::size_t k = 0; k < gradient_layers; ++k) gradient[k] += static_cast<double>(hn::GetLane(hn::SumOfLanes(df, hn::Load(df, layer_sums.get() + k * lanes))));
+    }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace skinspec
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace skinspec {
+
+HWY_EXPORT(ReweighImpl);
 
 void ExitPaths::append(const ExitPaths& other) {
     rays += other.rays;
@@ -40,52 +153,36 @@ void ExitPaths::thin(const std::vector<double>& floor_per_cm, std::uint64_t seed
     thinned_at_per_cm = floor_per_cm;
 }
 
-// Three versions chosen at load time by the CPU (GCC function multiversioning): AVX-512 (16-wide expf), AVX2 (8-wide)
-// or the baseline.
-__attribute__((target_clones("avx512f", "avx2", "default")))
-Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient) const {
+Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient,
+                                const std::vector<bool>& gradient_layers) const {
     const std::size_t layers = layer_path_cm.size();
-    const bool with_gradient = gradient != nullptr;
-    if (with_gradient) gradient->assign(layers, 0.0);  // any layer count: the sums accumulate in place
+    if (gradient) gradient->assign(layers, 0.0);  // any layer count: the sums accumulate in place
     if (rays == 0) return {};
-    constexpr std::size_t chunk = 256;
-    float tau[chunk], w[chunk];
-    double sum = static_cast<double>(surface_exits), sum_sq = sum;
-    const std::size_t n = exits();
-    for (std::size_t start = 0; start < n; start += chunk) {
-        const std::size_t m = std::min(chunk, n - start);
-        std::fill(tau, tau + m, 0.0f);
-        for (std::size_t k = 0; k < layers; ++k) {
-            const float mu = static_cast<float>(mu_a[k] * scale[k] - (thinned_at_per_cm.empty() ? 0.0 : thinned_at_per_cm[k]));
-            const float* p = layer_path_cm[k].data() + start;
-            for (std::size_t i = 0; i < m; ++i) tau[i] += mu * p[i];
+    // The depth's terms: the layers whose effective absorption is not 0 (a layer at the thinning floor adds nothing).
+    std::vector<float> mu;
+    std::vector<const float*> paths, gradient_paths;
+    std::vector<std::size_t> gradient_of;
+    for (std::size_t k = 0; k < layers; ++k) {
+        const auto effective = static_cast<float>(mu_a[k] * scale[k] - (thinned_at_per_cm.empty() ? 0.0 : thinned_at_per_cm[k]));
+        if (effective != 0.0f) {
+            mu.push_back(effective);
+            paths.push_back(layer_path_cm[k].data());
         }
-        float s = 0.0f, s2 = 0.0f;
-        for (std::size_t i = 0; i < m; ++i) {
-            // Optical depths beyond 80 weigh below 2e-35 (nothing at float precision); glibc's vector expf sends every
-            // lane past its range (~87) through a scalar fallback: 12 % of a fit's time went there.
-            w[i] = std::exp(-std::min(tau[i], max_optical_depth));
-            s += w[i];
-            s2 += w[i] * w[i];
-        }
-        sum += s;
-        sum_sq += s2;
-        if (with_gradient) {
-            for (std::size_t k = 0; k < layers; ++k) {
-                const float* p = layer_path_cm[k].data() + start;
-                float g = 0.0f;
-                for (std::size_t i = 0; i < m; ++i) g += p[i] * w[i];
-                (*gradient)[k] += g;
-            }
+        if (gradient && (gradient_layers.empty() || gradient_layers[k])) {
+            gradient_paths.push_back(layer_path_cm[k].data());
+            gradient_of.push_back(k);
         }
     }
+    double sums[2] = {static_cast<double>(surface_exits), static_cast<double>(surface_exits)};
+    std::vector<double> gradient_sums(gradient_of.size(), 0.0);
+    HWY_DYNAMIC_DISPATCH(ReweighImpl)(paths.data(), mu.data(), paths.size(), gradient_paths.data(), gradient_paths.size(), exits(), sums,
+                                      gradient ? gradient_sums.data() : nullptr);
     const double count = static_cast<double>(rays);
-    const double mean = sum / count;
-    const double variance = rays > 1 ? std::max(0.0, sum_sq / count - mean * mean) / (count - 1.0) : 0.0;
-    if (with_gradient) {
-        for (auto& g : *gradient) g = -g / count * factor;
-    }
+    const double mean = sums[0] / count;
+    const double variance = rays > 1 ? std::max(0.0, sums[1] / count - mean * mean) / (count - 1.0) : 0.0;
+    for (std::size_t g = 0; g < gradient_of.size(); ++g) (*gradient)[gradient_of[g]] = -gradient_sums[g] / count * factor;
     return {mean * factor, std::sqrt(variance) * factor};
 }
 
 }  // namespace skinspec
+#endif  // HWY_ONCE

@@ -36,9 +36,10 @@ struct ExitPaths {
     // ratio for layers whose paths scale with thickness), and its standard error over the rays. Single precision
     // per exit (relative error ~1e-6, far below the Monte Carlo error), sums in double.
     // With `gradient` (one entry per layer) also dR/dm_k, m_k = mu_a,k scale_k (the effective coefficient of the
-    // recorded paths): -factor / N sum over exits of L_k exp(-tau), accumulated in the same pass.
+    // recorded paths): -factor / N sum over exits of L_k exp(-tau), accumulated in the same pass, for the layers
+    // flagged in `gradient_layers` (empty: every layer; the others' entries are 0).
     Estimate reflectance(const std::vector<double>& mu_a_per_cm, const std::vector<double>& path_scale,
-                         std::vector<double>* gradient = nullptr) const;
+                         std::vector<double>* gradient = nullptr, const std::vector<bool>& gradient_layers = {}) const;
 };
 
 }  // namespace skinspec
