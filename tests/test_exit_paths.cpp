@@ -57,28 +57,6 @@ TEST_CASE("thinning is reproducible for a seed and draws anew for another", "[ex
     CHECK(a.layer_path_cm != c.layer_path_cm);
 }
 
-TEST_CASE("an exit's weight is exp(-sum_k mu_k L_k) to float precision over optical depths 0-80", "[exit_paths]") {
-    // One exit per ray: R is the weight itself. 1 exit (a partial vector) and 40 equal ones (whole vectors, four at a
-    // time, and a rest), against std::exp in double.
-    double worst = 0.0;
-    for (const std::size_t copies : {std::size_t{1}, std::size_t{40}}) {
-        for (double tau = 0.0; tau <= 80.0; tau += 0.0137) {
-            ExitPaths paths;
-            paths.resize_layers(2);
-            for (std::size_t i = 0; i < copies; ++i) paths.add_exit({0.25, 0.5});
-            paths.rays = copies;
-            // Depth split over the two layers: mu_1 0.25 + mu_2 0.5 = tau with mu_1 = mu_2 = tau / 0.75, summed in float as
-            // the kernel sums it (its rounding is the depth's, not the exponential's).
-            const double mu = tau / 0.75;
-            const float mu_f = static_cast<float>(mu);
-            const double exact = std::exp(-static_cast<double>(std::fma(mu_f, 0.5f, mu_f * 0.25f)));
-            worst = std::max(worst, std::abs(paths.reflectance({mu, mu}, {1.0, 1.0}).value / exact - 1.0));
-        }
-    }
-    INFO("largest relative error " << worst);
-    CHECK(worst < 3e-7);  // 2.5 float ulps: the series remainder 1.2e-7 and the rounding of its sums
-}
-
 TEST_CASE("re-weighting any number of exits and layers equals the sum in double, and the gradient comes only where asked", "[exit_paths]") {
     auto random = RandomStream::for_batch(3, 500.0, 0);
     for (const std::size_t layers : {std::size_t{1}, std::size_t{3}, std::size_t{4}, std::size_t{7}}) {

@@ -1,7 +1,7 @@
 // Lane-parallel building blocks of the Monte Carlo walks' SIMD packets (Google Highway; included once per
 // instruction set by the walks' foreach_target translation units): per-lane random streams, reciprocals, the
 // direction change of a scattering event, Henyey-Greenstein and Rayleigh sampling, Fresnel and Snell at an interface,
-// per-layer constants by lane. Each formula is the one of the scalar code it mirrors (cited at each).
+// per-layer constants by lane, a weight's exponential. Each formula is the one of the scalar code it mirrors (cited at each).
 
 // Highway's per-target include guard: this header is compiled once for every instruction set.
 #if defined(SKINSPEC_TRANSPORT_SIMD_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -202,6 +202,29 @@ struct PerLayer {
     const T* data;
     bool permute;
 };
+
+// exp(-tau) for an optical depth tau in [0, 80] (the caller caps it: beyond, a weight is below 2e-35): e^r 2^n with
+// n = round(-tau log2(e)) (2^n >= 2^-116 built in the exponent field, a normal float) and r = -tau - n ln 2 in
+// [-ln2 / 2, ln2 / 2], reduced with ln 2 split in two parts (Cody & Waite 1980, Software Manual for the Elementary
+// Functions, ch. 6) so that r carries no more error than tau; e^r by its Taylor series to degree 6 (remainder below
+// (ln2 / 2)^7 / 7! = 1.2e-7 relative, a float's precision; tests/test_simd_lanes.cpp checks it against std::exp over
+// the range on every instruction set). The range has no overflow, NaN or subnormal cases, so none is handled.
+template <class D, class V>
+HWY_INLINE V ExpOfNegativeDepth(D d, V tau) {
+    const hn::RebindToSigned<D> di;
+    const auto n = hn::Round(hn::Mul(tau, hn::Set(d, -1.44269504088896341f)));
+    auto r = hn::MulAdd(n, hn::Set(d, -0.693145751953125f), hn::Neg(tau));  // ln 2's leading bits: n times it is exact
+    r = hn::MulAdd(n, hn::Set(d, -1.4286068202862268e-6f), r);
+    auto p = hn::Set(d, 1.0f / 720.0f);
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 120.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 24.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 6.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 0.5f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
+    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
+    const auto scale = hn::ShiftLeft<23>(hn::ConvertTo(di, n));  // n added to e^r's exponent field
+    return hn::BitCast(d, hn::Add(hn::BitCast(di, p), scale));
+}
 
 // The lanes of `m` as bits of a packet's 64-bit lane mask, for the vector starting at lane `base`.
 HWY_INLINE std::uint64_t MaskBits(MF m, std::size_t base) {

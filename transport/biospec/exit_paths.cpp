@@ -1,11 +1,12 @@
-// The re-weighting kernel is compiled once per instruction set by Highway's foreach_target and dispatched at run time
-// (every input is finite and non-negative: the exponential below needs no IEEE corner cases).
+// The re-weighting kernel is compiled once per instruction set by Highway's foreach_target and dispatched at run time.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "transport/biospec/exit_paths.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
 #include <hwy/aligned_allocator.h>
 #include <hwy/highway.h>
+
+#include "transport/simd_lanes-inl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,29 +24,6 @@ constexpr float max_optical_depth = 80.0f;
 
 // Partial sums in float over this many exits, then in double.
 constexpr std::size_t chunk = 256;
-
-// exp(-tau) for tau in [0, max_optical_depth]: e^r 2^n with n = round(-tau log2(e)) (2^n >= 2^-116 built in the
-// exponent field, a normal float) and r = -tau - n ln 2 in [-ln2 / 2, ln2 / 2], reduced with ln 2 split in two parts
-// (Cody & Waite 1980, Software Manual for the Elementary Functions, ch. 6) so that r carries no more error than tau;
-// e^r by its Taylor series to degree 6 (remainder below (ln2 / 2)^7 / 7! = 1.2e-7 relative, a float's precision;
-// tests/test_exit_paths.cpp checks it against std::exp over the range). No overflow, NaN or subnormal cases arise in
-// this range, so none is handled.
-template <class D, class V>
-HWY_INLINE V ExpOfNegativeDepth(D d, V tau) {
-    const hn::RebindToSigned<D> di;
-    const auto n = hn::Round(hn::Mul(tau, hn::Set(d, -1.44269504088896341f)));
-    auto r = hn::MulAdd(n, hn::Set(d, -0.693145751953125f), hn::Neg(tau));  // ln 2's leading bits: n times it is exact
-    r = hn::MulAdd(n, hn::Set(d, -1.4286068202862268e-6f), r);
-    auto p = hn::Set(d, 1.0f / 720.0f);
-    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 120.0f));
-    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 24.0f));
-    p = hn::MulAdd(p, r, hn::Set(d, 1.0f / 6.0f));
-    p = hn::MulAdd(p, r, hn::Set(d, 0.5f));
-    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
-    p = hn::MulAdd(p, r, hn::Set(d, 1.0f));
-    const auto scale = hn::ShiftLeft<23>(hn::ConvertTo(di, n));  // n added to e^r's exponent field
-    return hn::BitCast(d, hn::Add(hn::BitCast(di, p), scale));
-}
 
 // The weights' sum and sum of squares over the exits and, with `gradient` (one per entry of `gradient_paths`), the
 // sums of path times weight, in one pass: each exit's optical depth sum_k mu_k L_k over the `layers` entries of
