@@ -99,23 +99,27 @@ void run_lit_swatch(const SwatchOptions& o) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (a lit swatch needs every wavelength)\n";
         std::exit(InterruptGuard::exit_code());
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto rendered = std::chrono::steady_clock::now();
     const auto& patch = swatch.patch;
     const auto shape = stated_profile_shape(solver, material, grid, switches, &InterruptGuard::cancel_flag());
     if (shape.stopped) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (stopped in the profiles' shape check)\n";
         std::exit(InterruptGuard::exit_code());
     }
+    const auto checked = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(checked - start).count();
+    const double check_seconds = std::chrono::duration<double>(checked - rendered).count();
     print_profile_summary(name, patch.profiles.warnings, shape);
     write_lit_swatch(swatch, name, light, o.field_mm, o.wavelengths, files, profile_shape_text(shape));
     for (const auto& out : o.outputs) std::cerr << "wrote " << out << '\n';
     const auto lighting = light.description();
     const bool bands = swatch.bands;
-    std::cout << fmt::format("{} under {}: {}x{} px at {:g} mm, {} {} in {:.2f} s ({} mode); kernel reach {:g} mm, "
+    std::cout << fmt::format("{} under {}: {}x{} px at {:g} mm, {} {} in {:.2f} s ({} mode{}); kernel reach {:g} mm, "
                              "largest kernel energy correction {:.2g} %\n",
                              name, lighting, view.width_px, view.height_px, view.pixel_mm, patch.exitance.size(),
-                             bands ? "bands" : "wavelengths", seconds, patch.profiles.model, patch.kernel_radius_px * view.pixel_mm,
-                             100.0 * patch.largest_kernel_correction);
+                             bands ? "bands" : "wavelengths", seconds, patch.profiles.model,
+                             shape.errors.empty() ? std::string() : fmt::format(", of which the R(r) shape check {:.2f} s", check_seconds),
+                             patch.kernel_radius_px * view.pixel_mm, 100.0 * patch.largest_kernel_correction);
 }
 
 void run_swatch(const SwatchOptions& o) {
