@@ -334,7 +334,51 @@ TEST_CASE("absorption replay agrees with independent runs (another seed) within 
             CHECK(a.stderr <= 0.003);  // every set meets the target
             CHECK(std::abs(a.value - b.value) <= 4.0 * std::hypot(a.stderr, b.stderr));
         }
+        // R alone: the sets re-weight recorded paths (solve_biospec_sets) and say so.
+        CHECK(std::get<std::string>(replayed[s].settings.at("absorption_sets_estimator")).starts_with("recorded paths"));
     }
+}
+
+TEST_CASE("recorded paths re-weighted per set: identical on 1 and 2 threads, specular and truncated rays counted", "[biospec_solver][replay]") {
+    const auto stacks = melanin_levels({0.005, 0.05, 0.25});
+    std::vector<const LayerStack*> sets;
+    for (const auto& s : stacks) sets.push_back(&s);
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list({420.0, 650.0});
+    request.stderr_target = 0.004;
+    request.max_rays_per_wavelength = 1'000'000;
+    const auto run = [&](int threads, const SpectralRequest& r) {
+        tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
+        return solve_biospec_sets(sets, r);
+    };
+    const auto one = run(1, request), two = run(2, request);
+    auto other = request;
+    other.seed = 5;
+    const auto own = solve_biospec(stacks[0], other);  // the weighted walk's own tally of the first-surface reflection
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+        for (std::size_t w = 0; w < 2; ++w) {
+            const auto& a = one[s].wavelengths[w];
+            const auto& b = two[s].wavelengths[w];
+            CHECK(a.rays == b.rays);
+            CHECK(a.reflectance.value == b.reflectance.value);
+            CHECK(a.reflectance.stderr == b.reflectance.stderr);
+            CHECK(a.reflectance.stderr <= 0.004);
+            // The first-surface reflection does not depend on the absorbers: every set has the same, and the walk's own
+            // run (another seed) agrees within 4 combined standard errors.
+            CHECK(a.specular_reflectance.value == one[0].wavelengths[w].specular_reflectance.value);
+            const auto& mine = own.wavelengths[w].specular_reflectance;
+            CHECK(std::abs(a.specular_reflectance.value - mine.value) <= 4.0 * std::hypot(a.specular_reflectance.stderr, mine.stderr));
+            CHECK(a.truncated_rays == 0);
+        }
+    }
+    // A ray stopped at the event limit is counted for every set (here every ray that enters the skin).
+    auto few = request;
+    few.stderr_target.reset();
+    few.max_rays_per_wavelength = 2000;
+    BiospecOptions limited;
+    limited.max_events_per_ray = 1;
+    const auto stopped = solve_biospec_sets(sets, few, limited);
+    for (const auto& result : stopped) CHECK(result.wavelengths.front().truncated_rays > 1000);
 }
 
 TEST_CASE("absorption replay refuses sets whose paths differ and the random estimator", "[biospec_solver][replay]") {

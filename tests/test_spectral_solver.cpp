@@ -170,7 +170,9 @@ TEST_CASE("a sweep replays what only absorbs and traces anew what changes paths,
         const auto field = std::make_shared<const std::vector<std::string>>(std::vector<std::string>{key});
         members.push_back({std::make_shared<const Material>(load_material("biospec-moderately")), {field, {std::stod(value)}}, nullptr, {}});
     }
+    // With T (and A) asked, the replay: each member equals its own run.
     auto request = one_wavelength(2000);
+    request.spectral.quantities = {true, true, true, false};
     const auto results = solve_sweep(walk, members, request);
     REQUIRE(results.size() == 3);
     for (std::size_t i = 0; i < 3; ++i) {
@@ -181,7 +183,18 @@ TEST_CASE("a sweep replays what only absorbs and traces anew what changes paths,
         CHECK(all_overrides(results[i].provenance).back().second == std::vector<std::string>{"0.02", "0.02", "0.1"}[i]);
     }
     CHECK(std::get<std::uint64_t>(results[0].settings.at("absorption_sets_traced_together")) == 2);
+    CHECK(std::get<std::string>(results[0].settings.at("absorption_sets_estimator")).starts_with("replay"));
     CHECK(std::get<std::uint64_t>(results[1].settings.at("absorption_sets_traced_together")) == 1);
+    // R alone: the replayed members re-weight recorded paths (another estimator of the same R): each agrees with its
+    // own run within 4 combined standard errors, and says how it was estimated.
+    auto r_only = one_wavelength(20000);
+    const auto reweighed = solve_sweep(walk, members, r_only);
+    for (const std::size_t i : {std::size_t{0}, std::size_t{2}}) {
+        const auto alone = solve_spectrum(walk, members[i].material(), r_only).wavelengths.front().reflectance;
+        const auto swept = reweighed[i].wavelengths.front().reflectance;
+        CHECK(std::abs(swept.value - alone.value) <= 4.0 * std::hypot(swept.stderr, alone.stderr));
+        CHECK(std::get<std::string>(reweighed[i].settings.at("absorption_sets_estimator")).starts_with("recorded paths"));
+    }
     const auto& replay = walk.capabilities().replay_fields;
     CHECK(std::find(replay.begin(), replay.end(), "LAYER.melanosome_fraction") != replay.end());
     CHECK(std::find(replay.begin(), replay.end(), "LAYER.thickness_cm") == replay.end());

@@ -98,6 +98,14 @@ public:
         sum_sq_[channel] += v * v;
     }
 
+    // Many rays' contributions to a channel each reaches at most once, as their sum and sum of squares (e.g. recorded
+    // exits re-weighted for an absorption: ExitPaths::weight_sums); the rays are counted by add_rays.
+    void add_exits(std::size_t channel, double sum, double sum_of_squares) {
+        sum_[channel] += sum;
+        sum_sq_[channel] += sum_of_squares;
+    }
+    // Rays tallied through add_exits alone (no RayScore).
+    void add_rays(std::uint64_t rays) { rays_ += rays; }
     // Rays stopped at the event limit (reported, not a channel).
     void add_truncated(std::uint64_t rays) { truncated_ += rays; }
     std::uint64_t truncated() const { return truncated_; }

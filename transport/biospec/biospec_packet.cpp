@@ -159,16 +159,16 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         path = hn::IfThenElseZero(hn::AndNot(hn::Or(reversed, retry), crossed), path);
         const MF leaves_reversed = hn::And(reversed, was_down);  // leaves as reflectance, no Fresnel, no absorption
 
-        // Step 4: absorption along the crossing. Weighted: the path length in the layer, which serves every set at the
-        // same cost (the caller turns it into each set's weight at exits and roulette), and the bound on every set's
-        // optical depth (one set without layer paths: its depth); random: the per-crossing test.
+        // Step 4: absorption along the crossing. The path length in the layer, when kept (it serves every set at the
+        // same cost: the caller turns it into each set's weight at exits and roulette, or records it). Weighted: the
+        // bound on every set's optical depth (one set without layer paths: its depth); random: the per-crossing test.
         MF absorbed = none;
         MF over_limit = absorbed;
+        for (std::int32_t layer = 0; model.layer_paths && layer < model.layers; ++layer) {
+            float* slot = p.path_cm.data() + static_cast<std::size_t>(layer) * BiospecPacket::lanes + base;
+            hn::StoreU(hn::Add(hn::LoadU(df, slot), hn::IfThenElseZero(FromInt(k == hn::Set(di, layer)), path)), df, slot);
+        }
         if (model.weighted) {
-            for (std::int32_t layer = 0; model.layer_paths && layer < model.layers; ++layer) {
-                float* slot = p.path_cm.data() + static_cast<std::size_t>(layer) * BiospecPacket::lanes + base;
-                hn::StoreU(hn::Add(hn::LoadU(df, slot), hn::IfThenElseZero(FromInt(k == hn::Set(di, layer)), path)), df, slot);
-            }
             const VF bound = hn::MulAdd(mu_a_bound.at(k), path, hn::LoadU(df, p.depth_bound + base));
             hn::StoreU(bound, df, p.depth_bound + base);
             over_limit = bound > hn::LoadU(df, p.look_at + base);

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "transport/biospec/biospec_walk.hpp"
+#include "transport/biospec/exit_paths.hpp"
 #include "transport/ray_planner.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/input_error.hpp"
@@ -97,6 +98,36 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
     return s;
 }
 
+// A sweep that asks for R alone (issue 34): its paths are recorded a batch at a time, thinned by analog absorption at
+// each layer's smallest absorption over the sets, and re-weighted for every set by the vector kernel of ExitPaths
+// (white Monte Carlo, Alerstam et al. 2008, J. Biomed. Opt. 13:041304): per set and exit one exponential, where the
+// replay's per-set weights, roulette and tallies cost ~10x more. Unbiased for every set (ExitPaths::thin); not equal
+// to the bit to the set's own run (another estimator), which T, A per layer and the angular bins still use.
+bool reweighs_recorded_paths(std::size_t sets, const SpectralRequest& request, const BiospecOptions& options) {
+    const auto& q = request.quantities;
+    return sets > 1 && q.reflectance && !q.transmittance && !q.absorptance && !q.angular && options.estimator == AbsorptionEstimator::weighted;
+}
+
+// A wavelength's recording walk at the sets' floor and the sets' absorption, [set * layers + layer].
+struct RecordedSets {
+    std::vector<double> mu_a_per_cm;
+    std::unique_ptr<BiospecWavelength> walk;
+};
+
+std::unique_ptr<RecordedSets> recorded_sets(const std::vector<const LayerStack*>& stacks, const SpectralRequest& request, const BiospecOptions& options,
+                                            std::size_t w) {
+    const double nm = request.wavelengths[w];
+    auto out = std::make_unique<RecordedSets>();
+    out->mu_a_per_cm = BiospecWavelength::sets_absorption_per_cm(stacks, nm);
+    const std::size_t layers = stacks.front()->layers.size();
+    std::vector<double> floor(layers, std::numeric_limits<double>::infinity());
+    for (std::size_t s = 0; s < stacks.size(); ++s) {
+        for (std::size_t k = 0; k < layers; ++k) floor[k] = std::min(floor[k], out->mu_a_per_cm[s * layers + k]);
+    }
+    out->walk = std::make_unique<BiospecWavelength>(*stacks.front(), nm, request.incidence_deg, request.geometry, options, std::move(floor));
+    return out;
+}
+
 }  // namespace
 
 SpectralResult solve_biospec(const LayerStack& stack, const SpectralRequest& request, const BiospecOptions& options) {
@@ -124,9 +155,33 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
     if (channels.reflectance >= 0) targets.push_back(static_cast<std::size_t>(channels.reflectance));
     if (channels.transmittance >= 0) targets.push_back(static_cast<std::size_t>(channels.transmittance));
 
+    const bool reweighed = reweighs_recorded_paths(sets, request, options);
+    PerWorkerSetup<RecordedSets> recorded([&](std::size_t w) { return recorded_sets(stacks, request, options, w); });
+    const std::size_t layers = first.layers.size();
+    const std::vector<double> unscaled(layers, 1.0);
+    // Recorded: a batch's exits re-weighted for every set; R per ray is its exit's weight (a ray leaves once).
+    const auto record = [&](std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
+        const auto& setup = recorded.at(w);
+        ExitPaths paths;
+        setup.walk->record(random, rays, paths);
+        tally.add_rays(rays);
+        std::vector<double> mu(layers);
+        for (std::size_t s = 0; s < sets; ++s) {
+            const std::size_t offset = s * channels.count;
+            std::copy_n(setup.mu_a_per_cm.begin() + static_cast<std::ptrdiff_t>(s * layers), layers, mu.begin());
+            const auto sums = paths.weight_sums(mu, unscaled);
+            tally.add_exits(offset + static_cast<std::size_t>(channels.reflectance), paths.factor * sums.sum,
+                            paths.factor * paths.factor * sums.sum_of_squares);
+            const auto specular = static_cast<double>(paths.surface_reflections);
+            if (channels.specular >= 0) tally.add_exits(offset + static_cast<std::size_t>(channels.specular), specular, specular);
+            const auto truncated = static_cast<double>(paths.truncated_rays);
+            tally.add_exits(offset + static_cast<std::size_t>(channels.truncated), truncated, truncated);
+        }
+    };
     const auto outcome = run_batches(request, channels.count * sets, targets,
                                      [&](std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
-                                         setups.at(w).trace(random, rays, tally);
+                                         if (reweighed) record(w, random, rays, tally);
+                                         else setups.at(w).trace(random, rays, tally);
                                      },
                                      sets);
 
@@ -138,6 +193,10 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
         result.material = stack.name;
         result.settings = settings(stack, request, options);
         result.settings["absorption_sets_traced_together"] = std::uint64_t{sets};
+        if (sets > 1) {
+            result.settings["absorption_sets_estimator"] = std::string(
+                reweighed ? "recorded paths, thinned at the sets' smallest absorption and re-weighted per set" : "replay (per-set weights and roulette)");
+        }
         for (const auto& layer : stack.layers) result.layer_names.push_back(layer.name);
         result.angular_bin_edges_deg = edges;
         result.quantities = request.quantities;

@@ -129,13 +129,37 @@ std::shared_ptr<const BiospecWavelength::ProfileArena> BiospecWavelength::profil
 }
 
 BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
-                                     const BiospecOptions& options)
+                                     const BiospecOptions& options, std::vector<double> floor_per_cm)
     : BiospecWavelength(stack, wavelength_nm, incidence_deg, geometry, options, BiospecChannels(Quantities{}, stack.layers.size(), 0), {}) {
     if (options.estimator != AbsorptionEstimator::weighted) throw InputError("path recording needs the weighted estimator");
-    // No absorption: the exits keep the ray's path length in each layer.
-    set_absorption(std::vector<double>(layers_, 0.0));
     recording_ = true;
+    if (floor_per_cm.empty()) {
+        // No absorption: the exits keep the ray's path length in each layer.
+        set_absorption(std::vector<double>(layers_, 0.0));
+    } else {
+        // Analog absorption at the floor (the per-crossing test); the exits still keep their path lengths.
+        if (floor_per_cm.size() != layers_) throw InputError("path recording: a floor absorption per layer is needed");
+        set_absorption(floor_per_cm);
+        options_.estimator = AbsorptionEstimator::random_test;
+        floor_per_cm_ = std::move(floor_per_cm);
+    }
     finish_model();
+}
+
+std::vector<double> BiospecWavelength::sets_absorption_per_cm(const std::vector<const LayerStack*>& sets, double wavelength_nm) {
+    const std::size_t layers = sets.front()->layers.size();
+    std::vector<double> mu_a(sets.size() * layers);
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+        for (std::size_t k = 0; k < layers; ++k) {
+            const double value = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
+            if (!std::isfinite(value)) {
+                throw InputError("layer '" + sets[s]->layers[k].name + "': its absorbers give mu_a = " + format_number(value) + " /cm at " +
+                                 format_number(wavelength_nm) + " nm, which the walk cannot compute (a finite value is needed)");
+            }
+            mu_a[s * layers + k] = value;
+        }
+    }
+    return mu_a;
 }
 
 BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg,
@@ -147,18 +171,7 @@ BiospecWavelength::BiospecWavelength(const std::vector<const LayerStack*>& sets,
         throw InputError("absorption replay needs the weighted estimator (the random test makes paths depend on absorption)");
     }
     require_shared_paths(sets, TracedPaths::biospec);
-    std::vector<double> mu_a(sets_ * layers_);
-    for (std::size_t s = 0; s < sets_; ++s) {
-        for (std::size_t k = 0; k < layers_; ++k) {
-            const double value = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
-            if (!std::isfinite(value)) {
-                throw InputError("layer '" + sets[s]->layers[k].name + "': its absorbers give mu_a = " + format_number(value) + " /cm at " +
-                                 format_number(wavelength_nm) + " nm, which the walk cannot compute (a finite value is needed)");
-            }
-            mu_a[s * layers_ + k] = value;
-        }
-    }
-    set_absorption(mu_a);
+    set_absorption(sets_absorption_per_cm(sets, wavelength_nm));
     finish_model();
 }
 
@@ -292,6 +305,7 @@ void BiospecWavelength::record(RandomStream& random, std::uint64_t rays, ExitPat
     RayTally unused(channels_.count * sets_);
     paths.resize_layers(layers_);
     paths.factor = geometry_ == MeasurementGeometry::zero_45 ? band_factor_ : 1.0;
+    if (!floor_per_cm_.empty()) paths.thinned_at_per_cm = floor_per_cm_;
     walk(random, rays, unused, &paths);
     paths.rays += rays;
 }
@@ -366,6 +380,7 @@ bool BiospecWavelength::enter(std::size_t lane, std::uint64_t key, Lanes& lanes,
             if (out.z < 0.0) {
                 const double f = geometry_factor(-out.z, true);
                 if (paths) {
+                    ++paths->surface_reflections;
                     if (f > 0.0) ++paths->surface_exits;
                     return false;
                 }
@@ -492,7 +507,10 @@ bool BiospecWavelength::settle(std::size_t lane, Lanes& lanes, RayTally& tally, 
             return true;
         case LaneStatus::absorbed: absorb(0, k, 1.0); return true;
         case LaneStatus::truncated:
-            if (paths) return true;
+            if (paths) {
+                ++paths->truncated_rays;
+                return true;
+            }
             lanes.find(lane, set_mu_a_per_cm_, false, true);
             for (std::size_t s = 0; s < sets_; ++s) {
                 if (!lanes.alive_set(s, lane)) continue;

@@ -53,9 +53,15 @@ public:
     // with the random estimator.
     BiospecWavelength(const std::vector<const LayerStack*>& sets, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
                       const BiospecOptions& options, const BiospecChannels& channels, std::vector<double> angular_bin_edges_deg);
-    // For path recording: the geometry and scattering of `stack`, absorption ignored.
+    // For path recording: the geometry and scattering of `stack`, absorption ignored; or, with `floor_per_cm` (one per
+    // layer), absorbed at that floor by the random estimator's per-crossing test, so that the exits recorded are those
+    // ExitPaths::thin at that floor keeps (the recorded paths say so: thinned_at_per_cm), traced no further than that
+    // absorption lets them.
     BiospecWavelength(const LayerStack& stack, double wavelength_nm, double incidence_deg, MeasurementGeometry geometry,
-                      const BiospecOptions& options);
+                      const BiospecOptions& options, std::vector<double> floor_per_cm = {});
+    // The sets' absorption coefficients at `wavelength_nm`, [set * layers + layer] (InputError naming a layer whose
+    // absorbers give a value that is not finite).
+    static std::vector<double> sets_absorption_per_cm(const std::vector<const LayerStack*>& sets, double wavelength_nm);
     BiospecWavelength(const BiospecWavelength&) = delete;
     BiospecWavelength& operator=(const BiospecWavelength&) = delete;
 
@@ -106,6 +112,7 @@ private:
     MeasurementGeometry geometry_;
     double band_cos_lo_ = 0.0, band_cos_hi_ = 1.0, band_factor_ = 1.0;  // 0/45 acceptance
     bool recording_ = false;
+    std::vector<double> floor_per_cm_;  // recording at a floor absorption (empty: none)
     Direction incident_;
     BiospecOptions options_;
     BiospecChannels channels_;

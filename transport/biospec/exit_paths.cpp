@@ -108,6 +108,8 @@ HWY_EXPORT(ReweighImpl);
 void ExitPaths::append(const ExitPaths& other) {
     rays += other.rays;
     surface_exits += other.surface_exits;
+    surface_reflections += other.surface_reflections;
+    truncated_rays += other.truncated_rays;
     if (layer_path_cm.size() < other.layer_path_cm.size()) layer_path_cm.resize(other.layer_path_cm.size());
     for (std::size_t k = 0; k < other.layer_path_cm.size(); ++k) {
         layer_path_cm[k].insert(layer_path_cm[k].end(), other.layer_path_cm[k].begin(), other.layer_path_cm[k].end());
@@ -131,34 +133,57 @@ void ExitPaths::thin(const std::vector<double>& floor_per_cm, std::uint64_t seed
     thinned_at_per_cm = floor_per_cm;
 }
 
-Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient,
-                                const std::vector<bool>& gradient_layers) const {
-    const std::size_t layers = layer_path_cm.size();
-    if (gradient) gradient->assign(layers, 0.0);  // any layer count: the sums accumulate in place
-    if (rays == 0) return {};
+namespace {
+
+// The kernel's sums for `paths` at mu_a * scale (less the thinning floor), with the gradient's sums for the layers
+// flagged in `gradient_layers` (empty: all) when `gradient` is given (its entries for the others 0).
+ExitPaths::WeightSums reweigh(const ExitPaths& paths, const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient,
+                              const std::vector<bool>& gradient_layers) {
+    const std::size_t layers = paths.layers();
+    if (gradient) gradient->assign(layers, 0.0);
     // The depth's terms: the layers whose effective absorption is not 0 (a layer at the thinning floor adds nothing).
     std::vector<float> mu;
-    std::vector<const float*> paths, gradient_paths;
+    std::vector<const float*> depth_paths, gradient_paths;
     std::vector<std::size_t> gradient_of;
     for (std::size_t k = 0; k < layers; ++k) {
-        const auto effective = static_cast<float>(mu_a[k] * scale[k] - (thinned_at_per_cm.empty() ? 0.0 : thinned_at_per_cm[k]));
+        const double floor = paths.thinned_at_per_cm.empty() ? 0.0 : paths.thinned_at_per_cm[k];
+        const auto effective = static_cast<float>(mu_a[k] * scale[k] - floor);
         if (effective != 0.0f) {
             mu.push_back(effective);
-            paths.push_back(layer_path_cm[k].data());
+            depth_paths.push_back(paths.layer_path_cm[k].data());
         }
         if (gradient && (gradient_layers.empty() || gradient_layers[k])) {
-            gradient_paths.push_back(layer_path_cm[k].data());
+            gradient_paths.push_back(paths.layer_path_cm[k].data());
             gradient_of.push_back(k);
         }
     }
-    double sums[2] = {static_cast<double>(surface_exits), static_cast<double>(surface_exits)};
+    double sums[2] = {static_cast<double>(paths.surface_exits), static_cast<double>(paths.surface_exits)};
     std::vector<double> gradient_sums(gradient_of.size(), 0.0);
-    HWY_DYNAMIC_DISPATCH(ReweighImpl)(paths.data(), mu.data(), paths.size(), gradient_paths.data(), gradient_paths.size(), exits(), sums,
-                                      gradient ? gradient_sums.data() : nullptr);
+    HWY_DYNAMIC_DISPATCH(ReweighImpl)(depth_paths.data(), mu.data(), depth_paths.size(), gradient_paths.data(), gradient_paths.size(), paths.exits(),
+                                      sums, gradient ? gradient_sums.data() : nullptr);
+    for (std::size_t g = 0; g < gradient_of.size(); ++g) (*gradient)[gradient_of[g]] = gradient_sums[g];
+    return {sums[0], sums[1]};
+}
+
+}  // namespace
+
+ExitPaths::WeightSums ExitPaths::weight_sums(const std::vector<double>& mu_a, const std::vector<double>& scale) const {
+    return reweigh(*this, mu_a, scale, nullptr, {});
+}
+
+Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient,
+                                const std::vector<bool>& gradient_layers) const {
+    if (rays == 0) {
+        if (gradient) gradient->assign(layers(), 0.0);
+        return {};
+    }
+    const auto sums = reweigh(*this, mu_a, scale, gradient, gradient_layers);
     const double count = static_cast<double>(rays);
-    const double mean = sums[0] / count;
-    const double variance = rays > 1 ? std::max(0.0, sums[1] / count - mean * mean) / (count - 1.0) : 0.0;
-    for (std::size_t g = 0; g < gradient_of.size(); ++g) (*gradient)[gradient_of[g]] = -gradient_sums[g] / count * factor;
+    const double mean = sums.sum / count;
+    const double variance = rays > 1 ? std::max(0.0, sums.sum_of_squares / count - mean * mean) / (count - 1.0) : 0.0;
+    if (gradient) {
+        for (auto& g : *gradient) g = -g / count * factor;
+    }
     return {mean * factor, std::sqrt(variance) * factor};
 }
 

@@ -13,6 +13,8 @@ namespace skinspec {
 struct ExitPaths {
     std::uint64_t rays = 0;           // rays traced
     std::uint64_t surface_exits = 0;  // first-surface reflections into the geometry (no path in the skin)
+    std::uint64_t surface_reflections = 0;  // every first-surface reflection leaving the top (the specular reflectance's)
+    std::uint64_t truncated_rays = 0;       // rays stopped at the event limit (not recorded)
     double factor = 1.0;              // each exit's contribution (1, or 1 / band for 0/45)
     std::vector<std::vector<float>> layer_path_cm;  // [layer][exit], layer-major so that re-weighting vectorises
     // After thin(): the effective absorption per layer [1/cm] the kept exits survived (empty: every exit kept).
@@ -32,6 +34,12 @@ struct ExitPaths {
     // weigh little (long paths) go, and with them most of its memory traffic. Draws from `seed` in exit order:
     // reproducible, independent of threads. Once per ExitPaths.
     void thin(const std::vector<double>& floor_per_cm, std::uint64_t seed);
+    // Over the rays, the sums of the weights exp(-sum_k (mu_a,k scale_k - m_k) L_k) of the exits (each first-surface
+    // exit 1) and of their squares, before `factor` (m_k: thinned_at_per_cm, or 0): what a tally of R takes.
+    struct WeightSums {
+        double sum = 0.0, sum_of_squares = 0.0;
+    };
+    WeightSums weight_sums(const std::vector<double>& mu_a_per_cm, const std::vector<double>& path_scale) const;
     // R for the absorption coefficients mu_a [1/cm] per layer (scale_k multiplies layer k's paths: a thickness
     // ratio for layers whose paths scale with thickness), and its standard error over the rays. Single precision
     // per exit (relative error ~1e-6, far below the Monte Carlo error), sums in double.
