@@ -100,9 +100,10 @@ std::map<std::string, SettingValue> settings(const LayerStack& stack, const Spec
 
 // A sweep that asks for R alone (issue 34): its paths are recorded a batch at a time, thinned by analog absorption at
 // each layer's smallest absorption over the sets, and re-weighted for every set by the vector kernel of ExitPaths
-// (white Monte Carlo, Alerstam et al. 2008, J. Biomed. Opt. 13:041304): per set and exit one exponential, where the
-// replay's per-set weights, roulette and tallies cost ~10x more. Unbiased for every set (ExitPaths::thin); not equal
-// to the bit to the set's own run (another estimator), which T, A per layer and the angular bins still use.
+// (white Monte Carlo, Alerstam et al. 2008, J. Biomed. Opt. 13:041304): per set and exit one exponential. The
+// replay's per-set weights, roulette and tallies cost far more (100 levels over 31 wavelengths: 0.84 s above one
+// level's walk, against 0.05 s here; docs/PERFORMANCE.md). Unbiased for every set (ExitPaths::thin), but another
+// estimator: not equal to the bit to the set's own run. T, A per layer and the angular bins still use the replay.
 bool reweighs_recorded_paths(std::size_t sets, const SpectralRequest& request, const BiospecOptions& options) {
     const auto& q = request.quantities;
     return sets > 1 && q.reflectance && !q.transmittance && !q.absorptance && !q.angular && options.estimator == AbsorptionEstimator::weighted;
