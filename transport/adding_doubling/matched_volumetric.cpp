@@ -1,7 +1,6 @@
 #include "transport/adding_doubling/matched_volumetric.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -60,17 +59,16 @@ double refine_root(const Miss& miss, double a, double fa, double b, double fb) {
 // factor that comes closest (golden section about the closest grid point; a crossing found on the way is refined).
 template <class Miss>
 DermalMatch match_dermis(const Miss& miss) {
-    DermalMatch best{grid_lowest * std::numbers::ln2, miss(grid_lowest * std::numbers::ln2)};
-    double previous_log = best.log_scale, previous = best.miss;
-    std::optional<std::array<double, 4>> bracket;  // ln(scale) and miss at both ends
-    for (int k = grid_lowest + 2; k <= grid_highest; k += 2) {
+    // The grid from the top down: the first upward crossing met is the largest, and the points below it are not needed.
+    DermalMatch best{grid_highest * std::numbers::ln2, miss(grid_highest * std::numbers::ln2)};
+    double upper_log = best.log_scale, upper = best.miss;
+    for (int k = grid_highest - 2; k >= grid_lowest; k -= 2) {
         const double log_scale = k * std::numbers::ln2, m = miss(log_scale);
-        if (previous < 0.0 && m >= 0.0) bracket = {previous_log, previous, log_scale, m};
-        if (std::abs(m) < std::abs(best.miss)) best = {log_scale, m};
-        previous_log = log_scale;
-        previous = m;
+        if (m < 0.0 && upper >= 0.0) return {refine_root(miss, log_scale, m, upper_log, upper), 0.0};
+        if (std::abs(m) <= std::abs(best.miss)) best = {log_scale, m};  // on a tie the lower factor, as found going up
+        upper_log = log_scale;
+        upper = m;
     }
-    if (bracket) return {refine_root(miss, (*bracket)[0], (*bracket)[1], (*bracket)[2], (*bracket)[3]), 0.0};
     const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
     const auto closest = best;
     const bool above = best.miss > 0.0;
