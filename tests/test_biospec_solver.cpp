@@ -279,14 +279,20 @@ std::vector<LayerStack> melanin_levels(const std::vector<double>& fractions) {
     return stacks;
 }
 
+// The sets solve_biospec_sets takes: one pointer per stack.
+std::vector<const LayerStack*> pointers_to(const std::vector<LayerStack>& stacks) {
+    std::vector<const LayerStack*> sets;
+    for (const auto& s : stacks) sets.push_back(&s);
+    return sets;
+}
+
 }  // namespace
 
 TEST_CASE("absorption replay: each replayed level equals its own run with the same rays and seed", "[biospec_solver][replay]") {
     auto stacks = melanin_levels({0.005, 0.05, 0.25});
     stacks[1].layers[2].blood_fraction = 0.03;          // blood and oxygenation replay too
     stacks[2].layers[3].oxygen_saturation = 0.4;
-    std::vector<const LayerStack*> sets;
-    for (const auto& s : stacks) sets.push_back(&s);
+    const auto sets = pointers_to(stacks);
     SpectralRequest request;
     request.wavelengths = WavelengthGrid::list({420.0, 550.0, 650.0});
     request.quantities = {true, true, true, true};
@@ -317,8 +323,7 @@ TEST_CASE("absorption replay: each replayed level equals its own run with the sa
 
 TEST_CASE("absorption replay agrees with independent runs (another seed) within 4 combined sigma", "[biospec_solver][replay]") {
     const auto stacks = melanin_levels({0.01, 0.08, 0.3});
-    std::vector<const LayerStack*> sets;
-    for (const auto& s : stacks) sets.push_back(&s);
+    const auto sets = pointers_to(stacks);
     SpectralRequest request;
     request.wavelengths = WavelengthGrid::list({450.0, 600.0});
     request.stderr_target = 0.003;
@@ -341,8 +346,7 @@ TEST_CASE("absorption replay agrees with independent runs (another seed) within 
 
 TEST_CASE("recorded paths re-weighted per set: identical on 1 and 2 threads, specular and truncated rays counted", "[biospec_solver][replay]") {
     const auto stacks = melanin_levels({0.005, 0.05, 0.25});
-    std::vector<const LayerStack*> sets;
-    for (const auto& s : stacks) sets.push_back(&s);
+    const auto sets = pointers_to(stacks);
     SpectralRequest request;
     request.wavelengths = WavelengthGrid::list({420.0, 650.0});
     request.stderr_target = 0.004;

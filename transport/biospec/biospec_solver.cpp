@@ -166,6 +166,9 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
         ExitPaths paths;
         setup.walk->record(random, rays, paths);
         tally.add_rays(rays);
+        // The first-surface reflections and the rays stopped at the cap are the same for every set (a ray's 1 each).
+        const auto specular = static_cast<double>(paths.surface_reflections);
+        const auto truncated = static_cast<double>(paths.truncated_rays);
         std::vector<double> mu(layers);
         for (std::size_t s = 0; s < sets; ++s) {
             const std::size_t offset = s * channels.count;
@@ -173,9 +176,7 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
             const auto sums = paths.weight_sums(mu, unscaled);
             tally.add_exits(offset + static_cast<std::size_t>(channels.reflectance), paths.factor * sums.sum,
                             paths.factor * paths.factor * sums.sum_of_squares);
-            const auto specular = static_cast<double>(paths.surface_reflections);
             if (channels.specular >= 0) tally.add_exits(offset + static_cast<std::size_t>(channels.specular), specular, specular);
-            const auto truncated = static_cast<double>(paths.truncated_rays);
             tally.add_exits(offset + static_cast<std::size_t>(channels.truncated), truncated, truncated);
         }
     };
