@@ -98,6 +98,10 @@ RendererMedia renderer_media(const LayerStack& stack, const MediaRequest& reques
     media.phase_wavelength_nm = request.phase_wavelength_nm;
     media.above_refractive_index = stack.above_refractive_index;
     media.below_refractive_index = stack.below_refractive_index;
+    if (stack.bottom == BottomBoundary::hypodermis) {
+        throw InputError("bottom.boundary = hypodermis (the measured hypodermis as a reflector) is not exported: the scenes hold BioSpec's ideal "
+                         "reflector or an open bottom only (set bottom.boundary = diffuse_reflector or exit)");
+    }
     media.bottom_reflector = stack.bottom == BottomBoundary::diffuse_reflector;
     for (const auto& layer : stack.layers) media.layers.push_back({layer.name, 0.0, 1.0, {}, {}, {}});
     for (const double nm : request.wavelengths_nm) {

@@ -7,6 +7,7 @@
 #include "spectral/data_paths.hpp"
 #include "spectral/data_table.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/named_choice.hpp"
 
 namespace skinspec {
 namespace {
@@ -33,13 +34,17 @@ double power_law(double at_500nm, double power, double wavelength_nm) {
 }  // namespace
 
 std::string_view to_string(BottomBoundary kind) {
-    return kind == BottomBoundary::diffuse_reflector ? "diffuse_reflector" : "exit";
+    switch (kind) {
+        case BottomBoundary::diffuse_reflector: return "diffuse_reflector";
+        case BottomBoundary::hypodermis: return "hypodermis";
+        case BottomBoundary::exit: return "exit";
+    }
+    return "exit";
 }
 
 BottomBoundary parse_bottom_boundary(std::string_view text, std::string_view what) {
-    if (text == "diffuse_reflector") return BottomBoundary::diffuse_reflector;
-    if (text == "exit") return BottomBoundary::exit;
-    throw InputError(std::string(what) + ": '" + std::string(text) + "' is not a bottom boundary (allowed: diffuse_reflector, exit)");
+    return parse_named_choice(text, what, std::array{BottomBoundary::diffuse_reflector, BottomBoundary::hypodermis, BottomBoundary::exit},
+                              "a bottom boundary");
 }
 
 CrossingScattering crossing_in_effect(const TissueLayer& layer, const ModelOptions& model) {

@@ -13,9 +13,14 @@
 namespace skinspec {
 
 enum class BottomBoundary {
-    diffuse_reflector,  // the hypodermis: ideal Lambertian reflector, R = 1
-    exit,               // light leaving the last layer enters a medium of below_refractive_index (transmittance)
+    diffuse_reflector,  // BioSpec's hypodermis: ideal Lambertian reflector, R = 1
+    // The measured hypodermis (Salomatina et al. 2006) as a Lambertian reflector of its semi-infinite diffuse
+    // reflectance (transport/adding_doubling/hypodermis_reflectance.hpp); what it does not return is T.
+    hypodermis,
+    exit,  // light leaving the last layer enters a medium of below_refractive_index (transmittance)
 };
+// A reflector below the last layer (diffuse_reflector or hypodermis).
+inline bool has_reflector(BottomBoundary kind) { return kind != BottomBoundary::exit; }
 std::string_view to_string(BottomBoundary kind);
 BottomBoundary parse_bottom_boundary(std::string_view text, std::string_view what);
 

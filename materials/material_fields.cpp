@@ -141,7 +141,8 @@ const std::vector<NamedField>& named_fields() {
     static const std::vector<NamedField> fields{
         {"", "kind", "layered, homogeneous", "what the file describes (default layered)"},
         {"model", "variant", "biospec, biospec-2004, biospec-authors-code", "model variant; sets every [model] switch not given"},
-        {"bottom", "boundary", "diffuse_reflector, exit", "hypodermis reflector or an open bottom"},
+        {"bottom", "boundary", "diffuse_reflector, hypodermis, exit",
+         "BioSpec's ideal hypodermis reflector (R = 1), the measured hypodermis as a reflector (Salomatina 2006, 374-1602 nm; T is what it keeps), or an open bottom"},
         {"layers", "name", "lower-case letters, digits, _", "layer name, unique in the stack"},
         {"layers", "scattering", "measured_stratum_corneum, measured_epidermis, rayleigh_cosine, cosine, henyey_greenstein",
          "BioSpec walk: what a crossing does to a ray's direction", ScatteringDescription::biospec},

@@ -423,6 +423,13 @@ def make_tissue(src, out):
                      f"nm above, a set so the law meets the table's end value ({'; '.join(laws)})",
                      "the table's 1000-1600 nm part alone is flat (water-band cross-talk of the inversion), so the "
                      "long tail takes the exponent of 500-1600 nm"])
+    measured = [[r[0], r[1]] for r in read_columns(src / "salomatina_HY.txt")]
+    write_table(out / "tissue" / "salomatina_hypodermis_absorption.csv",
+                "Measured ex-vivo human hypodermis absorption (Salomatina)",
+                "Salomatina E. et al. (2006), J. Biomed. Opt. 11(6):064026; raw file salomatina_HY.txt (column mu_a)",
+                "wavelength_nm [nm]; mu_a [mm^-1]", ["wavelength_nm", "mu_a_per_mm"], measured, "error",
+                ["the measured rows only: no law outside them (the bottom boundary 'hypodermis' is refused there, "
+                 "docs/HYPERSPECTRAL.md)"])
 
 
 BIOSPEC_PRESETS = (  # name, melanosome volume fraction (docs/biospec-model.md)

@@ -9,6 +9,7 @@
 #include "transport/adding_doubling/gauss_quadrature.hpp"
 #include "transport/adding_doubling/phase_moments.hpp"
 #include "transport/rte/rte_model.hpp"
+#include "exponential_integral.hpp"
 
 using namespace skinspec;
 
@@ -112,6 +113,23 @@ TEST_CASE("adding-doubling analytic limits", "[adding_doubling]") {
         const auto r = solve_adding_doubling(one_layer(1.4, 0.0, 100.0, 0.9, 0.05), inc);
         CHECK(r.absorbed_layers[0] == Approx(0.0).margin(1e-9));
         CHECK(r.specular_reflectance + r.diffuse_reflectance + r.transmittance == Approx(1.0).margin(1e-9));
+    }
+}
+
+TEST_CASE("a reflector of reflectance rho under a clear absorber: R = rho e^-tau 2 E_3(tau), T = (1 - rho) e^-tau", "[adding_doubling]") {
+    // Matched media: the beam reaches the reflector as e^-tau, rho of it returns as Lambertian light, which crosses
+    // the layer with 2 E_3(tau) and leaves; what the reflector keeps is T (the hypodermis' share).
+    for (const double rho : {0.0, 0.35, 0.9}) {
+        auto stack = one_layer(1.0, 4.0, 0.0, 0.0, 0.1);
+        stack.bottom_reflector = true;
+        stack.bottom_reflectance = rho;
+        AdOptions options;
+        options.channels = 32;
+        const auto r = solve_adding_doubling(stack, {}, options);
+        INFO("rho " << rho);
+        CHECK(r.diffuse_reflectance == Approx(rho * std::exp(-0.4) * 2.0 * skinspec::testing::exponential_integral_3(0.4)).epsilon(1e-4).margin(1e-12));
+        CHECK(r.transmittance == Approx((1.0 - rho) * std::exp(-0.4)).epsilon(1e-5));
+        CHECK(r.diffuse_reflectance + r.transmittance + r.absorbed_layers[0] == Approx(1.0).margin(1e-9));
     }
 }
 

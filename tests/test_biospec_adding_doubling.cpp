@@ -6,10 +6,13 @@
 #include "spectral/input_error.hpp"
 #include "transport/adding_doubling/biospec_adding_doubling.hpp"
 #include "transport/biospec/biospec_solver.hpp"
+#include "transport/adding_doubling/hypodermis_reflectance.hpp"
 #include "energy_balance.hpp"
+#include "exponential_integral.hpp"
 
 using namespace skinspec;
 using skinspec::testing::energy;
+using skinspec::testing::exponential_integral_3;
 
 namespace {
 
@@ -40,14 +43,11 @@ SpectralResult adding_doubling(const LayerStack& stack, std::vector<double> nm, 
     return solve_biospec_adding_doubling_spectrum(stack, request(std::move(nm)), options);
 }
 
-// E_3(x) = (e^-x (1 - x) + x^2 E_1(x)) / 2 (Abramowitz & Stegun 5.1.14), E_1(x) = -Ei(-x).
-double exponential_integral_3(double x) { return 0.5 * (std::exp(-x) * (1.0 - x) - x * x * std::expint(-x)); }
-
 }  // namespace
 
 TEST_CASE("BioSpec adding-doubling conserves energy to rounding (R + T + A + A_surface = 1)", "[biospec_adding_doubling]") {
     for (const char* name : {"biospec-lightly", "biospec-very-heavily"}) {
-        for (const char* bottom : {"diffuse_reflector", "exit"}) {
+        for (const char* bottom : {"diffuse_reflector", "hypodermis", "exit"}) {
             for (const double incidence : {0.0, 60.0}) {
                 INFO(name << ", " << bottom << ", " << incidence << " deg");
                 const auto result = solve_biospec_adding_doubling_spectrum(preset(name, {{"bottom.boundary", bottom}}), request({400, 542, 700}, incidence), {});
@@ -60,6 +60,30 @@ TEST_CASE("BioSpec adding-doubling conserves energy to rounding (R + T + A + A_s
             }
         }
     }
+}
+
+TEST_CASE("a cosine layer over the measured hypodermis: R = rho (2 E_3)^2, T = (1 - rho) 2 E_3, by adding-doubling and the walk",
+          "[biospec_adding_doubling]") {
+    // One dermal layer without Rayleigh, index 1 in air, over a Lambertian reflector of reflectance rho: the crossing
+    // down transmits 2 E_3(tau) (cosine-distributed), the reflector returns rho of it, the crossing up 2 E_3(tau) again
+    // into air; what the reflector keeps, (1 - rho) 2 E_3(tau), is T.
+    auto stack = preset("biospec-lightly", {{"model.dermal_rayleigh", "false"}, {"bottom.boundary", "hypodermis"}});
+    stack.layers = {stack.layers[3]};
+    stack.layers[0].refractive_index = 1.0;
+    const double nm = 1200.0;  // the lipid band: rho 0.49
+    const double rho = hypodermis_reflectance(nm);
+    const double t = 2.0 * exponential_integral_3(absorption_per_cm(stack.layers[0], nm, stack.model) * stack.layers[0].thickness_cm);
+    BiospecAdOptions options;
+    options.ad.channels = 32;
+    const auto r = solve_biospec_adding_doubling(stack, nm, 0.0, options);
+    CHECK(r.totals.diffuse_reflectance == Approx(rho * t * t).epsilon(1e-4));
+    CHECK(r.totals.transmittance == Approx((1.0 - rho) * t).epsilon(1e-4));
+    auto walk_request = request({nm});
+    walk_request.stderr_target = 0.001;
+    const auto walk = solve_biospec(stack, walk_request).wavelengths[0];
+    CHECK(std::abs(walk.reflectance.value - rho * t * t) < 4.0 * walk.reflectance.stderr);
+    CHECK(std::abs(walk.transmittance.value - (1.0 - rho) * t) < 4.0 * walk.transmittance.stderr + 1e-9);
+    CHECK(energy(walk) == Approx(1.0).margin(1e-9));
 }
 
 TEST_CASE("BioSpec adding-doubling: a cosine layer between matched media transmits 2 E_3(mu_a d)", "[biospec_adding_doubling]") {

@@ -96,7 +96,7 @@ TEST_CASE("wavelengths outside a present chromophore's table are errors, not ext
 
 TEST_CASE("bottom boundary names", "[layer_stack]") {
     CHECK(parse_bottom_boundary("exit", "b") == BottomBoundary::exit);
-    CHECK_THROWS_WITH(parse_bottom_boundary("mirror", "bottom.boundary"), Catch::Contains("allowed: diffuse_reflector, exit"));
+    CHECK_THROWS_WITH(parse_bottom_boundary("mirror", "bottom.boundary"), Catch::Contains("allowed: diffuse_reflector, hypodermis, exit"));
 }
 
 TEST_CASE("sub-stacks keep the named layers in stack order", "[layer_stack]") {

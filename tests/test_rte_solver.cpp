@@ -14,6 +14,7 @@
 #include "transport/adding_doubling/adding_doubling.hpp"
 #include "transport/rte/rte_model.hpp"
 #include "spectral/input_error.hpp"
+#include "exponential_integral.hpp"
 
 using namespace skinspec;
 
@@ -69,6 +70,18 @@ TEST_CASE("analytic limits: specular reflection, Beer-Lambert, no absorption", "
     const auto b = solve_rte(slab(1.0, 100.0, 0.9, 0.1, 1.4, 100'000));
     CHECK(std::abs(a.diffuse_reflectance.value - b.diffuse_reflectance.value) <
           4.0 * std::hypot(a.diffuse_reflectance.stderr, b.diffuse_reflectance.stderr));
+}
+
+TEST_CASE("the walk over a reflector of reflectance rho under a clear absorber: R = rho e^-tau 2 E_3(tau), T = (1 - rho) e^-tau", "[rte_solver]") {
+    // Matched media: the photon reaches the reflector with probability e^-tau, stays in it with 1 - rho (T, the
+    // hypodermis' share) or returns Lambertian and crosses the layer with probability 2 E_3(tau).
+    auto request = slab(4.0, 0.0, 0.0, 0.1, 1.0, 200'000);
+    request.stack.bottom_reflector = true;
+    request.stack.bottom_reflectance = 0.35;
+    const auto r = solve_rte(request);
+    CHECK(std::abs(r.diffuse_reflectance.value - 0.35 * std::exp(-0.4) * 2.0 * skinspec::testing::exponential_integral_3(0.4)) < 4.0 * r.diffuse_reflectance.stderr);
+    CHECK(std::abs(r.transmittance.value - 0.65 * std::exp(-0.4)) < 4.0 * r.transmittance.stderr);
+    CHECK(energy(r) == Approx(1.0).margin(1e-9));
 }
 
 TEST_CASE("radial and angular tallies integrate to the totals", "[rte_solver]") {

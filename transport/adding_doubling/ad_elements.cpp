@@ -109,13 +109,13 @@ AdChannels make_channels(const std::vector<double>& indices, const std::vector<d
     return c;
 }
 
-// The ideal Lambertian reflector under a layer of index n: any incident flux leaves upward as c_i.
-AdElement lambertian_reflector(const AdChannels& c, double n) {
+// The Lambertian reflector of reflectance rho under a layer of index n: of any incident flux, rho leaves upward as c_i.
+AdElement lambertian_reflector(const AdChannels& c, double n, double rho) {
     const auto size = static_cast<Eigen::Index>(c.size());
     AdElement e{AdElement::Kind::reflector, {}, {}, {}, AdMatrix::Zero(size, size), {}, {}, {}};
     for (std::size_t i = 0; i < c.size(); ++i) {
         for (std::size_t j = 0; j < c.size(); ++j) {
-            if (c.s[j] < n) e.r(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c.weight(i, n);
+            if (c.s[j] < n) e.r(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rho * c.weight(i, n);
         }
     }
     return e;
@@ -421,7 +421,7 @@ Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std
         layer_of.push_back(static_cast<int>(k));
     }
     if (shape.bottom_reflector) {
-        elements.push_back(lambertian_reflector(channels, above));
+        elements.push_back(lambertian_reflector(channels, above, shape.bottom_reflectance));
         layer_of.push_back(-1);
     } else {
         push_diagonal(fresnel_interface(channels, above, shape.below_refractive_index));
@@ -453,6 +453,8 @@ Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std
     double net_above = incident.sum() - total_r;
     out.absorbed.assign(shape.layer_indices.size(), 0.0);
     for (std::size_t e = 0; e < count; ++e) {
+        // What enters the reflector and does not come back is T (the hypodermis keeps it; 0 for the ideal one).
+        if (elements[e].kind == AdElement::Kind::reflector && shape.bottom_reflectance < 1.0) out.transmittance = std::max(0.0, net_above);
         const AdVector through = transmit(elements[e], down);
         down = e + 1 < count && !levels[e].identity ? AdVector(levels[e].factor.solve(through)) : through;
         const double net_below = down.sum() - (levels[e + 1].reflection * down).sum();
@@ -464,7 +466,7 @@ Solution solve_with(const AdStackShape& shape, const AdIncidence& incidence, std
         }
         net_above = net_below;
     }
-    out.transmittance = shape.bottom_reflector ? 0.0 : net_above;
+    if (!shape.bottom_reflector) out.transmittance = net_above;
     return out;
 }
 

@@ -80,6 +80,7 @@ struct AdStackShape {
     // reflection on both sides (s between its neighbours' indices and its own) never lose flux, and adding divided
     // by zero there (NaN for a slide of index 1.5 between air and a sample of 1.4).
     std::vector<bool> transparent;
+    double bottom_reflectance = 1.0;  // the reflector's (1: BioSpec's ideal one; the hypodermis' below 1)
 };
 
 // Layer k's element for the channels, given the collimated beam's cosine in it (1 for diffuse incidence).

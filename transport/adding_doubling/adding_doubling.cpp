@@ -124,6 +124,7 @@ AdResult solve_adding_doubling(const RteStack& stack, const AdIncidence& inciden
     AdCache own;
     auto& phases = cache ? *cache : own;
     AdStackShape shape{stack.above_refractive_index, {}, {}, stack.bottom_reflector, stack.below_refractive_index, {}};
+    shape.bottom_reflectance = stack.bottom_reflectance;
     for (const auto& l : stack.layers) {
         shape.layer_indices.push_back(l.refractive_index);
         shape.absorbing.push_back(l.mu_a_per_cm != 0.0);

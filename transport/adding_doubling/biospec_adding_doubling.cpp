@@ -7,6 +7,7 @@
 #include "spectral/input_error.hpp"
 #include "transport/adding_doubling/ad_elements.hpp"
 #include "transport/adding_doubling/adding_doubling_spectrum.hpp"
+#include "transport/adding_doubling/hypodermis_reflectance.hpp"
 #include "transport/adding_doubling/phase_moments.hpp"
 #include "transport/biospec/biospec_packet.hpp"
 #include "transport/skin_fold.hpp"
@@ -197,10 +198,11 @@ BiospecAdResult solve_biospec_adding_doubling(const LayerStack& stack, double wa
     AdCache own;
     auto& phases = cache ? *cache : own;
     const auto optics = stack.optics(wavelength_nm, OpticsScope{false, false});
-    const bool reflector = stack.bottom == BottomBoundary::diffuse_reflector;
+    const bool reflector = has_reflector(stack.bottom);
     // Authors' behaviour 3 off: light leaves the bottom with no Fresnel test (an index-matched exit).
     const double below = reflector || stack.model.bottom_exit_fresnel ? stack.below_refractive_index : optics.back().refractive_index;
     AdStackShape shape{stack.above_refractive_index, {}, {}, reflector, below, {}};
+    if (reflector) shape.bottom_reflectance = bottom_reflectance(stack, wavelength_nm);
     for (const auto& o : optics) {
         shape.layer_indices.push_back(o.refractive_index);
         shape.absorbing.push_back(o.mu_a_per_cm != 0.0);

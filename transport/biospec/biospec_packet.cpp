@@ -188,7 +188,13 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         const MF down = oz > zero;
         const MF at_last = FromInt(k == last);
         const MF at_first = FromInt(k == hn::Zero(di));
-        const MF bounce = model.reflector ? hn::And(going, hn::And(down, at_last)) : none;
+        MF bounce = model.reflector ? hn::And(going, hn::And(down, at_last)) : none;
+        // A reflector of reflectance below 1 keeps the ray with probability 1 - reflectance (it leaves the bottom).
+        MF kept_below = none;
+        if (model.reflector_reflectance < 1.0f && !hn::AllFalse(df, bounce)) {
+            kept_below = hn::And(bounce, random.uniform(bounce) >= hn::Set(df, model.reflector_reflectance));
+            bounce = hn::AndNot(kept_below, bounce);
+        }
         if (!hn::AllFalse(df, bounce)) {  // the Lambertian reflector: a cosine-distributed upward direction
             const VF u_bounce = random.uniform(bounce);
             Azimuth(random.uniform(bounce), cos_phi, sin_phi);
@@ -198,7 +204,7 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
             oz = hn::IfThenElse(bounce, hn::Neg(hn::Sqrt(hn::Sub(one, u_bounce))), oz);
         }
 
-        const MF bare_exit = model.bottom_exit_fresnel ? none : hn::And(down, at_last);
+        const MF bare_exit = hn::Or(kept_below, model.bottom_exit_fresnel ? none : hn::And(down, at_last));
         const MF at_interface = hn::AndNot(hn::Or(bounce, bare_exit), going);
         // The relative index n_from / n_to of the interface ahead (authors' behaviour 1, upward crossings with the
         // indices swapped, is in the model's eta_up) and m = n_to / n_from.

@@ -62,6 +62,9 @@ struct BiospecPacketModel {
     // Sets layer_stride for `layers` and pads every per-layer array to it.
     void pad();
     bool reflector = false;
+    // Below 1 (the measured hypodermis), a ray reaching the reflector stays in it (leaves the bottom: T) with
+    // probability 1 - reflector_reflectance, a test independent of the absorption sets (so every set shares it).
+    float reflector_reflectance = 1.0f;
     bool bottom_exit_fresnel = true;
     bool weighted = true;            // weighted estimator (else the random per-crossing absorption test)
     bool roulette = true;            // flag lanes for Russian roulette (off when recording paths)

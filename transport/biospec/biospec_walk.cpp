@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "materials/path_key.hpp"
+#include "transport/adding_doubling/hypodermis_reflectance.hpp"
 #include "transport/fresnel.hpp"
 #include "transport/skin_fold.hpp"
 #include "spectral/input_error.hpp"
@@ -201,7 +202,8 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
     : layers_(stack.layers.size()),
       n_above_(stack.above_refractive_index),
       n_below_(stack.below_refractive_index),
-      reflector_(stack.bottom == BottomBoundary::diffuse_reflector),
+      reflector_(has_reflector(stack.bottom)),
+      reflector_reflectance_(reflector_ ? bottom_reflectance(stack, wavelength_nm) : 0.0),
       fold_sigma_(stack.fold_aspect_ratio),
       model_(stack.model),
       geometry_(geometry),
@@ -280,6 +282,7 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
 void BiospecWavelength::finish_model() {
     auto& m = packet_;
     m.reflector = reflector_;
+    m.reflector_reflectance = static_cast<float>(reflector_reflectance_);
     m.bottom_exit_fresnel = model_.bottom_exit_fresnel;
     m.weighted = options_.estimator == AbsorptionEstimator::weighted;
     m.roulette = !recording_;

@@ -107,6 +107,7 @@ private:
     double n_above_;
     double n_below_;
     bool reflector_;
+    double reflector_reflectance_;  // 1 for BioSpec's ideal reflector, the measured hypodermis' below 1
     double fold_sigma_;
     ModelOptions model_;
     MeasurementGeometry geometry_;

@@ -210,6 +210,11 @@ RadialProfile DiffusionMaterial::transmittance_profile(std::span<const double> r
 }
 
 DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_nm, const DiffusionOptions& options, double incidence_deg) {
+    if (stack.bottom == BottomBoundary::hypodermis) {
+        throw InputError("bottom.boundary = hypodermis (the measured hypodermis as a reflector) is not modelled by diffusion (the multipole's R and "
+                         "R(r), matched-multipole's R(r)), which knows BioSpec's ideal reflector and an open bottom only: use biospec, "
+                         "biospec-adding-doubling, rte or adding-doubling (R(r): rte), or bottom.boundary = diffuse_reflector");
+    }
     std::vector<SlabSpec> specs;
     const auto optics = stack.optics(wavelength_nm, OpticsScope{.volumetric = false, .reduced = true});
     for (std::size_t i = 0; i < optics.size(); ++i) {

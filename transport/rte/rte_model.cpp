@@ -5,6 +5,7 @@
 #include "spectral/input_error.hpp"
 #include "spectral/named_choice.hpp"
 #include "spectral/text_fields.hpp"
+#include "transport/adding_doubling/hypodermis_reflectance.hpp"
 #include "transport/adding_doubling/matched_volumetric.hpp"
 
 namespace skinspec {
@@ -20,7 +21,8 @@ RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
     RteStack out;
     out.above_refractive_index = stack.above_refractive_index;
     out.below_refractive_index = stack.below_refractive_index;
-    out.bottom_reflector = stack.bottom == BottomBoundary::diffuse_reflector;
+    out.bottom_reflector = has_reflector(stack.bottom);
+    if (out.bottom_reflector) out.bottom_reflectance = bottom_reflectance(stack, wavelength_nm);
     for (std::size_t k = 0; k < stack.layers.size(); ++k) {
         const auto o = stack.optics(k, wavelength_nm, OpticsScope{true, false});
         if (!o.mu_s_per_cm) {

@@ -23,8 +23,9 @@ struct RteLayer {
 struct RteStack {
     double above_refractive_index = 1.0;
     double below_refractive_index = 1.0;
-    bool bottom_reflector = false;  // ideal Lambertian reflector below the last layer (skin presets)
+    bool bottom_reflector = false;  // Lambertian reflector below the last layer (skin presets)
     std::vector<RteLayer> layers;
+    double bottom_reflectance = 1.0;  // the reflector's: 1 BioSpec's ideal one, below 1 the measured hypodermis (T is what it keeps)
 };
 
 // A material's stack at one wavelength; InputError naming the first layer without volumetric scattering.

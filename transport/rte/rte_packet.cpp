@@ -112,7 +112,13 @@ std::uint64_t RteStepImpl(const RtePacketModel& model, RtePacket& p) {
         // CrossDnOrNot, Sec. 3.7, with RFresnel, Eq. 3.31) and Snell.
         const MF at_last = FromInt(k == last);
         const MF at_first = FromInt(k == hn::Zero(di));
-        const MF bounce = model.reflector ? hn::And(hits, hn::And(down, at_last)) : none;
+        MF bounce = model.reflector ? hn::And(hits, hn::And(down, at_last)) : none;
+        // A reflector of reflectance below 1 keeps the photon with probability 1 - reflectance (it leaves the bottom).
+        MF kept_below = none;
+        if (model.reflector_reflectance < 1.0f && !hn::AllFalse(df, bounce)) {
+            kept_below = hn::And(bounce, random.uniform(bounce) >= hn::Set(df, model.reflector_reflectance));
+            bounce = hn::AndNot(kept_below, bounce);
+        }
         if (!hn::AllFalse(df, bounce)) {
             const VF u_bounce = random.uniform(bounce);
             VF cos_phi, sin_phi;
@@ -122,7 +128,7 @@ std::uint64_t RteStepImpl(const RtePacketModel& model, RtePacket& p) {
             dy = hn::IfThenElse(bounce, hn::Mul(sin_bounce, sin_phi), dy);
             dz = hn::IfThenElse(bounce, hn::Neg(hn::Sqrt(hn::Sub(one, u_bounce))), dz);
         }
-        const MF fresnel = hn::AndNot(bounce, hits);
+        const MF fresnel = hn::AndNot(hn::Or(bounce, kept_below), hits);
         // Most steps of a scattering medium end in an interaction: a vector with no lane at an interface skips the
         // Fresnel work (it draws no random number either, so every path is unchanged).
         const auto imask = [&](MF mask) { return ToInt(mask); };
@@ -153,6 +159,7 @@ std::uint64_t RteStepImpl(const RtePacketModel& model, RtePacket& p) {
             next_k = hn::IfThenElse(imask(hn::AndNot(down, moves_on)), hn::Sub(k, hn::Set(di, 1)), next_k);
         }
 
+        escapes = hn::Or(escapes, kept_below);
         const VI steps = hn::Add(hn::LoadU(di, reinterpret_cast<const std::int32_t*>(p.steps) + base), hn::IfThenElseZero(imask(active), hn::Set(di, 1)));
         const MF gone = hn::AndNot(split, escapes);
         const MF truncated = hn::AndNot(gone, hn::And(active, FromInt(steps > hn::Set(di, static_cast<int>(model.max_steps) - 1))));

@@ -41,6 +41,7 @@ struct RtePacketModel {
     std::vector<float> eta_down, eta_up, inverse_eta_down, inverse_eta_up;
     std::vector<float> table_cos;                     // the tabulated phases' inverse-CDF tables, concatenated
     bool reflector = false;                           // Lambertian reflector below the last layer
+    float reflector_reflectance = 1.0f;               // below 1 (the hypodermis): a photon stays in it (T) with 1 - this
     bool split = false;                               // outer boundaries: part escapes, the photon goes on (kept)
     bool flag_every_segment = false;                  // hand every lane to the caller after every segment (white)
     bool radius = false;                              // store r_cm (radial grids need it)

@@ -179,6 +179,7 @@ private:
             m.inverse_eta_up.push_back(static_cast<float>(above / n));
         }
         m.reflector = stack_.bottom_reflector;
+        m.reflector_reflectance = static_cast<float>(stack_.bottom_reflectance);
         m.split = request_.boundaries == BoundaryMode::split;
         m.flag_every_segment = white_;
         m.radius = ch_.nr > 0;
