@@ -55,9 +55,7 @@ std::vector<MaterialOverride> overrides_for(const SpectrumOptions& o) {
     std::vector<MaterialOverride> out;
     if (!o.variant.empty()) out.push_back({"model.variant", o.variant, "--variant"});
     for (const auto& t : o.overrides) out.push_back(parse_override(t));
-    if (o.reflector == "on") out.push_back({"bottom.boundary", "diffuse_reflector", "--reflector"});
-    else if (o.reflector == "off") out.push_back({"bottom.boundary", "exit", "--reflector"});
-    else if (!o.reflector.empty()) throw InputError("--reflector: '" + o.reflector + "' is not allowed (allowed: on, off)");
+    if (!o.reflector.empty()) out.push_back(reflector_override(o.reflector, "--reflector"));
     return out;
 }
 
@@ -188,7 +186,9 @@ void add_spectrum_command(CLI::App& app) {
     add_seed_option(*cmd, o->seed, "Random seed (results are identical for any thread count)");
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
-    cmd->add_option("--reflector", o->reflector, "Hypodermis reflector on|off (off: light leaving the bottom is transmittance)");
+    cmd->add_option("--reflector", o->reflector,
+                    "Bottom: " + std::string(reflector_choices) + " (on: BioSpec's ideal reflector; off: light leaving the bottom is transmittance; "
+                    "hypodermis: the measured hypodermis' reflectance, 374-1602 nm, what it keeps is T)");
     cmd->add_option("--variant", o->variant,
                     "Model variant: biospec (default), biospec-2004, biospec-authors-code (reproduces the authors' current code, "
                     "its defects included; not physics)");

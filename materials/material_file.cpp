@@ -1,6 +1,7 @@
 #include "materials/material_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -442,6 +443,15 @@ toml::table homogeneous_table(const HomogeneousMaterial& m) {
 }
 
 }  // namespace
+
+MaterialOverride reflector_override(std::string_view value, const std::string& origin) {
+    static constexpr std::array<std::pair<std::string_view, BottomBoundary>, 3> choices{
+        {{"on", BottomBoundary::diffuse_reflector}, {"off", BottomBoundary::exit}, {"hypodermis", BottomBoundary::hypodermis}}};
+    for (const auto& [name, bottom] : choices) {
+        if (value == name) return {"bottom.boundary", std::string(to_string(bottom)), origin};
+    }
+    throw InputError(origin + ": '" + std::string(value) + "' is not allowed (allowed: " + std::string(reflector_choices) + ")");
+}
 
 MaterialOverride parse_override(std::string_view text) {
     const auto eq = text.find('=');

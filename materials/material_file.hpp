@@ -43,6 +43,12 @@ struct MaterialOverride {
 };
 MaterialOverride parse_override(std::string_view text);
 
+// The reflector switch of `spectrum --reflector` and Python's reflector=: on (BioSpec's ideal reflector), off (an open
+// bottom) or hypodermis (the measured one), as the bottom.boundary override it stands for; InputError naming `origin`
+// and the allowed values otherwise.
+MaterialOverride reflector_override(std::string_view value, const std::string& origin);
+inline constexpr std::string_view reflector_choices = "on, off, hypodermis";
+
 // Reads a material file and applies the overrides before validation.
 Material read_material(const std::filesystem::path& file, const std::vector<MaterialOverride>& overrides = {});
 // Material TOML text (a file's contents, or what to_toml wrote); `source` names it in messages.

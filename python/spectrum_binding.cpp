@@ -53,12 +53,13 @@ std::vector<MaterialOverride> option_overrides(const py::object& variant, const 
     if (!variant.is_none()) out.push_back({"model.variant", variant.cast<std::string>(), "variant"});
     if (reflector.is_none()) return out;
     if (py::isinstance<py::bool_>(reflector)) {
-        out.push_back({"bottom.boundary", reflector.cast<bool>() ? "diffuse_reflector" : "exit", "reflector"});
+        out.push_back(reflector_override(reflector.cast<bool>() ? "on" : "off", "reflector"));
         return out;
     }
-    const auto text = py::isinstance<py::str>(reflector) ? reflector.cast<std::string>() : std::string("?");
-    if (text != "on" && text != "off") throw InputError("reflector: '" + text + "' is not allowed (allowed: on, off, True, False)");
-    out.push_back({"bottom.boundary", text == "on" ? "diffuse_reflector" : "exit", "reflector"});
+    if (!py::isinstance<py::str>(reflector)) {
+        throw InputError("reflector: must be True, False or one of " + std::string(reflector_choices) + " (got " + std::string(py::str(py::type::of(reflector).attr("__name__"))) + ")");
+    }
+    out.push_back(reflector_override(reflector.cast<std::string>(), "reflector"));
     return out;
 }
 

@@ -33,7 +33,7 @@ skinspec_malformed_input("spectrum rays and stderr" 108 "excludes" - spectrum --
 skinspec_malformed_input("spectrum homogeneous" 2 "solver .biospec. needs a layered material; .jensen2001-skin1. is a homogeneous material given per band \\(solvers for band materials: rte, multipole, dipole\\)" - spectrum --preset jensen2001-skin1 --rays 100)
 skinspec_malformed_input("spectrum outside table" 2 "baseline tissue: wavelength 2600 nm is outside the tabulated domain" - spectrum --wavelengths 2600 --rays 100)
 skinspec_malformed_input("spectrum refuses overwrite" 2 "existing_output.csv: exists already \\(use --overwrite" - spectrum --rays 100 --wavelengths 550 --output existing_output.csv)
-skinspec_malformed_input("spectrum bad reflector" 2 "--reflector: 'maybe' is not allowed \\(allowed: on, off\\)" - spectrum --reflector maybe)
+skinspec_malformed_input("spectrum bad reflector" 2 "--reflector: 'maybe' is not allowed \\(allowed: on, off, hypodermis\\)" - spectrum --reflector maybe)
 skinspec_malformed_input("spectrum bad estimator" 2 "--estimator: 'exact' is not an estimator" - spectrum --estimator exact)
 skinspec_malformed_input("swatch unknown field" 2 "unknown key 'epidermis.melanin'" - swatch --vary epidermis.melanin=0.1:0.2:2)
 skinspec_malformed_input("swatch empty range" 2 "empty range" - swatch --vary epidermis.melanosome_fraction=0.1:0.1:4)
@@ -225,3 +225,6 @@ skinspec_malformed_input("fit-image space with bands" 2 "--space describes an RG
 skinspec_malformed_input("fit-image view without display image" 2 "--view applies to a PNG or TIFF --edited image only" "${out}/fi1.exr" fit-image grey18.csv -o ${out}/fi1.exr --view Raw)
 # A small file whose header declares 100000 x 100000 pixels: refused from the header, before any pixel is allocated.
 skinspec_malformed_input("fit-image huge declared size" 2 "huge_header.ppm: image of 100000 x 100000 pixels x 3 channels needs 120000 MB as floats, more than the [0-9]+ MB available" "${out}/fi1.exr" fit-image huge_header.ppm -o ${out}/fi1.exr --noise 0.01)
+skinspec_malformed_input("spectrum hypodermis outside its measured range" 2 "bottom.boundary = hypodermis: the measured hypodermis \\(Salomatina et al. 2006, ex vivo\\) covers 373.7206-1602.08676 nm; 350 nm is outside it" - spectrum --reflector hypodermis --mode biospec-adding-doubling --wavelengths 350:700:10)
+skinspec_malformed_input("multipole refuses the hypodermis" 2 "bottom.boundary = hypodermis .* is not modelled by diffusion" - spectrum --reflector hypodermis --mode multipole)
+skinspec_malformed_input("export refuses the hypodermis" 2 "bottom.boundary = hypodermis .* is not exported" "${out}/hypodermis.pbrt" export pbrt --preset biospec-lightly --set bottom.boundary=hypodermis -o ${out}/hypodermis.pbrt)

@@ -65,6 +65,10 @@ def test_energy_is_conserved_per_wavelength():
     total = s.R + s.T + s.A.sum(axis=-1) + s.A_surface
     np.testing.assert_allclose(total, 1.0, rtol=0, atol=1e-12)
     assert s.A.shape == (4, 4) and s.layer_names[1] == "epidermis"
+    # Over the measured hypodermis what it keeps is T, so the sum holds there too.
+    h = skinspec.spectrum("biospec-lightly", np.arange(400, 701, 100), quantities="R,T,A", rays=2000, reflector="hypodermis")
+    np.testing.assert_allclose(h.R + h.T + h.A.sum(axis=-1) + h.A_surface, 1.0, rtol=0, atol=1e-12)
+    assert (h.T > 0.0).all()
 
 
 def test_sweep_arrays_have_the_sweep_shape_and_equal_the_cli_grid(cli):
@@ -116,7 +120,8 @@ def test_threads_do_not_change_the_numbers():
     (dict(seed=-1), r"seed = -1 is outside \[0, "),
     (dict(seed=1.5), "seed: expected a whole number"),
     (dict(threads=0), r"threads = 0 is outside \[1, 1024\]"),
-    (dict(reflector="maybe"), "reflector: 'maybe' is not allowed"),
+    (dict(reflector="maybe"), r"reflector: 'maybe' is not allowed \(allowed: on, off, hypodermis\)"),
+    (dict(reflector=3), "reflector: must be True, False or one of on, off, hypodermis"),
     (dict(geometry="45-0"), "is not a measurement geometry"),
     (dict(vary={"epidermis.melanosome_fraction": [0.01, -0.2]}), r"= -0.2 is outside \[0, 1\]"),
     (dict(vary={"epidermis.melanosome_fraction": [0.01, float("nan")]}), "is not a finite number"),
