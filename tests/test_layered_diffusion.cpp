@@ -67,6 +67,29 @@ TEST_CASE("composed profiles integrate to the composed totals", "[layered]") {
     CHECK(two.total_transmittance() == Approx(whole.total_transmittance()).margin(0.02));
 }
 
+TEST_CASE("a partial reflector (the measured hypodermis) lies between an open matched bottom and the ideal reflector", "[layered]") {
+    // Slabs whose bottom face is matched (internal reflectance 0), as the reflector and an open bottom of the same
+    // index see them. rho = 0 keeps everything it receives: the open bottom's R and T, totals and profiles. rho = 1:
+    // the ideal reflector. Without absorption, R + T = 1 at every rho (what the reflector keeps is T).
+    const double f = diffuse_fresnel_reflectance(1.4);
+    const std::vector<Multipole> slabs{Multipole({4.0, 0.5, 0.25, f, 0.0}), Multipole({2.5, 0.02, 1.8, 0.0, 0.0})};
+    const LayeredDiffusion open(slabs, DiffusionBottom::open), black(slabs, DiffusionBottom::reflector, 0.0);
+    const LayeredDiffusion ideal(slabs, DiffusionBottom::reflector), measured(slabs, DiffusionBottom::reflector, 0.5);
+    CHECK(black.total_reflectance() == Approx(open.total_reflectance()).epsilon(1e-14));
+    CHECK(black.total_transmittance() == Approx(open.total_transmittance()).epsilon(1e-14));
+    const auto radii = radii_to(5.0, 0.05);
+    const auto t_black = black.transmittance_profile(radii).values, t_open = open.transmittance_profile(radii).values;
+    for (std::size_t i = 0; i < radii.size(); ++i) CHECK(t_black[i] == Approx(t_open[i]).epsilon(1e-9).margin(1e-14));
+    CHECK(open.total_reflectance() < measured.total_reflectance());
+    CHECK(measured.total_reflectance() < ideal.total_reflectance());
+    CHECK(measured.total_transmittance() > 0.0);
+    const LayeredDiffusion clear({Multipole({2.0, 0.0, 1.0, f, 0.0}), Multipole({1.0, 0.0, 2.0, 0.0, 0.0})}, DiffusionBottom::reflector, 0.3);
+    CHECK(clear.total_reflectance() + clear.total_transmittance() == Approx(1.0).epsilon(1e-12));
+    const double dr = 5e-3;
+    const auto fine = radii_to(40.0, dr);
+    CHECK(integral(fine, measured.transmittance_profile(fine).values, dr) == Approx(measured.total_transmittance()).epsilon(2e-3));
+}
+
 TEST_CASE("layered diffusion rejects impossible stacks", "[layered]") {
     const double inf = std::numeric_limits<double>::infinity();
     CHECK_THROWS_WITH(LayeredDiffusion({}, DiffusionBottom::open), Catch::Contains("has no slabs"));

@@ -12,6 +12,7 @@
 #include "transport/diffusion/rough_surface.hpp"
 #include "transport/fresnel.hpp"
 #include "spectral/input_error.hpp"
+#include "transport/adding_doubling/hypodermis_reflectance.hpp"
 
 namespace skinspec {
 namespace {
@@ -119,7 +120,7 @@ Surface surface(double n_above, double n_top, const DiffusionOptions& options, d
 }
 
 DiffusionMaterial build(std::vector<SlabSpec> specs, double n_above, double n_below, DiffusionBottom bottom,
-                        bool semi_infinite, const DiffusionOptions& options, double incidence_deg) {
+                        bool semi_infinite, const DiffusionOptions& options, double incidence_deg, double reflectance = 1.0) {
     std::vector<TrustWarning> warnings;
     if (options.mode == DiffusionMode::dipole && specs.size() > 1) {
         SlabSpec all = specs.front();
@@ -154,7 +155,7 @@ DiffusionMaterial build(std::vector<SlabSpec> specs, double n_above, double n_be
             heaviest = weight;
             out.slab_names = std::move(names);
         }
-        out.stacks.push_back({weight, LayeredDiffusion(std::move(slabs), semi_infinite ? DiffusionBottom::open : bottom)});
+        out.stacks.push_back({weight, LayeredDiffusion(std::move(slabs), semi_infinite ? DiffusionBottom::open : bottom, reflectance)});
     }
     // A slab both branches keep is judged once.
     for (const auto& w : warnings) {
@@ -210,11 +211,6 @@ RadialProfile DiffusionMaterial::transmittance_profile(std::span<const double> r
 }
 
 DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_nm, const DiffusionOptions& options, double incidence_deg) {
-    if (stack.bottom == BottomBoundary::hypodermis) {
-        throw InputError("bottom.boundary = hypodermis (the measured hypodermis as a reflector) is not modelled by diffusion (the multipole's R and "
-                         "R(r), matched-multipole's R(r)), which knows BioSpec's ideal reflector and an open bottom only: use biospec, "
-                         "biospec-adding-doubling, rte or adding-doubling (R(r): rte), or bottom.boundary = diffuse_reflector");
-    }
     std::vector<SlabSpec> specs;
     const auto optics = stack.optics(wavelength_nm, OpticsScope{.volumetric = false, .reduced = true});
     for (std::size_t i = 0; i < optics.size(); ++i) {
@@ -226,8 +222,9 @@ DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_
         specs.push_back({stack.layers[i].name, o.thickness_cm * 10.0, o.mu_a_per_cm / 10.0, *o.mu_s_reduced_per_cm / 10.0,
                          o.refractive_index, o.refractive_index});
     }
-    const auto bottom = stack.bottom == BottomBoundary::diffuse_reflector ? DiffusionBottom::reflector : DiffusionBottom::open;
-    return build(std::move(specs), stack.above_refractive_index, stack.below_refractive_index, bottom, false, options, incidence_deg);
+    const auto bottom = has_reflector(stack.bottom) ? DiffusionBottom::reflector : DiffusionBottom::open;
+    return build(std::move(specs), stack.above_refractive_index, stack.below_refractive_index, bottom, false, options, incidence_deg,
+                 has_reflector(stack.bottom) ? bottom_reflectance(stack, wavelength_nm) : 1.0);
 }
 
 DiffusionMaterial diffusion_material(const HomogeneousMaterial& m, std::size_t band, const DiffusionOptions& options, double incidence_deg) {

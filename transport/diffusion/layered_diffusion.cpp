@@ -31,7 +31,8 @@ StackResponse slab_response(const Multipole& down, const Multipole& up, double k
 
 }  // namespace
 
-LayeredDiffusion::LayeredDiffusion(std::vector<Multipole> slabs, DiffusionBottom bottom) : slabs_(std::move(slabs)), bottom_(bottom) {
+LayeredDiffusion::LayeredDiffusion(std::vector<Multipole> slabs, DiffusionBottom bottom, double reflectance)
+    : slabs_(std::move(slabs)), bottom_(bottom), reflectance_(reflectance) {
     if (slabs_.empty()) throw InputError("layered diffusion: the stack has no slabs");
     for (std::size_t i = 0; i < slabs_.size(); ++i) {
         const bool last = i + 1 == slabs_.size();
@@ -46,8 +47,8 @@ LayeredDiffusion::LayeredDiffusion(std::vector<Multipole> slabs, DiffusionBottom
 StackResponse LayeredDiffusion::response(double k) const {
     StackResponse stack = slab_response(slabs_[0], flipped_[0], k);
     for (std::size_t i = 1; i < slabs_.size(); ++i) stack = compose(stack, slab_response(slabs_[i], flipped_[i], k));
-    // The reflector returns everything, locally (its transform is 1 at every frequency), and lets nothing through.
-    if (bottom_ == DiffusionBottom::reflector) stack = compose(stack, {1.0, 0.0, 0.0, 0.0});
+    // The reflector returns rho locally (its transform is rho at every frequency) and keeps 1 - rho, counted as T.
+    if (bottom_ == DiffusionBottom::reflector) stack = compose(stack, {reflectance_, 0.0, 1.0 - reflectance_, 0.0});
     return stack;
 }
 
@@ -63,8 +64,8 @@ RadialProfile LayeredDiffusion::reflectance_profile(std::span<const double> radi
 }
 
 RadialProfile LayeredDiffusion::transmittance_profile(std::span<const double> radii, const std::atomic<bool>* cancel) const {
-    if (bottom_ == DiffusionBottom::reflector) return {std::vector<double>(radii.size(), 0.0), 0, 0, true};
-    if (slabs_.size() == 1) return slabs_[0].transmittance_profile(radii);
+    if (bottom_ == DiffusionBottom::reflector && reflectance_ == 1.0) return {std::vector<double>(radii.size(), 0.0), 0, 0, true};
+    if (slabs_.size() == 1 && bottom_ == DiffusionBottom::open) return slabs_[0].transmittance_profile(radii);
     return inverse_transform(radii, true, cancel);
 }
 

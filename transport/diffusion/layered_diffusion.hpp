@@ -19,7 +19,9 @@ namespace skinspec {
 
 enum class DiffusionBottom {
     open,       // light leaving the last slab is transmittance
-    reflector,  // an ideal diffuse reflector returns it all at the point where it arrives (BioSpec's hypodermis)
+    // A diffuse reflector returns its reflectance rho of what arrives, at the point where it arrives, and keeps the
+    // rest (T): 1 for BioSpec's ideal hypodermis, below 1 for the measured one.
+    reflector,
 };
 
 // The four responses of a stack at one spatial frequency.
@@ -32,8 +34,9 @@ struct StackResponse {
 
 class LayeredDiffusion {
 public:
-    // InputError for an empty stack or a semi-infinite slab above another slab or above a reflector.
-    LayeredDiffusion(std::vector<Multipole> slabs, DiffusionBottom bottom);
+    // InputError for an empty stack or a semi-infinite slab above another slab or above a reflector; `reflectance`
+    // is the reflector's rho, in [0, 1].
+    LayeredDiffusion(std::vector<Multipole> slabs, DiffusionBottom bottom, double reflectance = 1.0);
 
     const std::vector<Multipole>& slabs() const { return slabs_; }
     StackResponse response(double k) const;
@@ -55,6 +58,7 @@ private:
     std::vector<Multipole> slabs_;
     std::vector<Multipole> flipped_;
     DiffusionBottom bottom_;
+    double reflectance_;
 };
 
 }  // namespace skinspec
