@@ -31,3 +31,13 @@ TEST_CASE("every layer number field is written by save and read back with its ra
                           Catch::Contains("epidermis." + std::string(f.key)) && Catch::Contains(f.range.text()));
     }
 }
+
+TEST_CASE("every named field's allowed values, as documented, are the ones its reader names when refusing", "[material_fields]") {
+    // The table's allowed list (help, `materials keys`, docs/MATERIALS.md) and the parser's own list must not drift.
+    for (const auto& f : named_fields()) {
+        if (f.section.empty() || f.key == "name") continue;  // kind (the file's), layer names (a pattern)
+        const std::string key = (f.section == "layers" ? std::string("epidermis") : std::string(f.section)) + "." + std::string(f.key);
+        INFO(key);
+        CHECK_THROWS_WITH(load_material("biospec-lightly", {{key, "not_a_choice"}}), Catch::Contains("(allowed: " + std::string(f.allowed) + ")"));
+    }
+}
