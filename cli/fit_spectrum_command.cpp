@@ -211,19 +211,13 @@ void write_fit_plot(const std::string& file, const std::vector<SpectrumFit>& fit
 
 void run_fit_spectrum(const FitSpectrumOptions& o) {
     // How the model is evaluated, checked before any input is read.
-    FitEngine engine = FitEngine::replayed_walk;
-    if (o.solver.mode == "biospec-adding-doubling") {
-        engine = FitEngine::adding_doubling;
-        if (!o.walk_options_given.empty()) {
-            throw InputError(o.walk_options_given.front() + ": --mode biospec-adding-doubling solves the model exactly at every evaluation and traces no "
-                             "rays (--rays and --seed are for --mode biospec, the replayed walk)");
-        }
-    } else if (!o.solver.mode.empty() && o.solver.mode != "biospec") {
-        throw InputError("--mode: fit-spectrum fits with biospec (the walk's paths, replayed) or biospec-adding-doubling (the model solved exactly), not '" +
-                         o.solver.mode + "'");
+    const FitEngine engine = o.solver.mode.empty() ? FitEngine::replayed_walk : parse_fit_engine(o.solver.mode, "--mode");
+    if (!traces_rays(engine) && !o.walk_options_given.empty()) {
+        throw InputError(o.walk_options_given.front() + ": --mode " + o.solver.mode + " solves the model exactly at every evaluation and traces no "
+                         "rays (--rays and --seed are for --mode biospec, the replayed walk)");
     }
-    if (o.solver.switches.contains("channels") && engine != FitEngine::adding_doubling) {
-        throw InputError("--channels: the quadrature of --mode biospec-adding-doubling (--mode biospec replays traced paths and has none)");
+    if (o.solver.switches.contains("channels") && traces_rays(engine)) {
+        throw InputError("--channels: the quadrature of the exact modes (--mode biospec replays traced paths and has none)");
     }
     if (!o.output.empty()) check_output_path(o.output, o.force, {".csv", ".json"});
     if (!o.plot.empty()) {
@@ -295,8 +289,8 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const bool exact = settings.engine == FitEngine::adding_doubling;
-    const std::string evaluation = exact ? fmt::format("biospec-adding-doubling, {} channels", settings.channels)
+    const bool exact = !traces_rays(settings.engine);
+    const std::string evaluation = exact ? fmt::format("{}, {} channels", to_string(settings.engine), settings.channels)
                                          : fmt::format("biospec walk, {} rays per wavelength, seed {}", o.rays, o.seed);
     const std::string provenance = fmt::format("material {} ({}), geometry {}, {}, window {}", base_name, base->model.variant,
                                                to_string(settings.geometry), evaluation, o.window.empty() ? "all" : o.window);
@@ -318,7 +312,7 @@ void run_fit_spectrum(const FitSpectrumOptions& o) {
                         {"variant", base->model.variant},
                         {"overrides", overrides_json},
                         {"geometry", std::string(to_string(settings.geometry))},
-                        {"mode", exact ? "biospec-adding-doubling" : "biospec"},
+                        {"mode", std::string(to_string(settings.engine))},
                         {"rays_per_wavelength", exact ? Json(nullptr) : Json(o.rays)},
                         {"seed", exact ? Json(nullptr) : Json(o.seed)},
                         {"quadrature_channels", exact ? Json(settings.channels) : Json(nullptr)},
@@ -385,9 +379,9 @@ void add_fit_spectrum_command(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--bounds", o->bounds, "FIELD=LO:HI for a free field (repeatable; defaults in docs/SPECTRUM_FIT.md)");
     add_geometry_option(*cmd, o->solver);
-    cmd->add_option("--mode", o->solver.mode,
-                    "How the BioSpec model is evaluated: biospec (default: paths traced once and re-weighted, Monte Carlo) or "
-                    "biospec-adding-doubling (solved exactly at every evaluation: no noise, any layer field free)");
+    std::string modes;
+    for (const auto& e : fit_engines()) modes += "\n  " + std::string(e.name) + ": " + std::string(e.doc);
+    cmd->add_option("--mode", o->solver.mode, "How the model is evaluated:" + modes);
     add_switch_option(*cmd, o->solver, SolverSwitch::channels);
     cmd->add_option("--incidence", o->incidence_deg, "Polar angle of the incident beam, deg, [0, 90)")->capture_default_str();
     cmd->add_option("--window", o->window, "Fit only the wavelengths in FROM:TO nm (default: all of the file)");

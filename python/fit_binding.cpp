@@ -72,20 +72,13 @@ py::object fit_spectrum(const py::object& wavelengths, const py::object& measure
                         const py::object& seed, const std::string& geometry, const py::object& incidence_deg, const py::object& starts, const py::object& names,
                         const std::string& mode, const py::object& channels, const py::object& threads, const py::object& progress) {
     // How the model is evaluated (as the command's --mode), checked before any input is read.
-    FitEngine engine = FitEngine::replayed_walk;
-    if (mode == "biospec-adding-doubling") {
-        engine = FitEngine::adding_doubling;
-        if (!rays.is_none() || !seed.is_none()) {
-            throw InputError(std::string(rays.is_none() ? "seed" : "rays") +
-                             ": mode 'biospec-adding-doubling' solves the model exactly at every evaluation and traces no rays (rays and seed are for "
-                             "mode 'biospec', the replayed walk)");
-        }
-    } else if (mode != "biospec") {
-        throw InputError("mode: fit_spectrum fits with 'biospec' (the walk's paths, replayed) or 'biospec-adding-doubling' (the model solved exactly), not '" +
-                         mode + "'");
+    const FitEngine engine = parse_fit_engine(mode, "mode");
+    if (!traces_rays(engine) && (!rays.is_none() || !seed.is_none())) {
+        throw InputError(std::string(rays.is_none() ? "seed" : "rays") + ": mode '" + mode +
+                         "' solves the model exactly at every evaluation and traces no rays (rays and seed are for mode 'biospec', the replayed walk)");
     }
-    if (!channels.is_none() && engine != FitEngine::adding_doubling) {
-        throw InputError("channels: the quadrature of mode 'biospec-adding-doubling' (mode 'biospec' replays traced paths and has none)");
+    if (!channels.is_none() && traces_rays(engine)) {
+        throw InputError("channels: the quadrature of the exact modes (mode 'biospec' replays traced paths and has none)");
     }
     const auto nm = finite_vector(wavelengths, "wavelengths");
     WavelengthGrid::list(nm, "wavelengths");
@@ -170,8 +163,10 @@ void bind_fit(py::module_& m) {
     [0, 1.5]. material: the base (default biospec-moderately) the free fields start from; free: the fields (default
     melanosome fraction, papillary and reticular blood fraction, oxygen saturation); bounds={field: (lo, hi)};
     window=(from_nm, to_nm); weights=[(from_nm, to_nm, weight), ...]. mode: 'biospec' (default: paths traced once,
-    rays per wavelength (default 20000) and seed (default 1), re-weighted) or 'biospec-adding-doubling' (the model
-    solved exactly at every evaluation; channels: its quadrature, default 24). Returns a skinspec.Fit (a list of them
+    rays per wavelength (default 20000) and seed (default 1), re-weighted), 'biospec-adding-doubling' (the model
+    solved exactly at every evaluation) or 'adding-doubling' (the volumetric description solved exactly, e.g. the layers'
+    own measured scattering with model.volumetric_matched_to_biospec = false); channels: the exact modes' quadrature,
+    default 24. Returns a skinspec.Fit (a list of them
     for 2-D input) with parameters and standard errors, RMS, the fitted spectrum, CIEDE2000 to the measured colour and,
     for the exact model, model_accuracy: the quadrature's stated accuracy of the fitted R.)doc",
           py::arg("wavelengths"), py::arg("measured"), py::arg("material") = py::none(), py::kw_only(), py::arg("free") = py::none(),

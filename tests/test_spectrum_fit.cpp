@@ -1,11 +1,13 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
 
 #include "inverse/spectrum_fit/spectrum_fit.hpp"
 #include "materials/material_file.hpp"
 #include "spectral/input_error.hpp"
 #include "transport/biospec/biospec_solver.hpp"
+#include "transport/rte/rte_model.hpp"
 #include "transport/random_stream.hpp"
 
 using namespace skinspec;
@@ -13,6 +15,11 @@ using namespace skinspec;
 namespace {
 
 LayerStack preset(const char* name) { return std::get<LayerStack>(load_material(name)); }
+
+// A standard normal deviate (Box-Muller).
+double standard_normal(RandomStream& random) {
+    return std::sqrt(-2.0 * std::log(1.0 - random.uniform())) * std::cos(2.0 * std::numbers::pi * random.uniform());
+}
 
 std::vector<double> grid() {
     std::vector<double> nm;
@@ -22,12 +29,46 @@ std::vector<double> grid() {
 
 }  // namespace
 
+TEST_CASE("the volumetric description is fitted too: spectra of the volumetric walk give back their parameters", "[spectrum_fit]") {
+    // Truth by the volumetric walk (an independent Monte Carlo of the same description: the layers' own measured
+    // scattering, over the measured hypodermis) plus Gaussian noise of 0.003; the fitter solves it by adding-doubling.
+    auto base = preset("biospec-moderately");
+    base.model.volumetric_matched_to_biospec = false;
+    base.bottom = BottomBoundary::hypodermis;
+    SpectrumFitSettings settings;
+    settings.free = {{"epidermis.melanosome_fraction", {}, {}}, {"dermis.blood_fraction", {}, {}}};
+    settings.engine = FitEngine::adding_doubling;
+    settings.channels = 12;
+    settings.starts = 2;
+    const SpectrumFitter fitter(base, grid(), settings);
+    auto stack = base;
+    stack.layers[1].melanosome_fraction = 0.03;
+    stack.layers[2].blood_fraction = stack.layers[3].blood_fraction = 0.01;
+    SpectralRequest request;
+    request.wavelengths = WavelengthGrid::list(grid());
+    request.max_rays_per_wavelength = 40'000;
+    request.seed = 777;
+    auto noise = RandomStream::for_batch(98, 0.0, 0);
+    std::vector<double> measured;
+    for (const auto& w : solve_rte_spectrum(stack, request).wavelengths) {
+        measured.push_back(w.reflectance.value + 0.003 * standard_normal(noise));
+    }
+    const auto fit = fitter.fit("synthetic", measured);
+    for (const auto& [i, truth] : {std::pair{0, 0.03}, std::pair{1, 0.01}}) {
+        INFO(fit.parameter_keys[i] << ": true " << truth << ", fitted " << fit.parameters[i] << " +- " << fit.parameter_stderr[i]);
+        CHECK(std::abs(fit.parameters[i] - truth) < 3.0 * fit.parameter_stderr[i]);
+    }
+    REQUIRE(fit.model_accuracy.has_value());
+    CHECK(parse_fit_engine("adding-doubling", "--mode") == FitEngine::adding_doubling);
+    CHECK_THROWS_WITH(parse_fit_engine("rte", "--mode"), Catch::Contains("--mode: fit-spectrum fits with biospec, biospec-adding-doubling, adding-doubling, not 'rte'"));
+}
+
 TEST_CASE("fit round trip: spectra of the independent forward walk give back their parameters", "[spectrum_fit]") {
     // Truth made by the BioSpec walk itself (another seed, its own paths, with absorption), plus Gaussian noise of
     // 0.005; the fitter re-weights paths of its own, or solves the model exactly (biospec-adding-doubling). Each
     // parameter must come back within 3 standard errors.
-    const auto engine = GENERATE(FitEngine::replayed_walk, FitEngine::adding_doubling);
-    INFO((engine == FitEngine::replayed_walk ? "replayed walk" : "adding-doubling"));
+    const auto engine = GENERATE(FitEngine::replayed_walk, FitEngine::biospec_adding_doubling);
+    INFO(to_string(engine));
     const std::vector<std::vector<double>> truths{{0.03, 0.012, 0.0091, 0.75}, {0.10, 0.02, 0.005, 0.6}, {0.008, 0.006, 0.015, 0.85}};
     SpectrumFitSettings settings;
     settings.free = default_free_parameters();
@@ -50,9 +91,7 @@ TEST_CASE("fit round trip: spectra of the independent forward walk give back the
         const auto forward = solve_biospec(stack, request);
         std::vector<double> measured;
         for (const auto& w : forward.wavelengths) {
-            // Box-Muller.
-            const double g = std::sqrt(-2.0 * std::log(1.0 - noise.uniform())) * std::cos(2.0 * std::numbers::pi * noise.uniform());
-            measured.push_back(w.reflectance.value + 0.005 * g);
+            measured.push_back(w.reflectance.value + 0.005 * standard_normal(noise));
         }
         const auto fit = fitter.fit("synthetic", measured);
         for (std::size_t i = 0; i < truth.size(); ++i) {
@@ -88,7 +127,7 @@ TEST_CASE("fit inputs: free fields, bounds and wavelengths are checked before an
     s.rays_per_wavelength = 100;
     CHECK_NOTHROW(SpectrumFitter(base, grid(), s));
     // The exact model re-solves everything at each evaluation: any number field of a layer may be free.
-    s.engine = FitEngine::adding_doubling;
+    s.engine = FitEngine::biospec_adding_doubling;
     s.free = {{"dermis.collagen_fibre_fraction", {}, {}}, {"reticular_dermis.thickness_cm", {}, {}}};
     CHECK_NOTHROW(SpectrumFitter(base, grid(), s));
     s.geometry = MeasurementGeometry::zero_45;
@@ -198,7 +237,7 @@ TEST_CASE("the exact model's fit states its quadrature accuracy, and it bounds t
     const std::vector<double> nm{400.0, 450.0, 500.0, 550.0, 600.0, 650.0, 700.0};
     SpectrumFitSettings settings;
     settings.free = default_free_parameters();
-    settings.engine = FitEngine::adding_doubling;
+    settings.engine = FitEngine::biospec_adding_doubling;
     settings.channels = 8;
     settings.starts = 1;
     const auto base = preset("biospec-lightly");

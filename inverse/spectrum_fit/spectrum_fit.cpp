@@ -16,7 +16,9 @@
 #include "spectral/ciede2000.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
+#include "transport/adding_doubling/adding_doubling_spectrum.hpp"
 #include "transport/adding_doubling/biospec_adding_doubling.hpp"
+#include "transport/rte/rte_model.hpp"
 #include "transport/biospec/biospec_solver.hpp"
 #include "transport/random_stream.hpp"
 
@@ -38,6 +40,33 @@ double radical_inverse(std::size_t i, std::size_t base) {
 constexpr std::size_t primes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
 
 }  // namespace
+
+const std::vector<FitEngineChoice>& fit_engines() {
+    static const std::vector<FitEngineChoice> engines{
+        {"biospec", FitEngine::replayed_walk, "the BioSpec walk's paths traced once and re-weighted (default; Monte Carlo)"},
+        {"biospec-adding-doubling", FitEngine::biospec_adding_doubling, "the BioSpec model solved exactly at every evaluation (no noise, any layer field free)"},
+        {"adding-doubling", FitEngine::adding_doubling,
+         "the volumetric description solved exactly at every evaluation (e.g. the layers' own measured scattering with "
+         "--set model.volumetric_matched_to_biospec=false)"},
+    };
+    return engines;
+}
+
+FitEngine parse_fit_engine(std::string_view name, std::string_view origin) {
+    std::string allowed;
+    for (const auto& e : fit_engines()) {
+        if (e.name == name) return e.engine;
+        allowed += (allowed.empty() ? "" : ", ") + std::string(e.name);
+    }
+    throw InputError(std::string(origin) + ": fit-spectrum fits with " + allowed + ", not '" + std::string(name) + "'");
+}
+
+std::string_view to_string(FitEngine engine) {
+    for (const auto& e : fit_engines()) {
+        if (e.engine == engine) return e.name;
+    }
+    return "biospec";
+}
 
 std::vector<FitParameter> default_free_parameters() {
     return {{"epidermis.melanosome_fraction", {}, {}},
@@ -151,9 +180,9 @@ SpectrumFitter::SpectrumFitter(const LayerStack& base, const std::vector<double>
             }
         }
     }
-    if (settings.engine == FitEngine::adding_doubling) {
+    if (!traces_rays(settings.engine)) {
         if (settings.geometry == MeasurementGeometry::zero_45) {
-            throw InputError("--geometry 0-45: biospec-adding-doubling computes hemispherical totals (the walk measures 0-45)");
+            throw InputError("--geometry 0-45: " + std::string(to_string(settings.engine)) + " computes hemispherical totals (the walk measures 0-45)");
         }
         exact_model({}, nullptr);  // refuses what the exact model cannot solve, before any fit
         return;
@@ -207,7 +236,7 @@ std::uint64_t SpectrumFitter::rays() const {
 }
 
 std::vector<Estimate> SpectrumFitter::model(const std::vector<double>& parameters, std::vector<std::vector<double>>* jacobian) const {
-    return settings_.engine == FitEngine::adding_doubling ? exact_model(parameters, jacobian) : replayed_model(parameters, jacobian);
+    return traces_rays(settings_.engine) ? replayed_model(parameters, jacobian) : exact_model(parameters, jacobian);
 }
 
 // `parameters` empty: the base material's own values.
@@ -234,8 +263,13 @@ std::vector<Estimate> SpectrumFitter::exact_model(const std::vector<double>& par
         const auto stack = stack_at(at);
         std::vector<double> r;
         for (const double nm : wavelengths_nm_) {
-            const auto t = solve_biospec_adding_doubling(stack, nm, settings_.incidence_deg, options, &cache).totals;
-            r.push_back(t.diffuse_reflectance + (excluded ? 0.0 : t.specular_reflectance));
+            if (settings_.engine == FitEngine::biospec_adding_doubling) {
+                const auto t = solve_biospec_adding_doubling(stack, nm, settings_.incidence_deg, options, &cache).totals;
+                r.push_back(t.diffuse_reflectance + (excluded ? 0.0 : t.specular_reflectance));
+            } else {
+                const auto t = solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, settings_.incidence_deg}, options.ad, &cache);
+                r.push_back(t.diffuse_reflectance + (excluded ? 0.0 : t.specular_reflectance));
+            }
         }
         return r;
     };
@@ -423,13 +457,15 @@ SpectrumFit SpectrumFitter::fit(const std::string& name, const std::vector<doubl
         weighted_sq += weights_[w] * r * r;
     }
     fit.rms = std::sqrt(sum_sq / static_cast<double>(n));
-    if (settings_.engine == FitEngine::adding_doubling) {
+    if (!traces_rays(settings_.engine)) {
         // The quadrature's error is systematic: stated beside the residual it is part of (the spectrum command's check).
         SpectralRequest request;
         request.wavelengths = WavelengthGrid::list(wavelengths_nm_);
         request.incidence_deg = settings_.incidence_deg;
         request.geometry = settings_.geometry;
-        const auto checked = solve_biospec_adding_doubling_spectrum(stack_at(fit.parameters), request, exact_options(true));
+        const auto checked = settings_.engine == FitEngine::biospec_adding_doubling
+                                 ? solve_biospec_adding_doubling_spectrum(stack_at(fit.parameters), request, exact_options(true))
+                                 : solve_adding_doubling_spectrum(stack_at(fit.parameters), request, exact_options(true).ad);
         if (checked.stated_error) fit.model_accuracy = checked.stated_error->R;
     }
 

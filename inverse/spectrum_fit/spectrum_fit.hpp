@@ -33,14 +33,28 @@ struct WavelengthWeight {
     double from_nm, to_nm, weight;  // residuals at wavelengths in [from, to] count `weight` times
 };
 
-// How the fit evaluates the BioSpec model: re-weighting paths traced once (Monte Carlo, common random numbers), or the
-// model solved exactly at every evaluation (biospec-adding-doubling: no noise, no traced paths, any free field).
-enum class FitEngine { replayed_walk, adding_doubling };
+// How the fit evaluates the model: re-weighting the BioSpec walk's paths traced once (Monte Carlo, common random
+// numbers), or solved exactly at every evaluation, no noise, no traced paths, any free field: the BioSpec model
+// (biospec-adding-doubling) or the volumetric description (adding-doubling; e.g. with the layers' own measured
+// scattering, model.volumetric_matched_to_biospec = false).
+enum class FitEngine { replayed_walk, biospec_adding_doubling, adding_doubling };
+
+// The engines by the name --mode and Python's mode= take, declared once (help, parsing, messages, provenance).
+struct FitEngineChoice {
+    std::string_view name;
+    FitEngine engine;
+    std::string_view doc;
+};
+const std::vector<FitEngineChoice>& fit_engines();
+// InputError naming `origin` ("--mode", "mode") and the allowed names.
+FitEngine parse_fit_engine(std::string_view name, std::string_view origin);
+std::string_view to_string(FitEngine engine);
+inline bool traces_rays(FitEngine engine) { return engine == FitEngine::replayed_walk; }
 
 struct SpectrumFitSettings {
     std::vector<FitParameter> free;
     FitEngine engine = FitEngine::replayed_walk;
-    std::size_t channels = AdOptions{}.channels;  // adding_doubling: the quadrature (adding-doubling's default)
+    std::size_t channels = AdOptions{}.channels;  // exact engines: the quadrature (adding-doubling's default)
     double window_from_nm = 0.0;  // default: every given wavelength
     double window_to_nm = std::numeric_limits<double>::infinity();
     std::vector<WavelengthWeight> weights;
