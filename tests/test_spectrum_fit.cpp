@@ -60,7 +60,7 @@ TEST_CASE("the volumetric description is fitted too: spectra of the volumetric w
     }
     REQUIRE(fit.model_accuracy.has_value());
     CHECK(parse_fit_engine("adding-doubling", "--mode") == FitEngine::adding_doubling);
-    CHECK_THROWS_WITH(parse_fit_engine("rte", "--mode"), Catch::Contains("--mode: fit-spectrum fits with biospec, biospec-adding-doubling, adding-doubling, not 'rte'"));
+    CHECK_THROWS_WITH(parse_fit_engine("rte", "--mode"), Catch::Contains("--mode: 'rte' is not a fit mode (allowed: biospec, biospec-adding-doubling, adding-doubling)"));
 }
 
 TEST_CASE("fit round trip: spectra of the independent forward walk give back their parameters", "[spectrum_fit]") {

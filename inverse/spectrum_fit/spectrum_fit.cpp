@@ -58,7 +58,7 @@ FitEngine parse_fit_engine(std::string_view name, std::string_view origin) {
         if (e.name == name) return e.engine;
         allowed += (allowed.empty() ? "" : ", ") + std::string(e.name);
     }
-    throw InputError(std::string(origin) + ": fit-spectrum fits with " + allowed + ", not '" + std::string(name) + "'");
+    throw InputError(std::string(origin) + ": '" + std::string(name) + "' is not a fit mode (allowed: " + allowed + ")");
 }
 
 std::string_view to_string(FitEngine engine) {

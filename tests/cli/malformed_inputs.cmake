@@ -203,7 +203,7 @@ skinspec_malformed_input("a value no member has" 2 "--where: no member matches" 
 skinspec_malformed_input("a JSON sweep without a member chosen" 2 "sweep_two_members.json: the file holds 2 members of a sweep" - color sweep_two_members.json)
 skinspec_malformed_input("a JSON that is no spectral result" 2 "not a skinspec spectral result" - color not_a_result.json)
 # fit-spectrum --mode: the walk (replayed) or the exact model; the exact model traces no rays.
-skinspec_malformed_input("fit with a solver that is not the BioSpec model" 2 "--mode: fit-spectrum fits with biospec \\(the walk's paths, replayed\\) or biospec-adding-doubling \\(the model solved exactly\\), not 'dipole'" - fit-spectrum fit_short.csv --mode dipole)
+skinspec_malformed_input("fit with a solver that is not the BioSpec model" 2 "--mode: 'dipole' is not a fit mode \\(allowed: biospec, biospec-adding-doubling, adding-doubling\\)" - fit-spectrum fit_short.csv --mode dipole)
 skinspec_malformed_input("fit exactly with a ray count" 2 "--rays: --mode biospec-adding-doubling solves the model exactly at every evaluation and traces no rays" - fit-spectrum fit_short.csv --mode biospec-adding-doubling --rays 1000)
 skinspec_malformed_input("iad unreachable" 2 "1 of 2 measurements are unreachable \\(nothing written.*iad_unreachable.rxt:7: M_R = 0.01" "${out}/iad.csv" iad iad_unreachable.rxt --output ${out}/iad.csv)
 skinspec_malformed_input("iad reflectance over one" 2 "the options: M_R = 1.5 is outside \\[0, 1\\]" - iad -r 1.5 -t 0.1)

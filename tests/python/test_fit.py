@@ -63,7 +63,7 @@ def test_the_exact_model_fit_states_its_quadrature_accuracy(cli):
     (dict(bounds={"epidermis.melanosome_fraction": (0.2, 0.1)}), "lo < hi"),
     (dict(material="jensen2001-skin1"), "homogeneous"),
     (dict(names=["a", "b", "c"]), "3 given for 1 spectra"),
-    (dict(mode="rte"), "mode: fit_spectrum fits with"),
+    (dict(mode="rte"), r"mode: 'rte' is not a fit mode \(allowed: biospec, biospec-adding-doubling, adding-doubling\)"),
     (dict(mode="biospec-adding-doubling"), "rays: mode 'biospec-adding-doubling'"),
     (dict(channels=48), "channels: the quadrature"),
     (dict(mode="biospec-adding-doubling", rays=None, channels=2), r"channels = 2 is outside \[4, 256\]"),
