@@ -187,7 +187,7 @@ void add_spectrum_command(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     cmd->add_option("--quantities", o->quantities, "Comma list of R, T, A (absorptance per layer), brdf (angular)")->capture_default_str();
     cmd->add_option("--reflector", o->reflector,
-                    "Bottom: " + std::string(reflector_choices) + " (on: BioSpec's ideal reflector; off: light leaving the bottom is transmittance; "
+                    "Bottom: " + reflector_choices() + " (on: BioSpec's ideal reflector; off: light leaving the bottom is transmittance; "
                     "hypodermis: the measured hypodermis' reflectance, 374-1602 nm, what it keeps is T)");
     cmd->add_option("--variant", o->variant,
                     "Model variant: biospec (default), biospec-2004, biospec-authors-code (reproduces the authors' current code, "

@@ -444,13 +444,24 @@ toml::table homogeneous_table(const HomogeneousMaterial& m) {
 
 }  // namespace
 
+namespace {
+
+constexpr std::array<std::pair<std::string_view, BottomBoundary>, 3> reflector_values{
+    {{"on", BottomBoundary::diffuse_reflector}, {"off", BottomBoundary::exit}, {"hypodermis", BottomBoundary::hypodermis}}};
+
+}  // namespace
+
+std::string reflector_choices() {
+    std::string out;
+    for (const auto& [name, bottom] : reflector_values) out += (out.empty() ? "" : ", ") + std::string(name);
+    return out;
+}
+
 MaterialOverride reflector_override(std::string_view value, const std::string& origin) {
-    static constexpr std::array<std::pair<std::string_view, BottomBoundary>, 3> choices{
-        {{"on", BottomBoundary::diffuse_reflector}, {"off", BottomBoundary::exit}, {"hypodermis", BottomBoundary::hypodermis}}};
-    for (const auto& [name, bottom] : choices) {
+    for (const auto& [name, bottom] : reflector_values) {
         if (value == name) return {"bottom.boundary", std::string(to_string(bottom)), origin};
     }
-    throw InputError(origin + ": '" + std::string(value) + "' is not allowed (allowed: " + std::string(reflector_choices) + ")");
+    throw InputError(origin + ": '" + std::string(value) + "' is not allowed (allowed: " + reflector_choices() + ")");
 }
 
 MaterialOverride parse_override(std::string_view text) {

@@ -47,7 +47,8 @@ MaterialOverride parse_override(std::string_view text);
 // bottom) or hypodermis (the measured one), as the bottom.boundary override it stands for; InputError naming `origin`
 // and the allowed values otherwise.
 MaterialOverride reflector_override(std::string_view value, const std::string& origin);
-inline constexpr std::string_view reflector_choices = "on, off, hypodermis";
+// Its values as a list, "on, off, hypodermis" (help and messages).
+std::string reflector_choices();
 
 // Reads a material file and applies the overrides before validation.
 Material read_material(const std::filesystem::path& file, const std::vector<MaterialOverride>& overrides = {});

@@ -57,7 +57,7 @@ std::vector<MaterialOverride> option_overrides(const py::object& variant, const 
         return out;
     }
     if (!py::isinstance<py::str>(reflector)) {
-        throw InputError("reflector: must be True, False or one of " + std::string(reflector_choices) + " (got " + std::string(py::str(py::type::of(reflector).attr("__name__"))) + ")");
+        throw InputError("reflector: must be True, False or one of " + reflector_choices() + " (got " + std::string(py::str(py::type::of(reflector).attr("__name__"))) + ")");
     }
     out.push_back(reflector_override(reflector.cast<std::string>(), "reflector"));
     return out;

@@ -263,13 +263,10 @@ std::vector<Estimate> SpectrumFitter::exact_model(const std::vector<double>& par
         const auto stack = stack_at(at);
         std::vector<double> r;
         for (const double nm : wavelengths_nm_) {
-            if (settings_.engine == FitEngine::biospec_adding_doubling) {
-                const auto t = solve_biospec_adding_doubling(stack, nm, settings_.incidence_deg, options, &cache).totals;
-                r.push_back(t.diffuse_reflectance + (excluded ? 0.0 : t.specular_reflectance));
-            } else {
-                const auto t = solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, settings_.incidence_deg}, options.ad, &cache);
-                r.push_back(t.diffuse_reflectance + (excluded ? 0.0 : t.specular_reflectance));
-            }
+            const auto t = settings_.engine == FitEngine::biospec_adding_doubling
+                               ? solve_biospec_adding_doubling(stack, nm, settings_.incidence_deg, options, &cache).totals
+                               : solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, settings_.incidence_deg}, options.ad, &cache);
+            r.push_back(t.diffuse_reflectance + (excluded ? 0.0 : t.specular_reflectance));
         }
         return r;
     };

@@ -202,7 +202,7 @@ BiospecAdResult solve_biospec_adding_doubling(const LayerStack& stack, double wa
     // Authors' behaviour 3 off: light leaves the bottom with no Fresnel test (an index-matched exit).
     const double below = reflector || stack.model.bottom_exit_fresnel ? stack.below_refractive_index : optics.back().refractive_index;
     AdStackShape shape{stack.above_refractive_index, {}, {}, reflector, below, {}};
-    if (reflector) shape.bottom_reflectance = bottom_reflectance(stack, wavelength_nm);
+    shape.bottom_reflectance = bottom_reflectance(stack, wavelength_nm);
     for (const auto& o : optics) {
         shape.layer_indices.push_back(o.refractive_index);
         shape.absorbing.push_back(o.mu_a_per_cm != 0.0);

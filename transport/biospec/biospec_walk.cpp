@@ -203,7 +203,7 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
       n_above_(stack.above_refractive_index),
       n_below_(stack.below_refractive_index),
       reflector_(has_reflector(stack.bottom)),
-      reflector_reflectance_(reflector_ ? bottom_reflectance(stack, wavelength_nm) : 0.0),
+      reflector_reflectance_(bottom_reflectance(stack, wavelength_nm)),
       fold_sigma_(stack.fold_aspect_ratio),
       model_(stack.model),
       geometry_(geometry),

@@ -224,7 +224,7 @@ DiffusionMaterial diffusion_material(const LayerStack& stack, double wavelength_
     }
     const auto bottom = has_reflector(stack.bottom) ? DiffusionBottom::reflector : DiffusionBottom::open;
     return build(std::move(specs), stack.above_refractive_index, stack.below_refractive_index, bottom, false, options, incidence_deg,
-                 has_reflector(stack.bottom) ? bottom_reflectance(stack, wavelength_nm) : 1.0);
+                 bottom_reflectance(stack, wavelength_nm));
 }
 
 DiffusionMaterial diffusion_material(const HomogeneousMaterial& m, std::size_t band, const DiffusionOptions& options, double incidence_deg) {

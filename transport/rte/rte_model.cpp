@@ -22,7 +22,7 @@ RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
     out.above_refractive_index = stack.above_refractive_index;
     out.below_refractive_index = stack.below_refractive_index;
     out.bottom_reflector = has_reflector(stack.bottom);
-    if (out.bottom_reflector) out.bottom_reflectance = bottom_reflectance(stack, wavelength_nm);
+    out.bottom_reflectance = bottom_reflectance(stack, wavelength_nm);
     for (std::size_t k = 0; k < stack.layers.size(); ++k) {
         const auto o = stack.optics(k, wavelength_nm, OpticsScope{true, false});
         if (!o.mu_s_per_cm) {
