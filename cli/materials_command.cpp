@@ -57,14 +57,18 @@ void show_stack(const LayerStack& stack, const WavelengthGrid& grid, bool json) 
             const auto& l = stack.layers[k];
             Json layer{{"name", l.name}, {"thickness_cm", l.thickness_cm}, {"refractive_index", l.refractive_index},
                        {"scattering", std::string(to_string(optics.by_wavelength.front()[k].crossing))}};
-            std::vector<double> mu_a, rayleigh, reduced;
+            std::vector<double> mu_a, rayleigh, mie, reduced;
             for (const auto& row : optics.by_wavelength) {
                 mu_a.push_back(row[k].mu_a_per_cm);
                 rayleigh.push_back(row[k].rayleigh_per_cm);
+                mie.push_back(row[k].mie_reduced_per_cm);
                 if (row[k].mu_s_reduced_per_cm) reduced.push_back(*row[k].mu_s_reduced_per_cm);
             }
             layer["mu_a_per_cm"] = mu_a;
-            if (optics.by_wavelength.front()[k].crossing == CrossingScattering::rayleigh_cosine) layer["rayleigh_per_cm"] = rayleigh;
+            if (optics.by_wavelength.front()[k].crossing == CrossingScattering::rayleigh_cosine) {
+                layer["rayleigh_per_cm"] = rayleigh;
+                layer["mie_reduced_per_cm"] = mie;
+            }
             if (!reduced.empty()) layer["mu_s_reduced_per_cm"] = reduced;
             layers.push_back(layer);
         }
@@ -90,7 +94,7 @@ void show_stack(const LayerStack& stack, const WavelengthGrid& grid, bool json) 
     }
     const auto block = [&](const char* title, auto value) {
         std::cout << '\n' << title << '\n' << fmt::format("{:>13}", "wavelength_nm");
-        for (const auto& l : stack.layers) std::cout << fmt::format("{:>18}", l.name.substr(0, 17));
+        for (const auto& l : stack.layers) std::cout << fmt::format("{:>20}", l.name.substr(0, 19));
         std::cout << '\n';
         for (std::size_t w = 0; w < grid.size(); ++w) {
             std::cout << fmt::format("{:>13g}", grid[w]);
@@ -98,12 +102,14 @@ void show_stack(const LayerStack& stack, const WavelengthGrid& grid, bool json) 
             std::cout << '\n';
         }
     };
-    block("absorption coefficient mu_a [1/cm]", [](const LayerOptics& o) { return fmt::format("{:>18.5g}", o.mu_a_per_cm); });
-    block("scattering: Rayleigh coefficient beta [1/cm] (rayleigh_cosine layers) / reduced scattering mu_s' [1/cm]",
+    block("absorption coefficient mu_a [1/cm]", [](const LayerOptics& o) { return fmt::format("{:>20.5g}", o.mu_a_per_cm); });
+    block("scattering: turn coefficient [1/cm], Rayleigh beta + Mie mu_s' (rayleigh_cosine layers) / reduced scattering mu_s' [1/cm]",
           [](const LayerOptics& o) {
-              const auto beta = o.crossing == CrossingScattering::rayleigh_cosine ? fmt::format("{:.4g}", o.rayleigh_per_cm) : "-";
+              const auto beta = o.crossing != CrossingScattering::rayleigh_cosine ? std::string("-")
+                                : o.mie_reduced_per_cm > 0.0 ? fmt::format("{:.4g}+{:.3g}", o.rayleigh_per_cm, o.mie_reduced_per_cm)
+                                                             : fmt::format("{:.4g}", o.rayleigh_per_cm);
               const auto reduced = o.mu_s_reduced_per_cm ? fmt::format("{:.4g}", *o.mu_s_reduced_per_cm) : "-";
-              return fmt::format("{:>18}", beta + " / " + reduced);
+              return fmt::format("{:>20}", beta + " / " + reduced);
           });
 }
 

@@ -54,8 +54,11 @@ CrossingScattering crossing_in_effect(const TissueLayer& layer, const ModelOptio
 LayerOptics LayerStack::optics(std::size_t index, double wavelength_nm, OpticsScope scope) const {
     const auto& layer = layers.at(index);
     LayerOptics o{layer.thickness_cm, layer.refractive_index, absorption_per_cm(layer, wavelength_nm, model),
-                  crossing_in_effect(layer, model), layer.hg_g, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, nullptr};
-    if (o.crossing == CrossingScattering::rayleigh_cosine) o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
+                  crossing_in_effect(layer, model), layer.hg_g, 0.0, 0.0, std::nullopt, std::nullopt, std::nullopt, std::nullopt, nullptr};
+    if (o.crossing == CrossingScattering::rayleigh_cosine) {
+        o.rayleigh_per_cm = rayleigh_coefficient_per_cm(layer, wavelength_nm);
+        o.mie_reduced_per_cm = mie_reduced_scattering_per_cm(layer, wavelength_nm);
+    }
     const auto reduced = [&] {
         return layer.reduced->table.empty() ? power_law(layer.reduced->per_cm_at_500nm, layer.reduced->power, wavelength_nm)
                                             : per_cm_from_per_mm(reduced_scattering_table(layer.reduced->table)(wavelength_nm));

@@ -32,11 +32,15 @@ struct LayerOptics {
     CrossingScattering crossing;          // effective: rayleigh_cosine becomes cosine when Rayleigh is off
     double hg_g;                          // for henyey_greenstein crossings
     double rayleigh_per_cm;               // collagen Rayleigh coefficient (0 unless rayleigh_cosine)
+    double mie_reduced_per_cm;            // Mie reduced scattering of the turn test (0 unless rayleigh_cosine)
     std::optional<double> mu_s_per_cm;    // volumetric scattering, when described
     std::optional<PhaseFunctionKind> phase;
     std::optional<double> g;
     std::optional<double> mu_s_reduced_per_cm;  // reduced scattering, when described
     std::shared_ptr<const InverseCdfTable> phase_table;  // measured phases: the profile at this wavelength
+
+    // The coefficient of a rayleigh_cosine crossing's turn test: Rayleigh and Mie (tissue_layer.hpp).
+    double turn_per_cm() const { return rayleigh_per_cm + mie_reduced_per_cm; }
 };
 
 // Which optional descriptions to evaluate: a solver asks only for what it uses, so e.g. the BioSpec walk

@@ -67,6 +67,12 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
          ScatteringDescription::biospec, CrossingScattering::rayleigh_cosine},
         {"collagen_fibre_index", "1", refractive_index, &L::collagen_fibre_index, false, "collagen fibre refractive index", false, std::nullopt,
          ScatteringDescription::biospec, CrossingScattering::rayleigh_cosine},
+        {"mie_reduced_scattering_per_cm_at_500nm", "1/cm", non_negative, &L::mie_reduced_scattering_per_cm_at_500nm, false,
+         "dermal layers: reduced scattering beyond the Rayleigh regime at 500 nm, a in a (l / 500 nm)^-b, added to the turn test (0: BioSpec, Rayleigh only)",
+         false, std::nullopt, ScatteringDescription::biospec, CrossingScattering::rayleigh_cosine},
+        {"mie_reduced_scattering_power", "1", power_law_exponent, &L::mie_reduced_scattering_power, false,
+         "dermal layers: power-law exponent b of the Mie reduced scattering", false, std::nullopt, ScatteringDescription::biospec,
+         CrossingScattering::rayleigh_cosine},
     };
     return fields;
 }

@@ -168,6 +168,11 @@ double sphere_packaging_factor(double mu_per_cm, double radius_um) {
     return 1.5 * efficiency / x;
 }
 
+double mie_reduced_scattering_per_cm(const TissueLayer& layer, double wavelength_nm) {
+    if (layer.mie_reduced_scattering_per_cm_at_500nm == 0.0) return 0.0;
+    return layer.mie_reduced_scattering_per_cm_at_500nm * std::pow(wavelength_nm / 500.0, -layer.mie_reduced_scattering_power);
+}
+
 double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_nm) {
     constexpr double pi = std::numbers::pi;
     constexpr double cm_per_nm = 1e-7;

@@ -85,6 +85,10 @@ struct TissueLayer {
     double collagen_fibre_fraction = 0.21;     // for rayleigh_cosine
     double collagen_fibre_radius_nm = 25.0;
     double collagen_fibre_index = 1.5;
+    // Dermal scattering by structures beyond the Rayleigh regime (fibre bundles, cells; "Mie"), as a reduced
+    // coefficient a (lambda / 500 nm)^-b added to the turn test of rayleigh_cosine crossings; 0: BioSpec (Rayleigh only).
+    double mie_reduced_scattering_per_cm_at_500nm = 0.0;
+    double mie_reduced_scattering_power = 0.678;  // the measured dermis' tail, 500-1610 nm (data/tissue/salomatina_dermis.csv)
     std::optional<VolumetricScattering> volumetric;
     std::optional<ReducedScattering> reduced;
 
@@ -106,6 +110,12 @@ double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const M
 //   beta = 8 pi^3 (eta^2 - 1)^2 / (3 N lambda^4), eta = n_fibre / n_layer, N = f / (4/3 pi r^3),
 // with lambda and r in cm.
 double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_nm);
+
+// The layer's Mie reduced scattering [1/cm], a (lambda / 500 nm)^-b (Jacques 2013, Phys Med Biol 58:R37, Eq. 1). It
+// enters the turn test of a rayleigh_cosine crossing beside the Rayleigh coefficient, and a turn it causes takes the
+// Rayleigh turn's direction: by the similarity relation (ibid., Eq. 2) a forward-peaked phase of coefficient mu_s acts
+// as mu_s' = mu_s (1 - g) with a phase of mean cosine 0, which the Rayleigh phase is.
+double mie_reduced_scattering_per_cm(const TissueLayer& layer, double wavelength_nm);
 
 // The packaging factor C above for whole-blood absorption mu_blood [1/cm] and vessel radius [um]; 1 at radius 0.
 double vessel_packaging_factor(double mu_blood_per_cm, double vessel_radius_um);

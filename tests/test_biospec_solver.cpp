@@ -495,43 +495,49 @@ TEST_CASE("behaviour 4: a reversing SC perturbation leaves as reflectance, unabs
 
 TEST_CASE("Rayleigh turn rules: sampled depth, whole crossing, no absorption against their integrals", "[biospec_solver][rayleigh]") {
     // An index-matched dermal slab (n 1, Rayleigh by collagen + cosine), normal incidence, reflector off: light comes
-    // back only from rays Rayleigh-scattered upward on their first crossing. With beta the Rayleigh coefficient,
-    // mu the absorption, d the thickness and p(c) = 3/8 (1 + c^2) the phase function (c = cos of the new direction):
+    // back only from rays turned upward on their first crossing. With beta the turn coefficient (Rayleigh, plus the
+    // Mie reduced scattering when set), mu the absorption, d the thickness and p(c) = 3/8 (1 + c^2) the phase function
+    // (c = cos of the new direction):
     //   sampled depth:  R = int_0^d beta e^-(beta + mu) z int_{-1}^0 p(c) e^(-mu z / |c|) dc dz
     //   whole crossing: R = (1 - e^-beta d) int_{-1}^0 p(c) e^(-mu d / |c|) dc
     //   no absorption:  R = (1 - e^-beta d) / 2
-    auto stack = single_layer(CrossingScattering::rayleigh_cosine, 1.0, 0.02);
-    stack.layers[0].blood_fraction = 0.1;
-    const double nm = 500.0;
-    const double beta = rayleigh_coefficient_per_cm(stack.layers[0], nm);
-    const double mu = absorption_per_cm(stack.layers[0], nm, stack.model);
-    const double d = 0.02;
-    REQUIRE(beta * d > 0.3);
-    REQUIRE(mu * d > 0.1);
-    constexpr int nz = 2000, nc = 2000;
-    const auto up = [&](double depth) {
-        double s = 0.0;
-        for (int j = 0; j < nc; ++j) {
-            const double c = (j + 0.5) / nc;  // |cos|
-            s += 0.375 * (1.0 + c * c) * std::exp(-mu * depth / c) / nc;
+    // Rayleigh alone at 500 nm; at 1600 nm Rayleigh is 1/105 of that and the Mie part, a (lambda / 500)^-b, turns.
+    for (const auto& [nm, mie_at_500nm] : std::vector<std::pair<double, double>>{{500.0, 0.0}, {1600.0, 60.0}}) {
+        auto stack = single_layer(CrossingScattering::rayleigh_cosine, 1.0, 0.02);
+        stack.layers[0].blood_fraction = 0.1;
+        stack.layers[0].water_fraction = 0.9;  // the absorber at 1600 nm
+        stack.layers[0].mie_reduced_scattering_per_cm_at_500nm = mie_at_500nm;
+        const double beta = rayleigh_coefficient_per_cm(stack.layers[0], nm) +
+                            mie_at_500nm * std::pow(nm / 500.0, -stack.layers[0].mie_reduced_scattering_power);
+        const double mu = absorption_per_cm(stack.layers[0], nm, stack.model);
+        const double d = 0.02;
+        REQUIRE(beta * d > 0.3);
+        REQUIRE(mu * d > 0.1);
+        constexpr int nz = 2000, nc = 2000;
+        const auto up = [&](double depth) {
+            double s = 0.0;
+            for (int j = 0; j < nc; ++j) {
+                const double c = (j + 0.5) / nc;  // |cos|
+                s += 0.375 * (1.0 + c * c) * std::exp(-mu * depth / c) / nc;
+            }
+            return s;
+        };
+        double sampled = 0.0;
+        for (int i = 0; i < nz; ++i) {
+            const double z = d * (i + 0.5) / nz;
+            sampled += beta * std::exp(-(beta + mu) * z) * up(z) * d / nz;
         }
-        return s;
-    };
-    double sampled = 0.0;
-    for (int i = 0; i < nz; ++i) {
-        const double z = d * (i + 0.5) / nz;
-        sampled += beta * std::exp(-(beta + mu) * z) * up(z) * d / nz;
-    }
-    const double hit = 1.0 - std::exp(-beta * d);
-    const std::vector<std::pair<RayleighTurn, double>> rules{
-        {RayleighTurn::sampled_depth, sampled}, {RayleighTurn::whole_crossing, hit * up(d)}, {RayleighTurn::no_absorption, hit * 0.5}};
-    for (const auto& [rule, expected] : rules) {
-        INFO(to_string(rule) << ": expected " << expected);
-        stack.model.rayleigh_turn = rule;
-        const auto w = solve_biospec(stack, all_quantities({nm}, 400'000)).wavelengths.front();
-        INFO("got " << w.reflectance.value << " +- " << w.reflectance.stderr << " T " << w.transmittance.value);
-        CHECK(within(w.reflectance, expected, 4.0, 1e-4));
-        CHECK(energy(w) == Approx(1.0).margin(1e-12));
+        const double hit = 1.0 - std::exp(-beta * d);
+        const std::vector<std::pair<RayleighTurn, double>> rules{
+            {RayleighTurn::sampled_depth, sampled}, {RayleighTurn::whole_crossing, hit * up(d)}, {RayleighTurn::no_absorption, hit * 0.5}};
+        for (const auto& [rule, expected] : rules) {
+            INFO(nm << " nm, Mie " << mie_at_500nm << " /cm at 500 nm, " << to_string(rule) << ": expected " << expected);
+            stack.model.rayleigh_turn = rule;
+            const auto w = solve_biospec(stack, all_quantities({nm}, 400'000)).wavelengths.front();
+            INFO("got " << w.reflectance.value << " +- " << w.reflectance.stderr << " T " << w.transmittance.value);
+            CHECK(within(w.reflectance, expected, 4.0, 1e-4));
+            CHECK(energy(w) == Approx(1.0).margin(1e-12));
+        }
     }
 }
 

@@ -53,6 +53,25 @@ TEST_CASE("the 2004 variant turns Rayleigh into cosine and drops ln 10 and the b
     CHECK(o.mu_a_per_cm < corrected / 2.0);
 }
 
+TEST_CASE("the dermal Mie part joins the turn test: a (lambda / 500)^-b, off by default, alone without collagen", "[layer_stack]") {
+    auto stack = preset("forearm-nist2017-p50");
+    const double rayleigh = stack.optics(3, 1600.0).rayleigh_per_cm;
+    CHECK(stack.optics(3, 1600.0).mie_reduced_per_cm == 0.0);
+    stack.layers[3].mie_reduced_scattering_per_cm_at_500nm = 20.0;
+    stack.layers[3].mie_reduced_scattering_power = 0.7;
+    const auto o = stack.optics(3, 1600.0);
+    CHECK(o.rayleigh_per_cm == rayleigh);
+    CHECK(o.mie_reduced_per_cm == Approx(20.0 * std::pow(3.2, -0.7)));
+    CHECK(o.turn_per_cm() == Approx(rayleigh + o.mie_reduced_per_cm));
+    stack.layers[3].collagen_fibre_fraction = 0.0;
+    const auto no_collagen = stack.optics(3, 1600.0);
+    CHECK(no_collagen.rayleigh_per_cm == 0.0);
+    CHECK(no_collagen.turn_per_cm() == Approx(o.mie_reduced_per_cm));
+    stack.model.dermal_rayleigh = false;  // the 2004 model's cosine crossings: no turn test to join (the field is refused)
+    CHECK(stack.optics(3, 1600.0).crossing == CrossingScattering::cosine);
+    CHECK(stack.optics(3, 1600.0).turn_per_cm() == 0.0);
+}
+
 TEST_CASE("volumetric scattering follows its power law", "[layer_stack]") {
     auto stack = preset("biospec-lightly");
     stack.layers[3].volumetric = VolumetricScattering{200.0, 1.0, PhaseFunctionKind::henyey_greenstein, 0.8};

@@ -78,7 +78,7 @@ AdElement perturbing_layer(const AdChannels& c, const LayerOptics& o, const AdCa
 AdElement dermal_layer(const AdChannels& c, const LayerOptics& o, RayleighTurn turn) {
     const auto l = live_channels(c, o.refractive_index);
     const std::size_t m = l.index.size();
-    const double d = o.thickness_cm, mu_a = o.mu_a_per_cm, beta = o.rayleigh_per_cm;
+    const double d = o.thickness_cm, mu_a = o.mu_a_per_cm, beta = o.turn_per_cm();
     auto out = empty_layer(c);
     out.r_up = AdMatrix::Zero(out.r.rows(), out.r.cols());
     out.t_up = AdMatrix::Zero(out.r.rows(), out.r.cols());

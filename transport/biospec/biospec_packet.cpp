@@ -36,7 +36,7 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         table_offsets{model.table_offset.data(), permute}, table_offsets_upper{model.table_offset_upper.data(), permute},
         table_sizes{model.table_size.data(), permute};
     const PerLayer<DF> thicknesses{model.thickness_cm.data(), permute}, hg{model.hg_g.data(), permute},
-        table_weights{model.table_upper_weight.data(), permute}, rayleigh_mfp{model.rayleigh_mean_free_path_cm.data(), permute},
+        table_weights{model.table_upper_weight.data(), permute}, rayleigh_mfp{model.turn_mean_free_path_cm.data(), permute},
         eta_down{model.eta_down.data(), permute}, eta_up{model.eta_up.data(), permute}, inverse_eta_down{model.inverse_eta_down.data(), permute},
         inverse_eta_up{model.inverse_eta_up.data(), permute};
     const PerLayer<DF> mu_a_first{model.mu_a_per_cm.data(), permute}, mu_a_bound{model.mu_a_bound_per_cm.data(), permute};
@@ -312,7 +312,7 @@ double biospec_set_margin(std::size_t set_stride, const double* limit, const dou
 void BiospecPacketModel::pad() {
     layer_stride = (static_cast<std::size_t>(layers) + widest_vector - 1) / widest_vector * widest_vector;
     for (auto* v : {&scattering, &redraw, &table_offset, &table_offset_upper, &table_size}) v->resize(layer_stride, 0);
-    for (auto* v : {&thickness_cm, &eta_down, &eta_up, &inverse_eta_down, &inverse_eta_up, &rayleigh_mean_free_path_cm, &hg_g, &table_upper_weight,
+    for (auto* v : {&thickness_cm, &eta_down, &eta_up, &inverse_eta_down, &inverse_eta_up, &turn_mean_free_path_cm, &hg_g, &table_upper_weight,
                     &mu_a_per_cm, &mu_a_bound_per_cm}) {
         v->resize(layer_stride, 0.0f);
     }

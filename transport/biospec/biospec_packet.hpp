@@ -48,7 +48,7 @@ struct BiospecPacketModel {
     std::vector<std::int32_t> table_size;
     std::vector<float> table_upper_weight;
     std::vector<float> thickness_cm, hg_g;
-    std::vector<float> rayleigh_mean_free_path_cm;  // 1 / the Rayleigh coefficient (inf without Rayleigh)
+    std::vector<float> turn_mean_free_path_cm;  // 1 / the turn coefficient, Rayleigh + Mie (inf without a turn)
     // n_from / n_to at the interface a downward (upward) crossing meets, and n_to / n_from; with
     // model.swapped_upward_indices the upward ones have the indices swapped (authors' behaviour 1).
     std::vector<float> eta_down, eta_up, inverse_eta_down, inverse_eta_up;

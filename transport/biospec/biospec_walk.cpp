@@ -257,8 +257,8 @@ BiospecWavelength::BiospecWavelength(const LayerStack& stack, double wavelength_
             m.table_size.push_back(1);
         }
         m.thickness_cm.push_back(static_cast<float>(o.thickness_cm));
-        m.rayleigh_mean_free_path_cm.push_back(o.rayleigh_per_cm > 0.0 ? static_cast<float>(1.0 / o.rayleigh_per_cm)
-                                                                        : std::numeric_limits<float>::infinity());
+        m.turn_mean_free_path_cm.push_back(o.turn_per_cm() > 0.0 ? static_cast<float>(1.0 / o.turn_per_cm())
+                                                                      : std::numeric_limits<float>::infinity());
         m.hg_g.push_back(static_cast<float>(o.hg_g));
         n.push_back(o.refractive_index);
     }
