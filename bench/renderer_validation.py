@@ -2,7 +2,7 @@
 """The exported skin rendered in a measurement scene by pbrt-v4 or Mitsuba 3, beside `skinspec spectrum --mode rte`.
 
     python3 bench/renderer_validation.py --pbrt /path/to/pbrt [--skinspec build/skinspec] [--preset biospec-moderately]
-        [--set KEY=VALUE ...] [--buckets 360:830:10] [--pixels 32] [--spp 1024] [--threads 2] [--seed 1] [--rgb]
+        [--set KEY=VALUE ...] [--buckets 360:830:10] [--pixels 32] [--spp 1024] [--threads 2] [--seed 1] [--rgb | --rgb-only]
     python3 bench/renderer_validation.py --mitsuba /path/to/mitsuba | --mitsuba-scenes-only [--mitsuba-source DIR] ...
     python3 bench/renderer_validation.py --mitsuba-read --workdir DIR ...   (renders made elsewhere)
 
@@ -299,6 +299,7 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--rte-stderr", type=float, default=0.0005)
     parser.add_argument("--rgb", action="store_true", help="pbrt: also the --rgb export against the spectral one")
+    parser.add_argument("--rgb-only", action="store_true", help="pbrt: only the --rgb export against the spectral one")
     parser.add_argument("--workdir", type=pathlib.Path)
     args = parser.parse_args()
     if args.mitsuba_read and not args.workdir:
@@ -307,8 +308,9 @@ def main():
     work.mkdir(parents=True, exist_ok=True)
     bands = Bands(args.buckets)
     if args.pbrt:
-        pbrt_spectral(args, bands, work)
-        if args.rgb:
+        if not args.rgb_only:
+            pbrt_spectral(args, bands, work)
+        if args.rgb or args.rgb_only:
             pbrt_rgb(args, work)
     elif args.mitsuba_read:
         mitsuba_compare(args, bands, work, json.loads((work / "export.json").read_text()))

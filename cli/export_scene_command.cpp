@@ -84,6 +84,15 @@ void run_export_scene(const SceneOptions& o, SceneRenderer renderer) {
                              media.bottom_reflector ? "Lambertian reflector (R = 1)" : "exit into index " + format_number(media.below_refractive_index),
                              exported.read_back_difference);
     if (media.rgb && !rgb_caveat(renderer).empty()) std::cout << "RGB: " << rgb_caveat(renderer) << '\n';
+    if (exported.rgb_match) {
+        const auto& m = *exported.rgb_match;
+        std::cout << fmt::format("RGB match: sigma_a x {:.4f} / {:.4f} / {:.4f} (R / G / B); the slab's linear sRGB under D65 as pbrt-v4 renders "
+                                 "the media {:.4f} / {:.4f} / {:.4f}, the spectral media's {:.4f} / {:.4f} / {:.4f} (largest relative difference "
+                                 "{:.1e}; unmatched {:.4f} / {:.4f} / {:.4f}; adding-doubling, {} channels)\n",
+                                 m.absorption_factors[0], m.absorption_factors[1], m.absorption_factors[2], m.matched_srgb[0], m.matched_srgb[1],
+                                 m.matched_srgb[2], m.spectral_srgb[0], m.spectral_srgb[1], m.spectral_srgb[2], m.largest_relative_difference,
+                                 m.point_srgb[0], m.point_srgb[1], m.point_srgb[2], pbrt_rgb_match_channels);
+    }
     std::cout << fmt::format("phase functions as written (at {} nm, not spectral in the renderer): R {:+.4f} against the material's own "
                              "description at {} nm, the largest difference (adding-doubling, {} channels, both)\n",
                              format_number(media.phase_wavelength_nm), exported.phase_error.largest_R_difference, format_number(exported.phase_error.at_nm),
@@ -107,7 +116,7 @@ void add_scene_command(CLI::App& exporter, SceneRenderer renderer) {
                                                                         : "The layered skin as Mitsuba 3 media in a lit-slab scene (.xml and .spd files)");
     add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     cmd->add_option("--wavelengths", o->wavelengths, "Spectral media at these wavelengths (nm), one .spd file per layer and coefficient")->capture_default_str();
-    cmd->add_option("--rgb", o->rgb, "RGB media instead: three wavelengths (nm) whose coefficients are taken as R, G, B, e.g. 650,550,450");
+    cmd->add_option("--rgb", o->rgb, "RGB media instead: three wavelengths (nm) whose coefficients are taken as R, G, B, e.g. 650,550,450 (pbrt: the absorption then scaled per channel so that pbrt-v4's smooth spectra of it give the spectral media's colour)");
     cmd->add_option("--phase", o->phase, pbrt ? "hg (default: pbrt-v4 media take HG only; measured phases as HG of their mean cosine) or own"
                                               : "own (default: HG, isotropic, measured phases as tabphase) or hg (every layer HG of its mean cosine)");
     cmd->add_option("--phase-wavelength", o->phase_wavelength_nm, "Wavelength (nm) of the phase functions (neither renderer's are spectral)")->capture_default_str();

@@ -141,10 +141,12 @@ PhaseExport default_phase_export(SceneRenderer renderer) { return renderer == Sc
 
 std::string_view rgb_caveat(SceneRenderer renderer) {
     // pbrt-v4 renders spectrally: an "rgb" coefficient becomes its RGBUnboundedSpectrum, a smooth spectrum through the
-    // three values, not the skin's (issue 37's render of this export: red 0.32 against the spectral export's 0.354).
+    // three values, not the skin's (issue 37's render of the unmatched coefficients: red 0.32 against the spectral
+    // export's 0.354); the absorption is therefore matched (formats/pbrt_rgb_match.hpp).
     if (renderer == SceneRenderer::pbrt) {
-        return "pbrt-v4 renders spectrally and turns each RGB coefficient into a smooth spectrum of its own (RGBUnboundedSpectrum), "
-               "not the skin's: its colours differ from the spectral export's (red 10 % low when measured); use the spectral export for pbrt-v4";
+        return "pbrt-v4 renders spectrally and turns each RGB coefficient into a smooth spectrum of its own (RGBUnboundedSpectrum): the "
+               "absorption coefficients are scaled per channel so that the slab's colour under D65 is the spectral export's (rgb_match); "
+               "its spectrum R(lambda) is still not the skin's: use the spectral export for spectral work";
     }
     return "";
 }
@@ -160,6 +162,12 @@ SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, S
         if (std::filesystem::exists(out.files[i]) && !overwrite) throw InputError(out.files[i].string() + " exists (use --overwrite to replace it)");
         OutputClaims::claim(out.files[i], overwrite);
     }
+    // The statements below are about the coefficients at the exported wavelengths (the point media).
+    const RendererMedia point = out.media;
+    if (pbrt && request.rgb) {
+        out.rgb_match = match_pbrt_rgb(stack, request, point);
+        out.media = out.rgb_match->media;
+    }
     if (pbrt) write_pbrt_scene(out.media, scene);
     else write_mitsuba_scene(out.media, scene);
     const auto back = pbrt ? read_pbrt_scene(scene, out.media.above_refractive_index) : read_mitsuba_scene(scene);
@@ -171,10 +179,10 @@ SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, S
     // The description's R at every exported wavelength: the reference of both statements.
     AdCache cache;
     std::vector<double> described;
-    for (const double nm : out.media.wavelengths_nm) described.push_back(volumetric_reflectance(rte_stack_from(stack, nm), cache));
-    out.phase_error = phase_approximation_error(stack, out.media, described, cache);
+    for (const double nm : point.wavelengths_nm) described.push_back(volumetric_reflectance(rte_stack_from(stack, nm), cache));
+    out.phase_error = phase_approximation_error(stack, point, described, cache);
     try {
-        out.description_gap = description_gap(stack, out.media.wavelengths_nm, described, cache);
+        out.description_gap = description_gap(stack, point.wavelengths_nm, described, cache);
     } catch (const InputError& e) {
         out.description_gap_why_not = e.what();  // e.g. an authors'-code variant biospec-adding-doubling does not model
     }
@@ -195,6 +203,21 @@ nlohmann::ordered_json description_gap_json(const SceneExport& exported) {
                                     "(what `skinspec spectrum` solves by default), both exact (adding-doubling, biospec-adding-doubling; {} "
                                     "channels), per wavelength, then the largest with the two solutions' stated accuracy there, and their colours' CIEDE2000 (D65, 2 degrees)",
                                     phase_error_channels)}};
+}
+
+nlohmann::ordered_json rgb_match_json(const SceneExport& exported) {
+    if (!exported.rgb_match) return nullptr;
+    const auto& m = *exported.rgb_match;
+    return {{"absorption_factors", m.absorption_factors},
+            {"spectral_srgb", m.spectral_srgb},
+            {"matched_srgb", m.matched_srgb},
+            {"unmatched_srgb", m.point_srgb},
+            {"largest_relative_difference", m.largest_relative_difference},
+            {"meaning", fmt::format("sigma_a's R, G, B are the coefficients at the three wavelengths times absorption_factors, chosen so that the "
+                                    "slab's linear sRGB (D65, CIE 1931; R at normal incidence with the first surface) with pbrt-v4's smooth "
+                                    "spectra of the RGB media (Jakob & Hanika 2019, scaled as RGBUnboundedSpectrum) equals the spectral media's "
+                                    "({} nm); both by adding-doubling ({} channels). unmatched_srgb: the coefficients at the three wavelengths as pbrt-v4 renders them",
+                                    pbrt_rgb_match_wavelengths, pbrt_rgb_match_channels)}};
 }
 
 }  // namespace
@@ -239,7 +262,8 @@ nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRende
                                                              "adding-doubling ({} channels): the phase functions as the renderer takes them, "
                                                              "at {} nm, in place of each layer's own at each wavelength",
                                                              phase_error_channels, format_number(media.phase_wavelength_nm))}}},
-            {"description_gap", description_gap_json(exported)}};
+            {"description_gap", description_gap_json(exported)},
+            {"rgb_match", rgb_match_json(exported)}};
 }
 
 }  // namespace skinspec

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "formats/pbrt_rgb_match.hpp"
 #include "formats/renderer_media.hpp"
 
 namespace skinspec {
@@ -57,6 +58,7 @@ struct SceneExport {
     PhaseApproximationError phase_error;
     std::optional<DescriptionGap> description_gap;
     std::string description_gap_why_not;  // when description_gap is unset
+    std::optional<PbrtRgbMatch> rgb_match;  // pbrt-v4's RGB media: their absorption matched to the spectral media's colour
 };
 
 // Writes `stack` as `renderer`'s scene at `scene` and reads it back. InputError, before anything is written, for a

@@ -116,7 +116,8 @@ const std::string scene_doc = std::string(R"doc(
 
     material: a skinspec.Material, preset name or .toml path (layered); output: the scene file; wavelengths: spectral
     media at these wavelengths in nm (default )doc") + std::string(renderer_sampled_wavelengths) + R"doc(, what the renderers sample; one .spd file per layer and
-    coefficient beside the scene) or rgb: three wavelengths whose coefficients are taken as R, G, B (e.g. [650, 550, 450]); phase: "hg" or
+    coefficient beside the scene) or rgb: three wavelengths whose coefficients are taken as R, G, B (e.g. [650, 550, 450]; for pbrt-v4
+    the absorption then scaled per channel to the spectral media's colour, rgb_match); phase: "hg" or
     "own"; phase_wavelength: the wavelength (nm) of the phase functions; overwrite: replace existing files. The
     files are read back after writing (read_back_largest_relative_difference). Returns the dict `--json` prints:
     files, wavelengths_nm and per layer thickness_mm, refractive_index, sigma_a_per_mm and sigma_s_per_mm (numpy, one
