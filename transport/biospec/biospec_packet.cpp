@@ -36,7 +36,7 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
         table_offsets{model.table_offset.data(), permute}, table_offsets_upper{model.table_offset_upper.data(), permute},
         table_sizes{model.table_size.data(), permute};
     const PerLayer<DF> thicknesses{model.thickness_cm.data(), permute}, hg{model.hg_g.data(), permute},
-        table_weights{model.table_upper_weight.data(), permute}, rayleigh_mfp{model.turn_mean_free_path_cm.data(), permute},
+        table_weights{model.table_upper_weight.data(), permute}, turn_mfp{model.turn_mean_free_path_cm.data(), permute},
         eta_down{model.eta_down.data(), permute}, eta_up{model.eta_up.data(), permute}, inverse_eta_down{model.inverse_eta_down.data(), permute},
         inverse_eta_up{model.inverse_eta_up.data(), permute};
     const PerLayer<DF> mu_a_first{model.mu_a_per_cm.data(), permute}, mu_a_bound{model.mu_a_bound_per_cm.data(), permute};
@@ -92,14 +92,15 @@ std::uint64_t StepImpl(const BiospecPacketModel& model, BiospecPacket& p) {
             }
         };
         const VF u = random.uniform();
-        // ... the Rayleigh test of a downward crossing and its angle: a free path s = -ln(1 - u) / beta that ends
-        // inside the layer (s |cos_in| < d, probability 1 - exp(-beta d / |cos_in|)) turns the ray ...
+        // ... the Rayleigh test of a downward crossing and its angle: a free path s = -ln(1 - u) / beta (beta the turn
+        // coefficient, Rayleigh plus any Mie part) that ends inside the layer (s |cos_in| < d, probability
+        // 1 - exp(-beta d / |cos_in|)) turns the ray ...
         const VF cos_in = hn::Max(hn::Abs(dz), tiny_cos);
         const MF rayleigh_test = hn::And(is_rayleigh, was_down);
         MF rayleigh_turn = none;
         VF free_path_cm = zero;
         if (!hn::AllFalse(df, rayleigh_test)) {
-            free_path_cm = hn::Mul(hn::Neg(hn::Log1p(df, hn::Neg(u))), rayleigh_mfp.at(k));
+            free_path_cm = hn::Mul(hn::Neg(hn::Log1p(df, hn::Neg(u))), turn_mfp.at(k));
             rayleigh_turn = hn::And(rayleigh_test, hn::Mul(free_path_cm, cos_in) < thickness);
         }
         const VF u2 = random.uniform(is_rayleigh);
