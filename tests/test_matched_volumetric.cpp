@@ -81,12 +81,14 @@ TEST_CASE("the volumetric walk on the derived description states its miss of the
 }
 
 // Its defining property at the channels of the match, where the thin layers must help (heavily pigmented skin in the
-// red) included; a continuous description there: R_d moves smoothly from one wavelength to the next.
+// red) included; a continuous description there: the thin layers' factor grows steadily, and the dermal factor is
+// where R_d is least (the least change of the thin layers that lets a dermal factor reach) and moves smoothly with the
+// wavelength (before, the thin factor located to 1/256 of its range moved it by up to 26 % between 680 and 690 nm).
 TEST_CASE("adding-doubling on the derived description has the BioSpec model's diffuse reflectance", "[matched_volumetric]") {
     const auto stack = matched("biospec-heavily");
     const AdOptions ad{matched_volumetric_channels, false};
-    double previous_scale = 0.0;
-    for (const double nm : {600.0, 640.0, 660.0, 680.0, 700.0}) {
+    double previous_scale = 0.0, previous_dermal = 0.0;
+    for (const double nm : {600.0, 640.0, 650.0, 660.0, 670.0, 680.0, 690.0, 700.0}) {
         const auto tables = [&] {
             auto own = stack;
             own.model.volumetric_matched_to_biospec = false;
@@ -98,6 +100,17 @@ TEST_CASE("adding-doubling on the derived description has the BioSpec model's di
         CHECK(m.residual == 0.0);
         CHECK(solve_adding_doubling(m.stack, AdIncidence{}, ad).diffuse_reflectance == Approx(target).margin(1e-6));
         CHECK(m.thin_scale >= previous_scale);  // grows steadily where the dermis alone cannot match
+        if (m.thin_scale > 1.0) {
+            const auto dermal_scaled = [&](double factor) {
+                auto s = m.stack;
+                for (std::size_t k = 2; k < s.layers.size(); ++k) s.layers[k].mu_s_per_cm *= factor;  // papillary, reticular
+                return solve_adding_doubling(s, AdIncidence{}, ad).diffuse_reflectance;
+            };
+            CHECK(dermal_scaled(1.02) >= target - 1e-7);
+            CHECK(dermal_scaled(1.0 / 1.02) >= target - 1e-7);
+            if (previous_dermal > 0.0) CHECK(std::abs(std::log(m.dermal_scale / previous_dermal)) < 0.05);
+            previous_dermal = m.dermal_scale;
+        }
         previous_scale = m.thin_scale;
     }
     CHECK(previous_scale > 1.0);

@@ -20,9 +20,12 @@ constexpr int max_refinements = 60;
 // Golden-section steps where no factor reaches (the bracket shrinks to 0.618^15 = 2e-3 of its 4 ln 2: R_d is flat at
 // its minimum, so the closest R_d is found to ~1e-6; 30 steps changed R by at most 5e-6 and took 1.6-1.9x the time).
 constexpr int golden_steps = 15;
-// The thin layers' mu_s d may move from 1 by up to a factor 4 where the dermis alone cannot match, located to 2 ln 2 / 2^8 in ln.
+// The thin layers' mu_s d may move from 1 by up to a factor 4 where the dermis alone cannot match.
 constexpr double max_log_thin_change = 2.0 * std::numbers::ln2;
-constexpr int thin_refinements = 8;
+// The closest dermal factor at a given thin-layer change: bracketed by steps growing from this one (in ln(scale)) away
+// from the last change's, then located to 1e-3 in ln by Brent's method (R_d is flat there: its value then to ~1e-8).
+constexpr double first_bracket_step = 0.05;
+constexpr double extremum_tolerance = 1e-3;
 
 struct DermalMatch {
     double log_scale = 0.0;
@@ -105,6 +108,96 @@ DermalMatch match_dermis(const Miss& miss) {
     return best;
 }
 
+struct Extremum {
+    double log_scale = 0.0;
+    double value = 0.0;
+};
+
+// The least of `f` on [a, b], where `inner` (with value `f_inner`) lies inside and below both ends' values, located to
+// `tolerance`: Brent's method (Brent 1973, "Algorithms for Minimization without Derivatives", Ch. 5), successive
+// parabolic interpolation through the three best points, a golden-section step wherever the parabola's step is not
+// trusted. `f` is smooth here, so it converges superlinearly.
+template <class F>
+Extremum brent_minimum(const F& f, double a, double b, Extremum inner, double tolerance) {
+    const double golden = 0.5 * (3.0 - std::sqrt(5.0));
+    double x = inner.log_scale, w = x, v = x;
+    double fx = inner.value, fw = fx, fv = fx;
+    double step = 0.0, previous_step = 0.0;
+    for (;;) {
+        const double middle = 0.5 * (a + b);
+        if (std::abs(x - middle) <= 2.0 * tolerance - 0.5 * (b - a)) break;
+        bool parabolic = false;
+        if (std::abs(previous_step) > tolerance) {
+            const double r = (x - w) * (fx - fv);
+            double q = (x - v) * (fx - fw);
+            double p = (x - v) * q - (x - w) * r;
+            q = 2.0 * (q - r);
+            if (q > 0.0) p = -p;
+            q = std::abs(q);
+            if (std::abs(p) < std::abs(0.5 * q * previous_step) && p > q * (a - x) && p < q * (b - x)) {
+                previous_step = step;
+                step = p / q;
+                const double u = x + step;
+                if (u - a < 2.0 * tolerance || b - u < 2.0 * tolerance) step = x < middle ? tolerance : -tolerance;
+                parabolic = true;
+            }
+        }
+        if (!parabolic) {
+            previous_step = x < middle ? b - x : a - x;
+            step = golden * previous_step;
+        }
+        const double u = x + (std::abs(step) >= tolerance ? step : (step > 0.0 ? tolerance : -tolerance));
+        const double fu = f(u);
+        if (fu <= fx) {
+            (u < x ? b : a) = x;
+            v = w;
+            fv = fw;
+            w = x;
+            fw = fx;
+            x = u;
+            fx = fu;
+        } else {
+            (u < x ? a : b) = u;
+            if (fu <= fw || w == x) {
+                v = w;
+                fv = fw;
+                w = u;
+                fw = fu;
+            } else if (fu <= fv || v == x || v == w) {
+                v = u;
+                fv = fu;
+            }
+        }
+    }
+    return {x, fx};
+}
+
+// The least of `f` over ln(scale) within the dermal grid's range, starting at `start`: downhill by steps growing by
+// the golden ratio until `f` rises (or the range ends, where the least is its end), then Brent's method in that bracket.
+template <class F>
+Extremum extremum_near(const F& f, double start) {
+    const double lowest = grid_lowest * std::numbers::ln2, highest = grid_highest * std::numbers::ln2;
+    const double growth = 0.5 * (1.0 + std::sqrt(5.0));
+    Extremum previous{start, f(start)};
+    double step = start + first_bracket_step <= highest ? first_bracket_step : -first_bracket_step;
+    Extremum current{start + step, f(start + step)};
+    if (current.value > previous.value) {
+        std::swap(previous, current);
+        step = -step;
+    }
+    for (;;) {
+        const double next_scale = std::clamp(current.log_scale + step * growth, lowest, highest);
+        if (next_scale == current.log_scale) return current;  // downhill to the range's end
+        const Extremum next{next_scale, f(next_scale)};
+        if (next.value > current.value) {
+            return brent_minimum(f, std::min(previous.log_scale, next.log_scale), std::max(previous.log_scale, next.log_scale), current, extremum_tolerance);
+        }
+        step = next.log_scale - current.log_scale;
+        previous = current;
+        current = next;
+    }
+}
+
 }  // namespace
 
 MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const RteStack& tables, double wavelength_nm) {
@@ -152,25 +245,27 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
         return solve_adding_doubling(derived(log_thin, log_dermal), AdIncidence{}, ad, &cache).diffuse_reflectance - target;
     };
     auto best = match_dermis([&](double log_dermal) { return miss(0.0, log_dermal); });
+    const DermalMatch unmoved = best;
     double log_thin = 0.0;
     // Where no dermal factor reaches R, the thin layers scatter more (R too high: longer paths through the melanin) or
-    // less, by the least change that lets one: bisection on ln u toward `far` (continuous where the match starts to
-    // need it). Returns the change and its match (miss != 0 where even `far` does not reach).
+    // less, by the least change that lets one. With `side` the sign of the unmoved miss, closest(t) = min over the
+    // dermal factor of side (R_d - target) at thin change t is > 0 at t = 0 and <= 0 where a factor reaches; its root
+    // t* (Illinois, to 1e-7 in R) is the least change, and there the closest dermal factor meets R_d exactly (the
+    // tangent point): the description moves continuously with the wavelength into and through this regime. Returns
+    // the change and its match (miss != 0 where even `far` does not reach).
     const auto move_thin = [&](double far) -> std::pair<double, DermalMatch> {
-        auto at_far = match_dermis([&](double log_dermal) { return miss(far, log_dermal); });
+        const auto at_far = match_dermis([&](double log_dermal) { return miss(far, log_dermal); });
         if (at_far.miss != 0.0) return {far, at_far};
-        double reached = far, not_reached = 0.0;
-        for (int i = 0; i < thin_refinements; ++i) {
-            const double mid = 0.5 * (reached + not_reached);
-            const auto m = match_dermis([&](double log_dermal) { return miss(mid, log_dermal); });
-            if (m.miss == 0.0) {
-                reached = mid;
-                at_far = m;
-            } else {
-                not_reached = mid;
-            }
-        }
-        return {reached, at_far};
+        const double side = unmoved.miss > 0.0 ? 1.0 : -1.0;
+        Extremum last{unmoved.log_scale, 0.0};  // the closest dermal factor at the last change looked at
+        const auto closest = [&](double log_thin_change) {
+            last = extremum_near([&](double log_dermal) { return side * miss(log_thin_change, log_dermal); }, last.log_scale);
+            return last.value;
+        };
+        const double at_far_closest = closest(far);
+        if (at_far_closest > 0.0) return {far, at_far};  // the root `far` reaches is on another branch of R_d
+        const double change = refine_root(closest, 0.0, side * unmoved.miss, far, at_far_closest);  // its last look is at `change`
+        return {change, {last.log_scale, std::abs(last.value) < reflectance_tolerance ? 0.0 : side * last.value}};
     };
     if (best.miss != 0.0) {
         // The expected direction first; the other where it does not reach (very heavily pigmented skin, where more
