@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
-#include <optional>
 
 #include "materials/measured_profile.hpp"
 #include "spectral/input_error.hpp"
@@ -17,14 +17,12 @@ namespace {
 constexpr int grid_lowest = -6, grid_highest = 6;  // powers of 2, stepped by 2
 constexpr double reflectance_tolerance = 1e-7;
 constexpr int max_refinements = 60;
-// Golden-section steps where no factor reaches (the bracket shrinks to 0.618^15 = 2e-3 of its 4 ln 2: R_d is flat at
-// its minimum, so the closest R_d is found to ~1e-6; 30 steps changed R by at most 5e-6 and took 1.6-1.9x the time).
-constexpr int golden_steps = 15;
 // The thin layers' mu_s d may move from 1 by up to a factor 4 where the dermis alone cannot match.
 constexpr double max_log_thin_change = 2.0 * std::numbers::ln2;
-// The closest dermal factor at a given thin-layer change: bracketed by steps growing from this one (in ln(scale)) away
-// from the last change's, then located to 1e-3 in ln by Brent's method (R_d is flat there: its value then to ~1e-8).
-constexpr double first_bracket_step = 0.05;
+// The closest dermal factor where none reaches: bracketed by steps (in ln(scale)) growing away from a start, the
+// closest grid point (a quarter of the grid's step first) or the last thin-layer change's closest factor (which moves
+// little: 0.05 first), then located to 1e-3 in ln by Brent's method (R_d is flat there: its value then to ~1e-8).
+constexpr double grid_bracket_step = 0.5 * std::numbers::ln2, tracking_bracket_step = 0.05;
 constexpr double extremum_tolerance = 1e-3;
 
 struct DermalMatch {
@@ -57,68 +55,17 @@ double refine_root(const Miss& miss, double a, double fa, double b, double fb) {
     return c;
 }
 
-// The largest grid interval where R_d crosses the target upward (R_d grows with the dermal scattering there; below it,
-// thinning the dermis can also brighten: more light reaches the reflector), refined; without one, the
-// factor that comes closest (golden section about the closest grid point; a crossing found on the way is refined).
-template <class Miss>
-DermalMatch match_dermis(const Miss& miss) {
-    // The grid from the top down: the first upward crossing met is the largest, and the points below it are not needed.
-    DermalMatch best{grid_highest * std::numbers::ln2, miss(grid_highest * std::numbers::ln2)};
-    double upper_log = best.log_scale, upper = best.miss;
-    for (int k = grid_highest - 2; k >= grid_lowest; k -= 2) {
-        const double log_scale = k * std::numbers::ln2, m = miss(log_scale);
-        if (m < 0.0 && upper >= 0.0) return {refine_root(miss, log_scale, m, upper_log, upper), 0.0};
-        if (std::abs(m) <= std::abs(best.miss)) best = {log_scale, m};  // on a tie the lower factor, as found going up
-        upper_log = log_scale;
-        upper = m;
-    }
-    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-    const auto closest = best;
-    const bool above = best.miss > 0.0;
-    // Golden section (one new point per step) for the smallest |miss|; a point on the other side ends it with a root.
-    DermalMatch crossed;
-    const auto probe = [&](double x) -> std::optional<double> {
-        const double f = miss(x);
-        if ((f > 0.0) != above) {
-            crossed = {x, f};
-            return std::nullopt;
-        }
-        if (std::abs(f) < std::abs(best.miss)) best = {x, f};
-        return std::abs(f);
-    };
-    double a = closest.log_scale - 2.0 * std::numbers::ln2, b = closest.log_scale + 2.0 * std::numbers::ln2;
-    double c = b - phi * (b - a), d = a + phi * (b - a);
-    auto fc = probe(c), fd = fc ? probe(d) : std::nullopt;
-    for (int i = 0; i < golden_steps && fc && fd; ++i) {
-        if (*fc < *fd) {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - phi * (b - a);
-            fc = probe(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + phi * (b - a);
-            fd = probe(d);
-        }
-    }
-    if (!fc || !fd) return {refine_root(miss, closest.log_scale, closest.miss, crossed.log_scale, crossed.miss), 0.0};
-    return best;
-}
-
 struct Extremum {
     double log_scale = 0.0;
     double value = 0.0;
 };
 
-// The least of `f` on [a, b], where `inner` (with value `f_inner`) lies inside and below both ends' values, located to
-// `tolerance`: Brent's method (Brent 1973, "Algorithms for Minimization without Derivatives", Ch. 5), successive
+// The least of `f` on [a, b], where `inner` lies inside and below both ends' values, located to `tolerance` (or the
+// first point found at or below `enough`): Brent's method (Brent 1973, "Algorithms for Minimization without Derivatives", Ch. 5), successive
 // parabolic interpolation through the three best points, a golden-section step wherever the parabola's step is not
 // trusted. `f` is smooth here, so it converges superlinearly.
 template <class F>
-Extremum brent_minimum(const F& f, double a, double b, Extremum inner, double tolerance) {
+Extremum brent_minimum(const F& f, double a, double b, Extremum inner, double tolerance, double enough) {
     const double golden = 0.5 * (3.0 - std::sqrt(5.0));
     double x = inner.log_scale, w = x, v = x;
     double fx = inner.value, fw = fx, fv = fx;
@@ -148,6 +95,7 @@ Extremum brent_minimum(const F& f, double a, double b, Extremum inner, double to
         }
         const double u = x + (std::abs(step) >= tolerance ? step : (step > 0.0 ? tolerance : -tolerance));
         const double fu = f(u);
+        if (fu <= enough) return {u, fu};
         if (fu <= fx) {
             (u < x ? b : a) = x;
             v = w;
@@ -173,14 +121,16 @@ Extremum brent_minimum(const F& f, double a, double b, Extremum inner, double to
 }
 
 // The least of `f` over ln(scale) within the dermal grid's range, starting at `start`: downhill by steps growing by
-// the golden ratio until `f` rises (or the range ends, where the least is its end), then Brent's method in that bracket.
+// the golden ratio until `f` rises (or the range ends, where the least is its end), then Brent's method in that bracket;
+// the first point at or below `enough` ends it.
 template <class F>
-Extremum extremum_near(const F& f, double start) {
+Extremum extremum_near(const F& f, double start, double first_step, double enough) {
     const double lowest = grid_lowest * std::numbers::ln2, highest = grid_highest * std::numbers::ln2;
     const double growth = 0.5 * (1.0 + std::sqrt(5.0));
     Extremum previous{start, f(start)};
-    double step = start + first_bracket_step <= highest ? first_bracket_step : -first_bracket_step;
+    double step = start + first_step <= highest ? first_step : -first_step;
     Extremum current{start + step, f(start + step)};
+    if (current.value <= enough) return current;
     if (current.value > previous.value) {
         std::swap(previous, current);
         step = -step;
@@ -189,13 +139,35 @@ Extremum extremum_near(const F& f, double start) {
         const double next_scale = std::clamp(current.log_scale + step * growth, lowest, highest);
         if (next_scale == current.log_scale) return current;  // downhill to the range's end
         const Extremum next{next_scale, f(next_scale)};
+        if (next.value <= enough) return next;
         if (next.value > current.value) {
-            return brent_minimum(f, std::min(previous.log_scale, next.log_scale), std::max(previous.log_scale, next.log_scale), current, extremum_tolerance);
+            return brent_minimum(f, std::min(previous.log_scale, next.log_scale), std::max(previous.log_scale, next.log_scale), current, extremum_tolerance, enough);
         }
         step = next.log_scale - current.log_scale;
         previous = current;
         current = next;
     }
+}
+
+// The largest grid interval where R_d crosses the target upward (R_d grows with the dermal scattering there; below it,
+// thinning the dermis can also brighten: more light reaches the reflector), refined; without one, the factor that
+// comes closest, found from the closest grid point (a crossing found on the way is refined).
+template <class Miss>
+DermalMatch match_dermis(const Miss& miss) {
+    // The grid from the top down: the first upward crossing met is the largest, and the points below it are not needed.
+    DermalMatch best{grid_highest * std::numbers::ln2, miss(grid_highest * std::numbers::ln2)};
+    double upper_log = best.log_scale, upper = best.miss;
+    for (int k = grid_highest - 2; k >= grid_lowest; k -= 2) {
+        const double log_scale = k * std::numbers::ln2, m = miss(log_scale);
+        if (m < 0.0 && upper >= 0.0) return {refine_root(miss, log_scale, m, upper_log, upper), 0.0};
+        if (std::abs(m) <= std::abs(best.miss)) best = {log_scale, m};  // on a tie the lower factor, as found going up
+        upper_log = log_scale;
+        upper = m;
+    }
+    const double side = best.miss > 0.0 ? 1.0 : -1.0;
+    const auto closest = extremum_near([&](double log_scale) { return side * miss(log_scale); }, best.log_scale, grid_bracket_step, 0.0);
+    if (closest.value > 0.0) return {closest.log_scale, side * closest.value};
+    return {refine_root(miss, best.log_scale, best.miss, closest.log_scale, side * closest.value), 0.0};
 }
 
 }  // namespace
@@ -259,7 +231,8 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
         const double side = unmoved.miss > 0.0 ? 1.0 : -1.0;
         Extremum last{unmoved.log_scale, 0.0};  // the closest dermal factor at the last change looked at
         const auto closest = [&](double log_thin_change) {
-            last = extremum_near([&](double log_dermal) { return side * miss(log_thin_change, log_dermal); }, last.log_scale);
+            last = extremum_near([&](double log_dermal) { return side * miss(log_thin_change, log_dermal); }, last.log_scale, tracking_bracket_step,
+                                 -std::numeric_limits<double>::infinity());
             return last.value;
         };
         const double at_far_closest = closest(far);
