@@ -61,9 +61,9 @@ struct Extremum {
 };
 
 // The least of `f` on [a, b], where `inner` lies inside and below both ends' values, located to `tolerance` (or the
-// first point found at or below `enough`): Brent's method (Brent 1973, "Algorithms for Minimization without Derivatives", Ch. 5), successive
-// parabolic interpolation through the three best points, a golden-section step wherever the parabola's step is not
-// trusted. `f` is smooth here, so it converges superlinearly.
+// first point found at or below `enough`): Brent's method (Brent 1973, "Algorithms for Minimization without
+// Derivatives", Ch. 5), successive parabolic interpolation through the three best points, a golden-section step
+// wherever the parabola's step is not trusted. `f` is smooth here, so it converges superlinearly.
 template <class F>
 Extremum brent_minimum(const F& f, double a, double b, Extremum inner, double tolerance, double enough) {
     const double golden = 0.5 * (3.0 - std::sqrt(5.0));
