@@ -218,6 +218,7 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
     };
     auto best = match_dermis([&](double log_dermal) { return miss(0.0, log_dermal); });
     const DermalMatch unmoved = best;
+    const double side = unmoved.miss > 0.0 ? 1.0 : -1.0;  // R_d above the target at every dermal factor (or below)
     double log_thin = 0.0;
     // Where no dermal factor reaches R, the thin layers scatter more (R too high: longer paths through the melanin) or
     // less, by the least change that lets one. With `side` the sign of the unmoved miss, closest(t) = min over the
@@ -228,7 +229,6 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
     const auto move_thin = [&](double far) -> std::pair<double, DermalMatch> {
         const auto at_far = match_dermis([&](double log_dermal) { return miss(far, log_dermal); });
         if (at_far.miss != 0.0) return {far, at_far};
-        const double side = unmoved.miss > 0.0 ? 1.0 : -1.0;
         Extremum last{unmoved.log_scale, 0.0};  // the closest dermal factor at the last change looked at
         const auto closest = [&](double log_thin_change) {
             last = extremum_near([&](double log_dermal) { return side * miss(log_thin_change, log_dermal); }, last.log_scale, tracking_bracket_step,
@@ -243,7 +243,7 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
     if (best.miss != 0.0) {
         // The expected direction first; the other where it does not reach (very heavily pigmented skin, where more
         // thin-layer scattering missed by more); else the closest of the three.
-        const double expected = (best.miss > 0.0 ? 1.0 : -1.0) * max_log_thin_change;
+        const double expected = side * max_log_thin_change;
         for (const double far : {expected, -expected}) {
             const auto [moved, match] = move_thin(far);
             if (std::abs(match.miss) < std::abs(best.miss)) {
