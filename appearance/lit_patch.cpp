@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -21,6 +22,25 @@ double interpolate(const std::vector<double>& values, double dr, double r) {
     if (j + 1 >= values.size()) return values.back();
     const double f = x - static_cast<double>(j);
     return values[j] * (1.0 - f) + values[j + 1] * f;
+}
+
+// The reflectance leaving within each radius j * dr, 2 pi int_0^r R(r') r' dr' of the linear interpolation (exact for it).
+std::vector<double> enclosed(const std::vector<double>& values, double dr) {
+    std::vector<double> out{0.0};
+    for (std::size_t j = 0; j + 1 < values.size(); ++j) {
+        // int_{r_j}^{r_j+1} (a + b (r - r_j)) r dr for the segment's line.
+        const double r0 = static_cast<double>(j) * dr, a = values[j], b = (values[j + 1] - values[j]) / dr;
+        out.push_back(out.back() + 2.0 * std::numbers::pi * (a * (r0 * dr + 0.5 * dr * dr) + b * (0.5 * r0 * dr * dr + dr * dr * dr / 3.0)));
+    }
+    return out;
+}
+
+// The mean of R over the annulus [r - w/2, r + w/2] (the radial extent of a pixel of width w at distance r): the rings a
+// pixel covers, so that a Monte Carlo profile's noise per ring averages out as it does over the pixel's area.
+double annulus_mean(const std::vector<double>& enclosed_values, double dr, double r, double w) {
+    const auto at = [&](double radius) { return interpolate(enclosed_values, dr, radius); };
+    const double inner = r - 0.5 * w, outer = r + 0.5 * w;
+    return (at(outer) - at(inner)) / (std::numbers::pi * (outer * outer - inner * inner));
 }
 
 }  // namespace
@@ -92,7 +112,7 @@ std::vector<double> Illumination::rasterize(const PatchGeometry& view, int margi
 }
 
 LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light,
-                          const PatchGeometry& view, const SpectralSolver& solver, const SolverSwitches& switches,
+                          const PatchGeometry& view, const SpectralSolver& solver, const ProfileRequest& settings,
                           const std::function<void(std::size_t, std::size_t)>& on_progress, const std::atomic<bool>* cancel) {
     for (const int px : {view.width_px, view.height_px}) {
         if (px < 8 || px > 4096) throw InputError("image size " + std::to_string(px) + " px is outside [8, 4096]");
@@ -133,8 +153,15 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
         }
         if (c % per_solve == 0) {
             const auto grid = stack ? WavelengthGrid::list({wavelengths.nm()[c]}) : wavelengths;
-            auto part = solve_profiles(solver, material, ProfileRequest{grid, radii, false, switches, std::nullopt, 1, cancel, {}, {}, {}});
+            auto request = settings;
+            request.wavelengths = grid;
+            request.radii_mm = radii;
+            request.transmittance = false;
+            request.cancel = cancel;
+            request.on_progress = {};
+            auto part = solve_profiles(solver, material, request);
             out.profiles.model = part.model;
+            out.profiles.stderr_target = part.stderr_target;
             out.profiles.radii_mm = part.radii_mm;
             out.profiles.max_pairs = std::max(out.profiles.max_pairs, part.max_pairs);
             out.profiles.frequencies = std::max(out.profiles.frequencies, part.frequencies);
@@ -147,7 +174,9 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
             }
         }
         const auto& profile = out.profiles.channels[c];
-        // Kernel: R(r) integrated over each pixel (8 x 8 samples near the centre, the centre value further out).
+        const auto within = enclosed(profile.reflectance_per_mm2, dr);
+        // Kernel: R(r) integrated over each pixel (8 x 8 samples near the centre, further out its mean over the annulus the
+        // pixel spans radially, times the pixel's area).
         std::vector<double> kernel(static_cast<std::size_t>(side) * side);
         double sum = 0.0;
         for (int j = -margin; j <= margin; ++j) {
@@ -163,7 +192,7 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
                     }
                     value *= h * h / (samples_per_pixel_side * samples_per_pixel_side);
                 } else {
-                    value = interpolate(profile.reflectance_per_mm2, dr, std::hypot(i * h, j * h)) * h * h;
+                    value = annulus_mean(within, dr, std::hypot(i * h, j * h), h) * h * h;
                 }
                 kernel[static_cast<std::size_t>(j + margin) * side + static_cast<std::size_t>(i + margin)] = value;
                 sum += value;

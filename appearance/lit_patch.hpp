@@ -1,6 +1,6 @@
 #pragma once
-// A flat patch of a translucent material under structured light, from a solver's radial profiles (the
-// diffusion modes): the diffuse exitance is
+// A flat patch of a translucent material under structured light, from a solver's radial profiles (by default the
+// exact transport, the volumetric walk; or a diffusion mode): the diffuse exitance is
 // the illumination convolved with the material's radial reflectance profile (seed 004 Eq. 5 and seed 002
 // Eq. 17 integrated over the surface for uniform angular response), per wavelength or band. The convolution
 // runs through FFTW (real-to-complex 2-D transforms). The specular first-surface reflection is not included
@@ -52,8 +52,10 @@ struct LitPatch {
 };
 
 // InputError for a view outside [8, 4096] pixels a side or a pitch outside (0, 100] mm.
+// `settings`: the solver's switches and Monte Carlo settings (precision, budget or count, seed, what the user gave); its
+// wavelengths, radii and progress are the patch's own.
 LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light,
-                          const PatchGeometry& view, const SpectralSolver& solver, const SolverSwitches& switches,
+                          const PatchGeometry& view, const SpectralSolver& solver, const ProfileRequest& settings,
                           const std::function<void(std::size_t done, std::size_t total)>& on_progress = {},
                           const std::atomic<bool>* cancel = nullptr);
 

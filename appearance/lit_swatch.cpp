@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "appearance/profile_shape_report.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
@@ -29,11 +30,11 @@ Illumination pattern_lighting(const LinearImage& image, PatchGeometry& view) {
 }
 
 LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light, const PatchGeometry& view,
-                            const SpectralSolver& solver, const SolverSwitches& switches, IlluminantKind illuminant, ObserverKind observer,
+                            const SpectralSolver& solver, const ProfileRequest& settings, IlluminantKind illuminant, ObserverKind observer,
                             const std::string& space, const std::function<void(std::size_t done, std::size_t total)>& on_progress,
                             const std::atomic<bool>* cancel) {
     LitSwatch out;
-    out.patch = render_lit_patch(material, wavelengths, light, view, solver, switches, on_progress, cancel);
+    out.patch = render_lit_patch(material, wavelengths, light, view, solver, settings, on_progress, cancel);
     if (out.patch.partial) return out;
     const auto& cm = ColorManagement::builtin();
     out.bands = std::holds_alternative<HomogeneousMaterial>(material);
@@ -60,6 +61,7 @@ void write_lit_swatch(const LitSwatch& swatch, const std::string& material, cons
                                  {"ImageDescription", fmt::format("skinspec lit swatch: {} under {} ({} mode; diffuse exitance, "
                                                                   "no specular)", material, lighting, model)}};
     if (!profile_shape.empty()) metadata.emplace_back("skinspec:profile_shape", profile_shape);
+    if (const auto precision = profile_precision_line(swatch.patch.profiles); !precision.empty()) metadata.emplace_back("skinspec:profile_precision", precision);
     for (const auto& out : files.files) {
         if (out.extension() == ".exr") write_linear_image(out, swatch.image, files.space, files.half, metadata, cm);
         else write_image_grid(out, {swatch.image}, 1, {fmt::format("{}\n{}, {:g} mm", material, lighting, field_mm)}, files.space, files.display, files.view, metadata, cm);

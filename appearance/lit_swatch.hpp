@@ -29,7 +29,7 @@ struct LitSwatch {
 // a band material's three bands taken as linear Rec.709). InputError for a band material without exactly three
 // bands. Stopped through `cancel`: partial, no image.
 LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light, const PatchGeometry& view,
-                            const SpectralSolver& solver, const SolverSwitches& switches, IlluminantKind illuminant, ObserverKind observer,
+                            const SpectralSolver& solver, const ProfileRequest& settings, IlluminantKind illuminant, ObserverKind observer,
                             const std::string& space, const std::function<void(std::size_t done, std::size_t total)>& on_progress = {},
                             const std::atomic<bool>* cancel = nullptr);
 

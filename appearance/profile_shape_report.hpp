@@ -17,6 +17,9 @@ inline constexpr double profile_shape_worth_a_warning = 0.15;
 // One line that says what was compared, then one per checked wavelength; or the one line of not_checked; empty when
 // nothing was checked.
 std::vector<std::string> profile_shape_lines(const ProfileShapeCheck& check);
+// What a Monte Carlo profile is and how precise (empty for a deterministic one): the exact transport, its photons per
+// channel, and the largest standard error of the reflectance within a radius against the target (rte_profiles.hpp).
+std::string profile_precision_line(const SpectralProfiles& profiles);
 // The lines joined by newlines (a lit swatch's image metadata).
 std::string profile_shape_text(const ProfileShapeCheck& check);
 // Whether the lines are a warning: a share off by more than profile_shape_worth_a_warning, or no check possible.

@@ -118,6 +118,15 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
                      "   adding-doubling: the volumetric description derived from the BioSpec one, as the presets set it;\n"
                      "   *: the preset's own volumetric description (model.volumetric_matched_to_biospec=false) against the BioSpec one, the gap the derivation closes)\n";
     }
+    if (!report.lit_swatches.empty()) {
+        std::cout << "\nLit swatch (spot 2 mm, 20 mm field, 256 x 256 px, 400-700 nm / 10 nm, all threads), side by side:\n";
+        for (const auto& l : report.lit_swatches) {
+            std::cout << fmt::format("  {:<20} exact (rte, default precision) {:.2f} s, matched-multipole {:.2f} s: ratio {:.2f}x; {} photons, "
+                                     "R within a radius to +- {:.4f}{}\n",
+                                     l.material, l.exact_seconds, l.diffusion_seconds, l.exact_seconds / l.diffusion_seconds, l.photons,
+                                     l.within_radius_stderr, l.converged ? "" : " (budget spent before the target)");
+        }
+    }
     if (!report.walk_agreement.empty()) {
         std::cout << "\nVolumetric walk against adding-doubling (R, SCI):\n";
         for (const auto& a : report.walk_agreement) {

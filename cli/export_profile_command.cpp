@@ -40,9 +40,7 @@ struct ProfileExportOptions {
     std::string table;
     bool overwrite = false;
     bool json = false;
-    std::uint64_t rays = 0;
-    std::uint64_t seed = 1;
-    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
+    ProfileSampling sampling;
 };
 
 void run_export_profile(const ProfileExportOptions& o) {
@@ -60,13 +58,13 @@ void run_export_profile(const ProfileExportOptions& o) {
     if (!o.table.empty()) check_output_path(o.table, o.overwrite, {".csv"});
     const auto overrides = parsed_overrides(o.overrides);
     const auto material = load_material(name, overrides);
-    const auto& solver = chosen_profile_solver(o.solver, material);
+    const auto& solver = chosen_profile_solver(o.solver);
     const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
     check_profile_export(name, bands, fit_request);
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths() : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
 
     const auto profiles =
-        solve_profiles_stoppable(solver, material, profile_request(grid, radii, false, o.solver, o.rays, o.seed, o.sampling_given, overrides), "export profile");
+        solve_profiles_stoppable(solver, material, profile_request(grid, radii, false, o.solver, o.sampling, overrides), "export profile");
     if (profiles.partial) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (the fit needs every channel's profile)\n";
         std::exit(InterruptGuard::exit_code());
@@ -80,7 +78,7 @@ void run_export_profile(const ProfileExportOptions& o) {
         std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (stopped in the profiles' shape check)\n";
         std::exit(InterruptGuard::exit_code());
     }
-    print_profile_summary(profiles.material, profiles.warnings, shape);
+    print_profile_summary(profiles, shape);
     auto exported = fit_profile_export(profiles, bands, fit_request);
     if (profile_shape_checked(solver, material)) exported.shape = shape;
     const auto document = profile_export_json(exported);
@@ -129,13 +127,13 @@ void add_export_profile_command(CLI::App& exporter) {
     cmd->add_option("--observer", o->observer, "With --per rgb: 2 or 10")->capture_default_str();
     cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians, [1, 12]")->capture_default_str();
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm: where R(r) is fitted")->capture_default_str();
-    add_profile_ray_options(*cmd, o->rays, o->seed);
+    add_profile_sampling_options(*cmd, o->sampling);
     cmd->add_option("-o,--output", o->output, "JSON file of the fit (default: the JSON on standard output)");
     cmd->add_option("--table", o->table, "CSV table of variances and weights");
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the fit as JSON (what -o writes) instead of the table");
     cmd->callback([o, cmd] {
-        o->sampling_given = given_sampling_options(*cmd);
+        note_given_profile_sampling(*cmd, o->sampling);
         run_export_profile(*o);
     });
 }

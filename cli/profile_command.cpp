@@ -36,9 +36,7 @@ struct ProfileOptions {
     std::string output;
     std::string plot;
     bool overwrite = false;
-    std::uint64_t rays = 0;  // 0: the solver's default (Monte Carlo solvers only)
-    std::uint64_t seed = 1;
-    std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
+    ProfileSampling sampling;
 };
 
 std::string column_tag(const ChannelProfile& c) {
@@ -67,6 +65,7 @@ std::string to_csv(const SpectralProfiles& p, const ProfileShapeCheck& shape) {
         out += "# converged: NO\n";
     }
     for (const auto& w : summarise_warnings(p.warnings)) out += "# warning: " + w + "\n";
+    if (const auto precision = profile_precision_line(p); !precision.empty()) out += "# " + precision + "\n";
     for (const auto& line : profile_shape_lines(shape)) out += "# " + line + "\n";
     // Monte Carlo profiles add a standard-error column after each value column.
     const bool errors = !p.channels.empty() && !p.channels.front().reflectance_stderr_per_mm2.empty();
@@ -114,14 +113,14 @@ void run_profile(const ProfileOptions& o) {
     std::vector<MaterialOverride> overrides;
     for (const auto& t : o.overrides) overrides.push_back(parse_override(t));
     const auto material = load_material(o.material_file.empty() ? (o.preset.empty() ? "biospec-moderately" : o.preset) : o.material_file, overrides);
-    const auto& solver = chosen_profile_solver(o.solver, material);
-    const auto profiles = solve_profiles_stoppable(solver, material, profile_request(grid, radii, true, o.solver, o.rays, o.seed, o.sampling_given, overrides), "profile");
+    const auto& solver = chosen_profile_solver(o.solver);
+    const auto profiles = solve_profiles_stoppable(solver, material, profile_request(grid, radii, true, o.solver, o.sampling, overrides), "profile");
     ProfileShapeCheck shape;
     if (!profiles.partial) {
         const InterruptGuard interrupt;
         shape = stated_profile_shape(solver, material, grid, solver_switches(o.solver), &InterruptGuard::cancel_flag());
     }
-    print_profile_summary(profiles.material, profiles.warnings, shape);
+    print_profile_summary(profiles, shape);
     const auto csv = to_csv(profiles, shape);
     if (o.output.empty()) {
         std::cout << csv;
@@ -155,10 +154,10 @@ void add_profile_command(CLI::App& app) {
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm")->capture_default_str();
     cmd->add_option("--output", o->output, "CSV file (default: standard output)");
     cmd->add_option("--plot", o->plot, "Log-scale plot, FILE.png or FILE.svg");
-    add_profile_ray_options(*cmd, o->rays, o->seed);
+    add_profile_sampling_options(*cmd, o->sampling);
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->callback([o, cmd] {
-        o->sampling_given = given_sampling_options(*cmd);
+        note_given_profile_sampling(*cmd, o->sampling);
         run_profile(*o);
     });
 }

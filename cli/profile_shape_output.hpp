@@ -8,8 +8,8 @@
 
 namespace skinspec::cli {
 
-// print_warning_summary of the warnings, then the check's lines on standard error: a warning when profile_shape_warns,
-// else a note.
-void print_profile_summary(const std::string& subject, const std::vector<ResultWarning>& warnings, const ProfileShapeCheck& shape);
+// print_warning_summary of the profiles' warnings, their precision (a Monte Carlo profile), then the check's lines on
+// standard error: a warning when profile_shape_warns, else a note.
+void print_profile_summary(const SpectralProfiles& profiles, const ProfileShapeCheck& shape);
 
 }  // namespace skinspec::cli

@@ -35,8 +35,8 @@ const SpectralSolver& chosen_solver(const SolverOptions& o, std::string_view fal
     return find_solver(o.mode.empty() ? fallback : std::string_view(o.mode), "--mode");
 }
 
-const SpectralSolver& chosen_profile_solver(const SolverOptions& o, const Material& material) {
-    return o.mode.empty() ? default_profile_solver(material) : chosen_solver(o);
+const SpectralSolver& chosen_profile_solver(const SolverOptions& o) {
+    return o.mode.empty() ? default_profile_solver() : chosen_solver(o);
 }
 
 SolverSwitches solver_switches(const SolverOptions& o) {
@@ -71,9 +71,19 @@ MeasurementGeometry measurement_geometry(const SolverOptions& o, const SpectralS
     return geometry;
 }
 
-void add_profile_ray_options(CLI::App& command, std::uint64_t& rays, std::uint64_t& seed) {
-    add_ray_count_option(command, "--rays", rays, "rte: photons per wavelength for R(r) (default 1000000); refused by deterministic solvers");
-    add_seed_option(command, seed, "rte: random seed");
+void add_profile_sampling_options(CLI::App& command, ProfileSampling& sampling) {
+    auto* target = command.add_option("--stderr", sampling.stderr_target,
+                                      "rte: each wavelength runs until the standard error of the reflectance leaving within every radius of a "
+                                      "1-2-5 series up to the reach is at most this")
+                       ->capture_default_str()
+                       ->check(CLI::Range(1e-6, 0.5));
+    add_ray_count_option(command, "--max-rays", sampling.max_rays, "rte: photon budget per wavelength with --stderr")->capture_default_str();
+    add_ray_count_option(command, "--rays", sampling.rays, "rte: exactly this many photons per wavelength instead of --stderr")->excludes(target);
+    add_seed_option(command, sampling.seed, "rte: random seed");
+}
+
+void note_given_profile_sampling(const CLI::App& command, ProfileSampling& sampling) {
+    sampling.given = given_options(command, {"--seed", "--max-rays", "--stderr"});
 }
 
 SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Material& material, ProfileRequest request, const std::string& label) {
@@ -87,9 +97,19 @@ SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Ma
 }
 
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,
-                               std::uint64_t rays, std::uint64_t seed, std::vector<std::string> sampling_options, std::vector<MaterialOverride> overrides) {
-    return ProfileRequest{wavelengths, radii_mm, transmittance, solver_switches(options), rays > 0 ? std::optional(rays) : std::nullopt, seed, nullptr,
-                          std::move(sampling_options), {}, std::move(overrides)};
+                               const ProfileSampling& sampling, std::vector<MaterialOverride> overrides) {
+    ProfileRequest request;
+    request.wavelengths = wavelengths;
+    request.radii_mm = radii_mm;
+    request.transmittance = transmittance;
+    request.switches = solver_switches(options);
+    if (sampling.rays > 0) request.rays_per_wavelength = sampling.rays;
+    request.stderr_target = sampling.stderr_target;
+    request.max_rays_per_wavelength = sampling.max_rays;
+    request.seed = sampling.seed;
+    request.sampling_options = sampling.given;
+    request.overrides = std::move(overrides);
+    return request;
 }
 
 }  // namespace skinspec::cli

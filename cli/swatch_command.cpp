@@ -1,5 +1,6 @@
 #include "cli/swatch_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -46,6 +47,7 @@ struct SwatchOptions {
     std::uint64_t seed = 1;
     std::vector<std::string> sampling_given;  // --seed, --max-rays as given (refused by deterministic solvers)
     std::uint64_t max_rays = 1'000'000;
+    double stderr_target = default_profile_stderr;  // --lit: the profiles' precision
     unsigned threads = 0;
     bool overwrite = false;
     bool json = false;
@@ -57,7 +59,8 @@ struct SwatchOptions {
     double spot_radius_mm = 2.0;
 };
 
-// `swatch --lit spot|edge|pattern FILE`: one planar patch under structured light in a diffusion mode.
+// `swatch --lit spot|edge|pattern FILE`: one planar patch under structured light, from radial profiles (default the exact
+// transport).
 void run_lit_swatch(const SwatchOptions& o) {
     const std::string name = chosen_material(o.preset, o.material_file);
     if (!o.vary.empty()) throw InputError("--vary: a lit swatch shows one material (use --set for its parameters)");
@@ -73,8 +76,8 @@ void run_lit_swatch(const SwatchOptions& o) {
 
     const auto overrides = parsed_overrides(o.overrides);
     const auto material = load_material(name, overrides);
-    // A lit patch needs radial profiles: matched-multipole (band materials: the multipole) unless --mode names another solver.
-    const auto& solver = chosen_profile_solver(o.solver, material);
+    // A lit patch needs radial profiles: the exact transport unless --mode names another solver.
+    const auto& solver = chosen_profile_solver(o.solver);
     check_overrides(solver, material, overrides);
     const auto switches = solver_switches(o.solver);
     if (measurement_geometry(o.solver, solver) != MeasurementGeometry::sci) {
@@ -91,7 +94,13 @@ void run_lit_swatch(const SwatchOptions& o) {
     const InterruptGuard interrupt;
     ProgressBar bar("lit swatch");
     const auto start = std::chrono::steady_clock::now();
-    const auto swatch = render_lit_swatch(material, grid, light, view, solver, switches, illuminant, observer, files.space,
+    ProfileRequest settings;
+    settings.switches = switches;
+    settings.stderr_target = o.stderr_target;
+    settings.max_rays_per_wavelength = o.max_rays;
+    settings.seed = o.seed;
+    settings.sampling_options = o.sampling_given;
+    const auto swatch = render_lit_swatch(material, grid, light, view, solver, settings, illuminant, observer, files.space,
                                           [&bar](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); },
                                           &InterruptGuard::cancel_flag());
     bar.clear();
@@ -109,7 +118,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     const auto checked = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(checked - start).count();
     const double check_seconds = std::chrono::duration<double>(checked - rendered).count();
-    print_profile_summary(name, patch.profiles.warnings, shape);
+    print_profile_summary(patch.profiles, shape);
     write_lit_swatch(swatch, name, light, o.field_mm, o.wavelengths, files, profile_shape_text(shape));
     for (const auto& out : o.outputs) std::cerr << "wrote " << out << '\n';
     const auto lighting = light.description();
@@ -124,6 +133,9 @@ void run_lit_swatch(const SwatchOptions& o) {
 
 void run_swatch(const SwatchOptions& o) {
     if (!o.lit.empty()) return run_lit_swatch(o);
+    if (std::find(o.sampling_given.begin(), o.sampling_given.end(), "--stderr") != o.sampling_given.end()) {
+        throw InputError("--stderr: the precision of a lit swatch's profiles (with --lit); a chart's is --delta-e");
+    }
     SwatchRequest request;
     request.material = chosen_material(o.preset, o.material_file);
     request.overrides = parsed_overrides(o.overrides);
@@ -238,12 +250,17 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--view", o->view, "OCIO view for PNG/TIFF")->capture_default_str();
     cmd->add_option("--patch-size", o->patch_px, "Patch size in pixels")->capture_default_str();
     add_seed_option(*cmd, o->seed, "Random seed");
-    add_ray_count_option(*cmd, "--max-rays", o->max_rays, "Ray budget per wavelength and patch")->capture_default_str();
+    add_ray_count_option(*cmd, "--max-rays", o->max_rays, "Ray budget per wavelength and patch (with --lit: per wavelength)")->capture_default_str();
+    cmd->add_option("--stderr", o->stderr_target,
+                    "With --lit (rte): each wavelength's profile runs until the standard error of the reflectance leaving within every "
+                    "radius of a 1-2-5 series up to the kernel's reach is at most this")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-6, 0.5));
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the patches as JSON");
     cmd->add_option("--lit", o->lit,
-                    "Render one patch in a diffusion mode under structured light: spot, edge, or pattern FILE (an image "
+                    "Render one patch under structured light from radial profiles (default the exact transport): spot, edge, or pattern FILE (an image "
                     "whose luminance is the irradiance)")
         ->expected(1, 2);
     add_solver_options(*cmd, o->solver, std::string("biospec; with --lit ") + profile_solver_default);
@@ -253,7 +270,7 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--pixels", o->pixels, "With --lit: image width in pixels, [8, 4096]")->capture_default_str();
     cmd->add_option("--spot-radius", o->spot_radius_mm, "With --lit spot: radius of the lit disc in mm")->capture_default_str();
     cmd->callback([o, cmd] {
-        o->sampling_given = given_sampling_options(*cmd);
+        o->sampling_given = given_options(*cmd, {"--seed", "--max-rays", "--stderr"});
         run_swatch(*o);
     });
 }

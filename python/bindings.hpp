@@ -64,11 +64,19 @@ WavelengthGrid wavelength_argument(const py::object& wavelengths);
 // Switch keywords (solvers/solver_switches.hpp: NAME with '_' for '-'), read by the same descriptors as the
 // program's options; InputError for a keyword that is no switch.
 SolverSwitches solver_switches(const py::kwargs& keywords);
-// A profile request as skinspec.profiles takes its keywords (rays, seed: None for the solver's defaults).
-ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const py::object& rays,
-                                        const py::object& seed, const py::kwargs& switches, std::vector<MaterialOverride> overrides);
-// The solver of a function that needs radial profiles: mode= by name, or (None) default_profile_solver for the material.
-const SpectralSolver& profile_solver_argument(const py::object& mode, const Material& material);
+// The Monte Carlo keywords of the functions that need radial profiles (as the commands' --rays, --stderr, --max-rays,
+// --seed; None: the defaults, ProfileRequest's).
+struct ProfileSamplingArguments {
+    py::object rays, stderr_target, max_rays, seed;
+};
+// Sets them on `request` (InputError for rays and stderr both, or a value out of range); those given are named in its
+// sampling_options, so that a deterministic solver refuses them.
+void apply_profile_sampling(const ProfileSamplingArguments& sampling, ProfileRequest& request);
+// A profile request as skinspec.profiles takes its keywords.
+ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const ProfileSamplingArguments& sampling,
+                                        const py::kwargs& switches, std::vector<MaterialOverride> overrides);
+// The solver of a function that needs radial profiles: mode= by name, or (None) default_profile_solver().
+const SpectralSolver& profile_solver_argument(const py::object& mode);
 // solve_profiles under run_interruptible (Ctrl-C stops it).
 SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
 // stated_profile_shape (solvers/profile_shape_check.hpp: a diffusion profile's shape against the volumetric walk) under

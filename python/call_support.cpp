@@ -36,8 +36,8 @@ std::vector<std::filesystem::path> output_paths(const py::handle& value, std::st
     return out;
 }
 
-const SpectralSolver& profile_solver_argument(const py::object& mode, const Material& material) {
-    if (mode.is_none()) return default_profile_solver(material);
+const SpectralSolver& profile_solver_argument(const py::object& mode) {
+    if (mode.is_none()) return default_profile_solver();
     if (!py::isinstance<py::str>(mode)) throw InputError("mode: expected a solver name or None, got " + std::string(py::str(py::type::of(mode).attr("__name__"))));
     return find_solver(mode.cast<std::string>(), "mode");
 }
@@ -71,20 +71,34 @@ SolverSwitches solver_switches(const py::kwargs& keywords) {
     return s;
 }
 
-ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const py::object& rays,
-                                        const py::object& seed, const py::kwargs& switches, std::vector<MaterialOverride> overrides) {
+ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const py::object& radii_mm, bool transmittance, const ProfileSamplingArguments& sampling,
+                                        const py::kwargs& switches, std::vector<MaterialOverride> overrides) {
     ProfileRequest request;
     request.overrides = std::move(overrides);
     request.wavelengths = wavelengths;
     request.radii_mm = finite_vector(radii_mm, "radii_mm");
     request.transmittance = transmittance;
     request.switches = solver_switches(switches);
-    if (!rays.is_none()) request.rays_per_wavelength = whole_number(rays, 1.0, 1e15, "rays");
-    if (!seed.is_none()) {
-        request.seed = whole_number(seed, 0.0, 9.2e18, "seed");
+    apply_profile_sampling(sampling, request);
+    return request;
+}
+
+void apply_profile_sampling(const ProfileSamplingArguments& sampling, ProfileRequest& request) {
+    if (!sampling.rays.is_none() && !sampling.stderr_target.is_none()) throw InputError("rays and stderr: give an exact photon count or a precision target, not both");
+    if (!sampling.rays.is_none()) request.rays_per_wavelength = whole_number(sampling.rays, 1.0, 1e15, "rays");
+    if (!sampling.stderr_target.is_none()) {
+        request.stderr_target = one_number(sampling.stderr_target, "stderr");
+        check_range(request.stderr_target, 1e-6, 0.5, "stderr");
+        request.sampling_options.push_back("stderr");
+    }
+    if (!sampling.max_rays.is_none()) {
+        request.max_rays_per_wavelength = whole_number(sampling.max_rays, static_cast<double>(minimum_rays_per_wavelength), 1e15, "max_rays");
+        request.sampling_options.push_back("max_rays");
+    }
+    if (!sampling.seed.is_none()) {
+        request.seed = whole_number(sampling.seed, 0.0, 9.2e18, "seed");
         request.sampling_options.push_back("seed");
     }
-    return request;
 }
 
 SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {

@@ -246,11 +246,12 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
 }
 
 py::object profiles(const py::object& material, const py::object& radii_mm, const py::object& wavelengths, const py::object& mode,
-                    bool transmittance, const py::object& rays, const py::object& seed, const py::kwargs& switches) {
+                    bool transmittance, const py::object& rays, const py::object& stderr_target, const py::object& max_rays, const py::object& seed,
+                    const py::kwargs& switches) {
     const auto base = material_argument(material, "material");
-    const auto& solver = profile_solver_argument(mode, base.material);
+    const auto& solver = profile_solver_argument(mode);
     const auto request = profile_request_argument(wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths),
-                                                  radii_mm, transmittance, rays, seed, switches, base.overrides);
+                                                  radii_mm, transmittance, {rays, stderr_target, max_rays, seed}, switches, base.overrides);
     const auto p = solve_profiles_interruptible(solver, base.material, request);
     const auto rows = static_cast<py::ssize_t>(p.channels.size());
     const auto radii = static_cast<py::ssize_t>(p.radii_mm.size());
@@ -353,13 +354,15 @@ void bind_spectra(py::module_& m) {
     m.def("profiles", &profiles, R"doc(Radial diffuse reflectance R(r) (and T(r)) in 1/mm^2, as `skinspec profile` computes it.
 
     radii_mm: 1-D array; wavelengths (layered materials; default 450, 550, 650 nm); mode: a solver with radial
-    profiles (default None: matched-multipole for layered materials, multipole for band materials; multipole, dipole,
-    rte: the volumetric walk, radii from 0 in equal steps, rays photons per wavelength (default 1e6), seed; its
-    R_stderr_per_mm2). Solver switches as keywords (roughness=, boundaries=, ...); a switch the
+    profiles (default None: rte, the exact transport by the volumetric walk, radii from 0 in equal steps, each
+    wavelength run until the reflectance leaving within every radius of a 1-2-5 series has a standard error of at most
+    stderr (default 0.002) within max_rays photons (default 1e6), or exactly rays photons; seed; its R_stderr_per_mm2;
+    or a diffusion mode: matched-multipole, multipole, dipole). Solver switches as keywords (roughness=, boundaries=, ...); a switch the
     solver does not take is refused.
     Returns a skinspec.Profiles.)doc",
           py::arg("material"), py::arg("radii_mm"), py::arg("wavelengths") = py::none(), py::kw_only(), py::arg("mode") = py::none(),
-          py::arg("transmittance") = false, py::arg("rays") = py::none(), py::arg("seed") = py::none());
+          py::arg("transmittance") = false, py::arg("rays") = py::none(), py::arg("stderr") = py::none(), py::arg("max_rays") = py::none(),
+          py::arg("seed") = py::none());
     m.def("solvers", &solvers, "The registered solvers and what each declares it supports.");
     m.def("result_quantities", &quantities, "The result quantities (the rows of skinspec.Spectrum's arrays), with units.");
     m.def("switches", &switches, "The solver switches (keywords of spectrum and profiles), with the values each takes.");

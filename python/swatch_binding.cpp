@@ -58,19 +58,23 @@ Illumination lighting_argument(const std::string& lighting, const py::object& pa
 py::dict lit_swatch(const py::object& material, const std::string& lighting, const py::object& pattern, double field_mm, int pixels,
                     double spot_radius_mm, const py::object& wavelengths, const py::object& mode, const std::string& illuminant,
                     const std::string& observer, const std::string& space, const py::object& output, bool half, const std::string& display,
-                    const std::string& view_name, bool overwrite, const py::object& progress, const py::kwargs& switches) {
+                    const std::string& view_name, bool overwrite, const py::object& progress, const py::object& rays, const py::object& stderr_target,
+                    const py::object& max_rays, const py::object& seed, const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     auto view = lit_view(field_mm, pixels);
     const auto files = check_image_outputs(ImageOutputs{output_paths(output, "output"), space, half, display, view_name, overwrite});
-    const auto& solver = profile_solver_argument(mode, skin.material);
+    const auto& solver = profile_solver_argument(mode);
     check_overrides(solver, skin.material, skin.overrides);
     const auto light = lighting_argument(lighting, pattern, spot_radius_mm, view);
     const auto grid = wavelength_argument(wavelengths);
     const auto solver_settings = solver_switches(switches);
+    ProfileRequest settings;
+    settings.switches = solver_settings;
+    apply_profile_sampling({rays, stderr_target, max_rays, seed}, settings);
     LitSwatch swatch;
     run_interruptible(
         [&](const CancelFlag& cancel, const std::function<void(const Progress&)>& report) {
-            swatch = render_lit_swatch(skin.material, grid, light, view, solver, solver_settings, parse_illuminant(illuminant, "illuminant"),
+            swatch = render_lit_swatch(skin.material, grid, light, view, solver, settings, parse_illuminant(illuminant, "illuminant"),
                                        parse_observer(observer, "observer"), files.space,
                                        [&report](std::size_t done, std::size_t total) { report(Progress{0, 0, done, total}); }, &cancel);
         },
@@ -104,6 +108,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
     d["shape"] = profile_shape_object(solver, skin.material, shape);
     d["kernel_reach_mm"] = patch.kernel_radius_px * view.pixel_mm;
     d["largest_kernel_correction"] = patch.largest_kernel_correction;
+    d["precision"] = profile_precision_line(patch.profiles);
     d["files"] = written;
     d["warnings"] = summarise_warnings(patch.profiles.warnings);
     return d;
@@ -201,13 +206,14 @@ py::dict swatch_dict(const SwatchChart& chart, const SwatchRequest& request, con
 }
 
 void bind_swatch(py::module_& m) {
-    m.def("lit_swatch", &lit_swatch, R"doc(One flat patch of a material under structured light, as `skinspec swatch --lit` renders it (a diffusion mode's radial profiles convolved with the light).
+    m.def("lit_swatch", &lit_swatch, R"doc(One flat patch of a material under structured light, as `skinspec swatch --lit` renders it (radial profiles convolved with the light).
 
     material: a skinspec.Material, preset name or .toml path; lighting: "spot" (a lit disc of spot_radius_mm),
     "edge" (lit for x > 0) or "pattern" with pattern= an array (height, width) of relative irradiance, (height,
     width, 3) linear Rec.709, or an image file (the view takes its aspect); field_mm: the view's width; pixels: its
     width in pixels, [8, 4096]; wavelengths: nm (default 400-700 every 10); mode: a solver that computes profiles
-    (default None: matched-multipole for layered materials, multipole for band materials) with its switches as keywords; space: the working space of "rgb"; output: a file or a list
+    (default None: rte, the exact transport; rays, stderr, max_rays, seed as skinspec.profiles takes them; or a diffusion
+    mode) with its switches as keywords; space: the working space of "rgb"; output: a file or a list
     (.exr linear; .png, .tif display-referred through display / view), checked before any work. Returns rgb
     (height, width, 3), exitance per channel (channels, height, width; diffuse exitance per unit irradiance, no
     specular), labels, wavelength_nm, pixel_mm, kernel_reach_mm, largest_kernel_correction, files and warnings.)doc",
@@ -215,7 +221,8 @@ void bind_swatch(py::module_& m) {
           py::arg("pixels") = 256, py::arg("spot_radius_mm") = 2.0, py::arg("wavelengths") = py::none(), py::arg("mode") = py::none(),
           py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("space") = "ACEScg", py::arg("output") = py::none(),
           py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("overwrite") = false,
-          py::arg("progress") = py::none());
+          py::arg("progress") = py::none(), py::arg("rays") = py::none(), py::arg("stderr") = py::none(), py::arg("max_rays") = py::none(),
+          py::arg("seed") = py::none());
     m.def("swatch", &swatch, R"doc(The colours of a material over one or two swept fields, as `skinspec swatch` computes them (no image is written).
 
     material: a preset name or .toml path; vary: "FIELD=FIRST:LAST:STEPS[:log]" strings (first: columns, second:

@@ -134,8 +134,4 @@ const SpectralSolver& matched_multipole_solver() {
     return solver;
 }
 
-const SpectralSolver& default_profile_solver(const Material& material) {
-    return std::holds_alternative<LayerStack>(material) ? matched_multipole_solver() : multipole_solver();
-}
-
 }  // namespace skinspec

@@ -262,6 +262,8 @@ std::vector<SpectralResult> solve_in_replay_groups(
     return solved_prefix(by_index);
 }
 
+const SpectralSolver& default_profile_solver() { return find_solver(default_profile_solver_name); }
+
 SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&) const {
     throw InputError("solver '" + std::string(name()) + "' does not compute radial profiles");
 }

@@ -57,12 +57,22 @@ struct SolverRequest {
     std::vector<std::string> sampling_options;
 };
 
+// The precision of a Monte Carlo profile unless the caller sets one: the standard error of the reflectance leaving within
+// each of the radii a kernel gathers from (transport/rte/rte_profiles.hpp), the same figure as a spectrum's default
+// --stderr for R, within a budget of photons per wavelength (docs/PROFILES.md).
+inline constexpr double default_profile_stderr = 0.002;
+inline constexpr std::uint64_t default_profile_max_rays = 10'000'000;
+
 struct ProfileRequest {
     WavelengthGrid wavelengths = WavelengthGrid::list({550.0});  // layered materials; band materials: all bands
     std::vector<double> radii_mm;
     bool transmittance = false;
     SolverSwitches switches;
-    std::optional<std::uint64_t> rays_per_wavelength;  // Monte Carlo solvers (unset: their default); refused by the others
+    std::optional<std::uint64_t> rays_per_wavelength;  // Monte Carlo solvers: exactly this many, no target; refused by the others
+    // Monte Carlo solvers without a fixed count: the precision target and the budget (given by the user: named in
+    // sampling_options, so that a deterministic solver refuses them).
+    double stderr_target = default_profile_stderr;
+    std::uint64_t max_rays_per_wavelength = default_profile_max_rays;
     std::uint64_t seed = 1;
     const CancelFlag* cancel = nullptr;  // a stop leaves the channels finished so far (SpectralProfiles::partial)
     std::vector<std::string> sampling_options;  // as SolverRequest's
@@ -128,6 +138,11 @@ private:
 
 // The registered solvers, in the order `--mode` lists them.
 const std::vector<const SpectralSolver*>& solver_registry();
+// The solver every command that needs radial profiles uses when none is named (profile, export profile, swatch --lit,
+// their Python calls): the exact transport, the volumetric walk on the material's volumetric description (for the
+// skin presets the one derived from the BioSpec model; band materials as semi-infinite media), docs/PROFILES.md.
+inline constexpr std::string_view default_profile_solver_name = "rte";
+const SpectralSolver& default_profile_solver();
 // InputError naming the allowed solvers for an unknown name; `what` is the option (e.g. "--mode").
 const SpectralSolver& find_solver(std::string_view name, std::string_view what = "--mode");
 // "biospec, rte, dipole, multipole".

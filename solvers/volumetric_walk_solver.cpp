@@ -44,15 +44,16 @@ public:
         return solve_in_replay_groups(materials, request, solve_groups(materials, request),
                                       [&](const std::vector<const LayerStack*>& stacks, const SpectralRequest& part) { return solve_rte_spectra(stacks, part, boundaries(request), false); });
     }
+    // A fixed photon count, else the precision target within the budget (rte_profiles.hpp); a band material's bands as the
+    // semi-infinite media `spectrum --mode rte` walks.
     SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
-        if (std::holds_alternative<HomogeneousMaterial>(material)) {
-            throw InputError("solver 'rte' computes radial profiles of layered materials; '" + material_name(material) +
-                             "' is given per band (radial profiles of band materials: --mode multipole or dipole)");
+        const RteProfileOptions options{request.rays_per_wavelength.value_or(request.max_rays_per_wavelength),
+                                        request.rays_per_wavelength ? std::nullopt : std::optional(request.stderr_target), request.seed,
+                                        request.switches.boundaries.value_or(BoundaryMode::random), request.cancel, request.on_progress};
+        if (const auto* bands = std::get_if<HomogeneousMaterial>(&material)) {
+            return solve_rte_profiles(*bands, request.radii_mm, request.transmittance, options);
         }
-        return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance,
-                                  RteProfileOptions{request.rays_per_wavelength.value_or(1'000'000), request.seed,
-                                                    request.switches.boundaries.value_or(BoundaryMode::random), request.cancel,
-                                                    request.on_progress});
+        return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance, options);
     }
     // On a description derived from the BioSpec one (matched_volumetric.hpp) the walk solves the derived medium, which
     // has the BioSpec model's R_d at normal incidence only: its miss at the request's incidence and geometry, by

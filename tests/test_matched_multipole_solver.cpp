@@ -66,9 +66,7 @@ TEST_CASE("matched-multipole spectra are the BioSpec walk's within 0.01 (the dif
     }
 }
 
-TEST_CASE("commands that need profiles default to matched-multipole for layered materials, the multipole for bands", "[matched_multipole]") {
-    CHECK(default_profile_solver(load_material("biospec-lightly")).name() == "matched-multipole");
-    CHECK(default_profile_solver(load_material("jensen2001-marble")).name() == "multipole");
+TEST_CASE("matched-multipole takes layered materials only", "[matched_multipole]") {
     SolverRequest request;
     request.spectral.wavelengths = WavelengthGrid::list({550.0});
     CHECK_THROWS_WITH(solve_spectrum(matched_multipole_solver(), load_material("jensen2001-marble"), request),

@@ -99,9 +99,15 @@ nlohmann::ordered_json bench_report_json(const BenchReport& report, const BenchR
                             {"worst_relative_error", a.worst_relative_error}, {"relative_error_at_0_1_mm", a.relative_error_at_0_1_mm},
                             {"median_relative_error_1_to_5_mm", a.median_relative_error_1_to_5_mm}, {"walk_seconds", a.walk_seconds}});
     }
+    Json lit = Json::array();
+    for (const auto& l : report.lit_swatches) {
+        lit.push_back({{"material", l.material}, {"exact_seconds", l.exact_seconds}, {"matched_multipole_seconds", l.diffusion_seconds},
+                       {"ratio", l.exact_seconds / l.diffusion_seconds}, {"photons", l.photons}, {"within_radius_stderr", l.within_radius_stderr},
+                       {"converged", l.converged}});
+    }
     return {{"skinspec_version", version}, {"quick", o.quick}, {"seed", o.seed}, {"tolerance_percent", o.tolerance_percent}, {"partial", report.partial},
             {"cases", cases}, {"multipole_pair_sweep", pairs}, {"thread_scaling", scaling}, {"time_per_colour", colours},
-            {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}, {"profiles_against_the_walk", profiles}};
+            {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}, {"profiles_against_the_walk", profiles}, {"lit_swatches", lit}};
 }
 
 }  // namespace skinspec

@@ -17,6 +17,7 @@
 #include "transport/fresnel.hpp"
 #include "formats/adding_doubling_reference.hpp"
 #include "transport/rte/rte_model.hpp"
+#include "appearance/lit_swatch.hpp"
 #include "appearance/swatch_chart.hpp"
 #include "spectral/ciede2000.hpp"
 #include "spectral/colorimetry.hpp"
@@ -436,6 +437,35 @@ void profile_agreement(Benchmark& bench) {
     }
 }
 
+// The lit swatch `skinspec swatch --lit spot` renders by default (the exact transport) against matched-multipole's, one
+// after the other on the same machine.
+void lit_swatch_timings(Benchmark& bench) {
+    const PatchGeometry view = lit_view(20.0, 256);
+    const auto grid = WavelengthGrid::parse("400:700:10", "wavelengths");
+    for (const auto& name : bench.plan().skin_presets) {
+        const auto material = load_material(name);
+        LitSwatchTiming row{name};
+        for (const auto* solver : {&find_solver("matched-multipole"), &default_profile_solver()}) {
+            bench.stage(fmt::format("{}: lit swatch (spot, 256 px, 31 wavelengths) by {}", name, solver->name()));
+            const auto start = Clock::now();
+            const auto patch = render_lit_patch(material, grid, Illumination::spot(2.0), view, *solver, ProfileRequest{}, {}, bench.options().cancel);
+            const double seconds = seconds_since(start);
+            bench.check_cancel();
+            if (solver->capabilities().uncertainty) {
+                row.exact_seconds = seconds;
+                for (const auto& c : patch.profiles.channels) {
+                    row.photons += c.rays;
+                    row.within_radius_stderr = std::max(row.within_radius_stderr, c.within_radius_stderr);
+                    row.converged = row.converged && c.converged;
+                }
+            } else {
+                row.diffusion_seconds = seconds;
+            }
+        }
+        bench.report().lit_swatches.push_back(row);
+    }
+}
+
 void colour_timings(Benchmark& bench) {
     for (const auto& material : bench.plan().colour_materials) {
         bench.stage(fmt::format("{}: one swatch patch at Delta E <= 0.3", material));
@@ -465,6 +495,7 @@ BenchReport run_benchmark(const BenchOptions& options) {
         colour_timings(bench);
         skin_modes(bench);
         profile_agreement(bench);
+        lit_swatch_timings(bench);
     } catch (const Stopped&) {
         bench.report().partial = true;
     }

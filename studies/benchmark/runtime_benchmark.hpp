@@ -123,6 +123,17 @@ struct ProfileAgreement {
     double walk_seconds = 0.0;
 };
 
+// A lit swatch (spot of 2 mm radius, 20 mm field, 256 x 256 px, 400-700 nm / 10 nm) by the exact transport at its
+// default precision and by matched-multipole, run side by side (docs/PROFILES.md).
+struct LitSwatchTiming {
+    std::string material;
+    double exact_seconds = 0.0;       // rte, default precision (all threads)
+    double diffusion_seconds = 0.0;   // matched-multipole
+    std::uint64_t photons = 0;        // the walk's, all wavelengths
+    double within_radius_stderr = 0.0;  // the walk's largest standard error of R within a radius
+    bool converged = true;
+};
+
 struct BenchOptions {
     bool quick = false;                        // under a minute: fewer budgets, seeds and a shorter reference
     std::uint64_t seed = 1;                    // runs use seed, seed + 1, ...
@@ -141,6 +152,7 @@ struct BenchReport {
     std::vector<SkinModeRow> skin_modes;
     std::vector<WalkAgreement> walk_agreement;
     std::vector<ProfileAgreement> profile_agreement;
+    std::vector<LitSwatchTiming> lit_swatches;
     bool partial = false;  // stopped by the cancel flag: what was finished is kept
 };
 

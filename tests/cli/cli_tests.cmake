@@ -35,11 +35,12 @@ skinspec_cli_test("spectrum dipole refuses a bottom" 2 "--reflector sets bottom.
 skinspec_cli_test("spectrum dipole refuses T" 2 "solver 'dipole' does not compute T" spectrum --mode dipole --quantities R,T)
 skinspec_cli_test("spectrum dipole bands" 0 "\"band\": \\[[^]]*\"R\",[^]]*\"G\",[^]]*\"B\"" spectrum --mode dipole --preset jensen2001-skin1 --json)
 skinspec_cli_test("spectrum dipole no stderr" 0 "\"R_specular\": \\[[^]]*\\],\n *\"warnings\"" spectrum --mode dipole --preset jensen2001-marble --json)
-skinspec_cli_test("profile csv" 0 "r_mm,R_550nm_per_mm2,T_550nm_per_mm2\n0,[0-9.]+,0\n" profile --preset biospec-lightly --wavelengths 550 --radii 0:1:0.5)
-skinspec_cli_test("profile bands" 0 "R_bandR_per_mm2,R_bandG_per_mm2,R_bandB_per_mm2" profile --preset jensen2001-skimmilk --radii 0:2:1)
-skinspec_cli_test("profile plot" 0 "wrote .*profile.svg" profile --preset jensen2001-marble --radii 0:10:0.1 --output ${CMAKE_CURRENT_BINARY_DIR}/profile.csv --plot ${CMAKE_CURRENT_BINARY_DIR}/profile.svg --overwrite)
+skinspec_cli_test("profile csv" 0 "r_mm,R_550nm_per_mm2,R_550nm_stderr_per_mm2,T_550nm_per_mm2,T_550nm_stderr_per_mm2\n0,[0-9.]+,[0-9.e-]+,0,0\n" profile --preset biospec-lightly --wavelengths 550 --radii 0:1:0.5)
+skinspec_cli_test("profile states the exact transport's precision" 0 "note: biospec-lightly: exact transport \\(rte, the volumetric walk\\): [0-9-]+ photons per channel; the diffuse reflectance leaving within any radius of a 1-2-5 series has a standard error of at most 0\\.00[0-9]+ \\(target 0\\.002\\)" profile --preset biospec-lightly --wavelengths 550 --radii 0:1:0.5)
+skinspec_cli_test("profile bands" 0 "R_bandR_per_mm2,R_bandR_stderr_per_mm2,R_bandG_per_mm2,R_bandG_stderr_per_mm2,R_bandB_per_mm2" profile --preset jensen2001-skin1 --radii 0:2:1 --stderr 0.01)
+skinspec_cli_test("profile plot" 0 "wrote .*profile.svg" profile --preset jensen2001-marble --mode multipole --radii 0:10:0.1 --output ${CMAKE_CURRENT_BINARY_DIR}/profile.csv --plot ${CMAKE_CURRENT_BINARY_DIR}/profile.svg --overwrite)
 skinspec_cli_test("swatch lit edge" 0 "under shadow edge.*64x64 px" swatch --lit edge --pixels 64 --wavelengths 400:700:20 -o ${CMAKE_CURRENT_BINARY_DIR}/lit_edge.png -o ${CMAKE_CURRENT_BINARY_DIR}/lit_edge.exr --overwrite)
-skinspec_cli_test("swatch lit pattern" 0 "jensen2001-marble under projected pattern" swatch --lit pattern ${PROJECT_SOURCE_DIR}/data/images/phantom_background.png --preset jensen2001-marble --pixels 64 -o ${CMAKE_CURRENT_BINARY_DIR}/lit_pattern.png --overwrite)
+skinspec_cli_test("swatch lit pattern" 0 "jensen2001-marble under projected pattern" swatch --lit pattern ${PROJECT_SOURCE_DIR}/data/images/phantom_background.png --preset jensen2001-marble --mode multipole --pixels 64 -o ${CMAKE_CURRENT_BINARY_DIR}/lit_pattern.png --overwrite)
 skinspec_cli_test("fit-profile synthetic" 0 "Y +2\\.20[0-9]* \\+- [0-9.e-]+ +0\\.00[0-9]* \\+- [0-9.e-]+ .* 4[0-9]\\.[0-9][0-9]" fit-profile --synthetic --output-dir ${CMAKE_CURRENT_BINARY_DIR}/fit --overwrite)
 set_tests_properties("cli: fit-profile synthetic" PROPERTIES FIXTURES_SETUP fit_images)
 skinspec_cli_test("fit-profile planar images" 0 "Y +2\\.20[0-9]* .* 4[0-9]\\.[0-9][0-9]" fit-profile --irradiance ${CMAKE_CURRENT_BINARY_DIR}/fit/synthetic_irradiance.exr --exitance ${CMAKE_CURRENT_BINARY_DIR}/fit/synthetic_exitance.exr --pitch 0.05)
@@ -76,8 +77,8 @@ skinspec_cli_test("export profile from the volumetric walk" 0 "550 nm: profile e
 skinspec_cli_test("profile of the volumetric walk" 0 "r_mm,R_550nm_per_mm2,R_550nm_stderr_per_mm2" profile --mode rte --rays 2000 --wavelengths 550 --radii 0:1:0.5)
 # A diffusion profile states its shape against the volumetric walk (solvers/profile_shape_check.hpp), on the terminal and
 # in the files; the walk's own profile states none ("rte profile header has no diffusion figures" below).
-skinspec_cli_test("profile states its shape against the exact transport" 0 "warning: biospec-lightly:   550 nm: the share of R leaving within a radius r is off by up to [+-]0\\.[0-9]+ \\+- 0\\.0[0-9]+ \\(r = [0-9.]+ mm\\); within 0\\.1 mm [0-9]+ % \\(exact [0-9]+ %\\)" profile --preset biospec-lightly --wavelengths 550 --radii 0:1:0.5)
-skinspec_cli_test("export profile's JSON carries the shape check" 0 "\"profile_shape\": \\{\n *\"reference\": \"the volumetric walk[^\n]*\n *\"stopped\": false,\n *\"wavelengths\": \\[\n *\\{\n *\"wavelength_nm\": 550\\.0,\n *\"photons\": 100000,\n *\"compared\": true,\n *\"largest_share_difference\": [-0-9.e]+" export profile --per wavelength --wavelengths 550 --radii 0:5:0.05 --gaussians 3 --json)
+skinspec_cli_test("profile states its shape against the exact transport" 0 "warning: biospec-lightly:   550 nm: the share of R leaving within a radius r is off by up to [+-]0\\.[0-9]+ \\+- 0\\.0[0-9]+ \\(r = [0-9.]+ mm\\); within 0\\.1 mm [0-9]+ % \\(exact [0-9]+ %\\)" profile --preset biospec-lightly --mode matched-multipole --wavelengths 550 --radii 0:1:0.5)
+skinspec_cli_test("export profile's JSON carries the shape check" 0 "\"profile_shape\": \\{\n *\"reference\": \"the volumetric walk[^\n]*\n *\"stopped\": false,\n *\"wavelengths\": \\[\n *\\{\n *\"wavelength_nm\": 550\\.0,\n *\"photons\": 100000,\n *\"compared\": true,\n *\"largest_share_difference\": [-0-9.e]+" export profile --mode matched-multipole --per wavelength --wavelengths 550 --radii 0:5:0.05 --gaussians 3 --json)
 # Only what was asked is reported (issue 33): the volumetric walk tallies T and A on the way, R alone is shown.
 skinspec_cli_test("rte reports only R when R is asked" 0 "wavelength_nm +R +R_specular +rays\n" spectrum --mode rte --preset biospec-lightly --wavelengths 550 --rays 500)
 # Skin colours a person can place (issue 33): ITA and its category with every colour. biospec-lightly is Lab 62.4 10.0
@@ -92,7 +93,7 @@ skinspec_cli_test("a changed copy says what changed" 0 "changed from biospec-lig
 skinspec_cli_test("materials in command-line order" 0 "wavelength_nm +biospec-heavily +biospec-lightly\n" spectrum --mode dipole --wavelengths 550 --preset biospec-heavily --preset biospec-lightly)
 # A colour left out says why (issue 33).
 skinspec_cli_test("no colour says why" 0 "no colour: a colour needs wavelengths covering 400-700 nm at steps of at most 20 nm \\(these cover 500-600 nm\\)" spectrum --mode dipole --preset biospec-lightly --wavelengths 500:600:10)
-skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [^\n]*model rte, partial false\n# units[^\n]*\n(# [0-9]+ nm[^\n]*\n)+# entry transmittance per column[^\n]*\nr_mm" profile --mode rte --rays 1000 --radii 0:1:0.5)
+skinspec_cli_test("rte profile header has no diffusion figures" 0 "^# skinspec [^\n]*model rte, partial false\n# units[^\n]*\n(# [0-9]+ nm[^\n]*\n)+# entry transmittance per column[^\n]*\n# exact transport \\(rte, the volumetric walk\\): 1000 photons per channel[^\n]*\\(a fixed photon count\\)\nr_mm" profile --mode rte --rays 1000 --radii 0:1:0.5)
 # Outputs that read each other (issue 33): color takes a member of a spectrum --vary CSV by position or by value.
 skinspec_cli_test("color of a sweep member by position" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --member 2)
 skinspec_cli_test("color of a sweep member by value" 0 "ITA +[0-9.]+ deg" color sweep_two_members.csv --where epidermis.melanosome_fraction=0.1)

@@ -100,7 +100,10 @@ skinspec_malformed_input("dipole takes no estimator" 2 "solver 'dipole' does not
 skinspec_malformed_input("multipole takes no fold" 2 "solver 'multipole' does not take the switch 'fold-into-skin' \\(taken by: biospec, biospec-adding-doubling, matched-multipole\\)" - spectrum --mode multipole --fold-into-skin resample)
 skinspec_malformed_input("biospec takes no boundaries" 2 "solver 'biospec' does not take the switch 'boundaries' \\(taken by: rte\\)" - spectrum --boundaries split --rays 100)
 skinspec_malformed_input("adding-doubling band material" 2 "solver 'adding-doubling' needs a layered material; 'jensen2001-skin1' is a homogeneous material given per band" - spectrum --mode adding-doubling --preset jensen2001-skin1)
-skinspec_malformed_input("rte profile of a band material" 2 "solver 'rte' computes radial profiles of layered materials; 'jensen2001-marble' is given per band" - profile --mode rte --preset jensen2001-marble)
+skinspec_malformed_input("profile count and target" 108 "--stderr excludes --rays" - profile --rays 1000 --stderr 0.01)
+skinspec_malformed_input("profile target of a diffusion mode" 2 "--stderr: solver 'multipole' is deterministic and takes no Monte Carlo setting" - profile --mode multipole --stderr 0.01)
+skinspec_malformed_input("profile target out of range" 105 "--stderr: Value 0 not in range 0\\.000001 to 0\\.500000" - profile --stderr 0)
+skinspec_malformed_input("chart with a profile target" 2 "--stderr: the precision of a lit swatch's profiles \\(with --lit\\); a chart's is --delta-e" - swatch --stderr 0.01)
 skinspec_malformed_input("dipole rays" 2 "solver 'dipole' is deterministic: it takes no standard-error target or ray count" - spectrum --mode dipole --rays 100)
 skinspec_malformed_input("multipole stderr" 2 "solver 'multipole' is deterministic" - spectrum --mode multipole --stderr 0.01)
 skinspec_malformed_input("lit swatch biospec" 2 "solver 'biospec' does not compute radial profiles R\\(r\\) \\(solvers that do: rte, matched-multipole, multipole, dipole\\)" "${out}/lit_biospec.png" swatch --lit spot --mode biospec -o ${out}/lit_biospec.png)
@@ -167,7 +170,7 @@ skinspec_malformed_input("fit preset and material" 2 "give --preset or --materia
 # exits 0; nan and inf are not numbers any option takes.
 skinspec_malformed_input("melanin that overflows the walk" 2 "layer 'epidermis': its absorbers give mu_a = inf /cm at 550 nm, which the walk cannot compute" "${out}/nan.json" spectrum --preset biospec-moderately --set epidermis.eumelanin_mg_per_ml=1e308 --wavelengths 550 --rays 2000 --output ${out}/nan.json)
 skinspec_malformed_input("haemoglobin that overflows the multipole" 2 "solver 'multipole' computed R = -?nan at 550 nm" - spectrum --mode multipole --set papillary_dermis.hemoglobin_g_per_l=1e180 --wavelengths 550)
-skinspec_malformed_input("radii a profile cannot compute" 2 "solver 'matched-multipole' computed a non-finite profile at 450 nm .*largest 1e\\+300 mm" "${out}/huge_radii.csv" profile --radii 0:1e300:1e299 --output ${out}/huge_radii.csv)
+skinspec_malformed_input("radii a profile cannot compute" 2 "solver 'matched-multipole' computed a non-finite profile at 450 nm .*largest 1e\\+300 mm" "${out}/huge_radii.csv" profile --mode matched-multipole --radii 0:1e300:1e299 --output ${out}/huge_radii.csv)
 skinspec_malformed_input("a swatch of non-finite patches" 2 "layer 'epidermis': its absorbers give mu_a = inf /cm" "${out}/nan_swatch.png" swatch --set epidermis.eumelanin_mg_per_ml=1e308 -o ${out}/nan_swatch.png)
 skinspec_malformed_input("a colour float32 cannot hold" 2 "the colour of XYZ .* is outside what colour management computes" - color huge_values.csv --allow-over-one)
 skinspec_malformed_input("a scene of infinite depth" 2 "layer 'epidermis': thickness inf mm .* not finite numbers in a scene" "${out}/deep.pbrt" export pbrt --set epidermis.thickness_cm=1e308 -o ${out}/deep.pbrt)
@@ -192,7 +195,7 @@ skinspec_malformed_input("g = 1 where mu_s = mu_s' / (1 - g)" 2 "key 'papillary_
 # New user's path (issue 33): a Monte Carlo setting given to a deterministic solver is refused, like --rays.
 skinspec_malformed_input("a seed for a deterministic solver" 2 "--seed: solver 'dipole' is deterministic and takes no Monte Carlo setting" - spectrum --mode dipole --seed 5)
 skinspec_malformed_input("a ray budget for adding-doubling" 2 "--max-rays: solver 'adding-doubling' is deterministic" "${out}/ad_lut.exr" export lut --mode adding-doubling --max-rays 100 -o ${out}/ad_lut.exr)
-skinspec_malformed_input("a seed for a default (matched-multipole) profile" 2 "--seed: solver 'matched-multipole' is deterministic" - profile --seed 3)
+skinspec_malformed_input("a seed for a diffusion profile" 2 "--seed: solver 'matched-multipole' is deterministic" - profile --mode matched-multipole --seed 3)
 # phase-study checks its outputs before the study (it refused an existing file after 6-9 s of work).
 file(MAKE_DIRECTORY "${out}/phase_existing")
 file(WRITE "${out}/phase_existing/goniometer_btdf.csv" "the user's file\n")

@@ -141,9 +141,9 @@ def test_profiles_equal_the_cli_profile_table():
     import os
     import subprocess
     radii = np.arange(0.0, 2.01, 0.5)
-    ours = skinspec.profiles("biospec-moderately", radii, [550, 650], transmittance=True)
+    ours = skinspec.profiles("biospec-moderately", radii, [550, 650], mode="matched-multipole", transmittance=True)
     table = subprocess.run([os.environ["SKINSPEC_PROGRAM"], "profile", "--preset", "biospec-moderately", "--wavelengths", "550,650",
-                            "--radii", "0:2:0.5"], capture_output=True, text=True, check=True).stdout
+                            "--radii", "0:2:0.5", "--mode", "matched-multipole"], capture_output=True, text=True, check=True).stdout
     rows = np.array([[float(v) for v in line.split(",")] for line in table.splitlines() if line and line[0].isdigit()])
     np.testing.assert_allclose(rows[:, 0], radii)
     np.testing.assert_allclose(ours.R_per_mm2.T, rows[:, 1:3], rtol=1e-8)
@@ -168,9 +168,17 @@ def test_volumetric_profiles_equal_the_cli_with_standard_errors():
     np.testing.assert_allclose(ours.R_per_mm2[0], rows[:, 1], rtol=1e-8)
     np.testing.assert_allclose(ours.R_stderr_per_mm2[0], rows[:, 2], rtol=1e-2)
     assert ours.shape is None  # the walk's profile is the reference itself
-    assert skinspec.profiles("biospec-moderately", radii, [550]).R_stderr_per_mm2 is None
+    assert skinspec.profiles("biospec-moderately", radii, [550], mode="matched-multipole").R_stderr_per_mm2 is None
     with pytest.raises(skinspec.InputError, match="deterministic: it takes no ray count"):
-        skinspec.profiles("biospec-moderately", radii, [550], rays=100)
+        skinspec.profiles("biospec-moderately", radii, [550], mode="matched-multipole", rays=100)
+    # The default is the exact transport at its precision target, the same numbers as the command's default.
+    default = skinspec.profiles("biospec-moderately", radii, [550], stderr=0.004)
+    table = subprocess.run([os.environ["SKINSPEC_PROGRAM"], "profile", "--preset", "biospec-moderately", "--wavelengths", "550",
+                            "--radii", "0:1:0.25", "--stderr", "0.004"], capture_output=True, text=True, check=True).stdout
+    rows = np.array([[float(v) for v in line.split(",")] for line in table.splitlines() if line and line[0].isdigit()])
+    np.testing.assert_allclose(default.R_per_mm2[0], rows[:, 1], rtol=1e-8)
+    with pytest.raises(skinspec.InputError, match="rays and stderr"):
+        skinspec.profiles("biospec-moderately", radii, [550], rays=1000, stderr=0.01)
     with pytest.raises(skinspec.InputError, match="equal steps"):
         skinspec.profiles("biospec-moderately", [0.1, 0.2, 0.3], [550], mode="rte", rays=100)
 
@@ -208,5 +216,7 @@ def test_monte_carlo_settings_are_refused_by_deterministic_modes():
     with pytest.raises(skinspec.InputError, match="max_rays: solver 'adding-doubling' is deterministic"):
         skinspec.spectrum("biospec-lightly", [550], mode="adding-doubling", max_rays=100)
     with pytest.raises(skinspec.InputError, match="seed: solver 'matched-multipole' is deterministic"):
-        skinspec.profiles("biospec-lightly", [0.0, 0.5, 1.0], seed=2)
+        skinspec.profiles("biospec-lightly", [0.0, 0.5, 1.0], mode="matched-multipole", seed=2)
+    with pytest.raises(skinspec.InputError, match="stderr: solver 'multipole' is deterministic"):
+        skinspec.profiles("biospec-lightly", [0.0, 0.5, 1.0], mode="multipole", stderr=0.01)
     assert skinspec.spectrum("biospec-lightly", [550], mode="dipole").R[0] > 0.0

@@ -37,7 +37,8 @@ def test_swatch_defaults_and_refusals():
 
 
 def test_lit_swatch_conserves_energy_and_writes_its_files(tmp_path):
-    lit = skinspec.lit_swatch("biospec-moderately", "edge", pixels=64, field_mm=30, output=[tmp_path / "edge.exr", tmp_path / "edge.png"])
+    lit = skinspec.lit_swatch("biospec-moderately", "edge", pixels=64, field_mm=30, mode="matched-multipole",
+                              output=[tmp_path / "edge.exr", tmp_path / "edge.png"])
     assert lit["rgb"].shape == (64, 64, 3) and lit["exitance"].shape == (31, 64, 64) and lit["model"] == "matched-multipole"
     assert lit["files"] == [str(tmp_path / "edge.exr"), str(tmp_path / "edge.png")] and all(os.path.getsize(f) > 0 for f in lit["files"])
     # Its profiles' shape against the walk, as `swatch --lit` states it (docs/DIFFUSION.md).
@@ -60,6 +61,17 @@ def test_lit_swatch_conserves_energy_and_writes_its_files(tmp_path):
     with pytest.raises(skinspec.InputError, match="--field 0 mm is outside"):
         skinspec.lit_swatch("biospec-moderately", field_mm=0)
 
+
+
+def test_lit_swatch_defaults_to_the_exact_transport():
+    # Far into the lit half the exitance is the walk's whole-plane diffuse reflectance, which adding-doubling of the same
+    # (derived) description gives independently: within 4 of the walk's standard errors plus the kernel's reach.
+    lit = skinspec.lit_swatch("biospec-moderately", "edge", pixels=64, field_mm=30, wavelengths=[450, 550, 650], seed=3)
+    assert lit["model"] == "rte" and lit["shape"] is None and "target 0.002" in lit["precision"]
+    exact = skinspec.spectrum("biospec-moderately", [450, 550, 650], mode="adding-doubling")
+    np.testing.assert_allclose(lit["exitance"][:, 32, -3], exact.R - exact.R_specular, atol=4 * 0.002 + 0.005)
+    with pytest.raises(skinspec.InputError, match="stderr: solver 'dipole' is deterministic"):
+        skinspec.lit_swatch("biospec-moderately", "edge", pixels=64, mode="dipole", stderr=0.01)
 
 def test_swatch_writes_the_chart_files(tmp_path):
     charts = [tmp_path / "chart.png", tmp_path / "chart.exr"]

@@ -2,6 +2,8 @@
 // Radial diffuse reflectance and transmittance profiles of a material in a diffusion mode, per wavelength
 // (layered materials) or per band (homogeneous materials): what `skinspec profile` writes and what lit
 // swatches convolve with the illumination. Per unit incident power (entry transmittance included), per mm^2.
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,6 +24,11 @@ struct ChannelProfile {
     // Monte Carlo profiles (the volumetric walk): standard errors per radius; empty for deterministic ones.
     std::vector<double> reflectance_stderr_per_mm2;
     std::vector<double> transmittance_stderr_per_mm2;
+    std::uint64_t rays = 0;             // photons traced (0: deterministic)
+    // The largest standard error of the diffuse reflectance (or transmittance) leaving within one of the radii a
+    // Monte Carlo profile's precision covers (transport/rte/rte_profiles.hpp), and whether its target was met.
+    double within_radius_stderr = 0.0;
+    bool converged = true;
 };
 
 struct SpectralProfiles {
@@ -34,6 +41,7 @@ struct SpectralProfiles {
     std::size_t frequencies = 0;  // samples of the layered inverse transform (0 for one slab)
     bool converged = true;
     bool partial = false;  // stopped: the channels finished so far
+    std::optional<double> stderr_target;  // Monte Carlo profiles run to a precision target: the target
 };
 
 // The channels profiles of `material` have: one per wavelength of `wavelengths` for a layered material, one per band

@@ -60,6 +60,9 @@ struct RteRequest {
     BoundaryMode boundaries = BoundaryMode::random;
     RteGrid grid;
     std::uint64_t max_steps_per_photon = 100'000'000;
+    // Radii (cm, increasing) of the reflectance (and transmittance) leaving within each: tallied per photon, so their
+    // standard errors are the photons' own spread, and a stderr target covers them beside R and T (radial profiles).
+    std::vector<double> within_radii_cm;
     // White Monte Carlo (Alerstam et al. 2008): paths from mu_s alone, absorption by Beer-Lambert along them;
     // statistically the same answers as MCML's way, and the mode absorption replay uses.
     bool white = false;
@@ -78,6 +81,7 @@ struct RteResult {
     std::vector<Estimate> absorption_layers;
     std::vector<Estimate> absorption_z, reflectance_r, transmittance_r, reflectance_a, transmittance_a;
     std::vector<Estimate> absorption_rz, reflectance_ra, transmittance_ra;  // [r][z] and [r][a], row-major
+    std::vector<Estimate> reflectance_within, transmittance_within;  // per RteRequest::within_radii_cm: diffuse, fractions
     std::uint64_t photons = 0;
     std::uint64_t truncated_photons = 0;
     bool partial = false;

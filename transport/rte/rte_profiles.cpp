@@ -1,6 +1,9 @@
 #include "transport/rte/rte_profiles.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -30,8 +33,31 @@ void centred_rings(const std::vector<Estimate>& half_rings, std::size_t n, std::
 
 }  // namespace
 
-SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGrid& wavelengths, std::span<const double> radii_mm, bool transmittance,
-                                    const RteProfileOptions& options) {
+std::vector<double> within_radii_mm(std::span<const double> radii_mm) {
+    std::vector<double> out;
+    if (radii_mm.size() < 2) return out;
+    const double step = radii_mm[1] - radii_mm[0], reach = radii_mm.back() + 0.5 * step;
+    for (double decade = std::pow(10.0, std::floor(std::log10(step))); decade < reach; decade *= 10.0) {
+        for (const double m : {1.0, 2.0, 5.0}) {
+            if (m * decade >= step * (1.0 - 1e-9) && m * decade < reach * (1.0 - 1e-9)) out.push_back(m * decade);
+        }
+    }
+    out.push_back(reach);
+    return out;
+}
+
+namespace {
+
+// One channel of a profile: its label, wavelength (0 for a band) and the key of its random streams.
+struct ProfileChannel {
+    std::string label;
+    double wavelength_nm = 0.0;
+    double stream_key = 0.0;
+};
+
+// The walk channel by channel on the medium `medium(channel)`.
+SpectralProfiles walk_profiles(const std::string& material, const std::vector<ProfileChannel>& channels, const std::function<RteStack(std::size_t)>& medium,
+                               std::span<const double> radii_mm, bool transmittance, const RteProfileOptions& options) {
     if (radii_mm.size() < 2) throw InputError("radial profiles of the volumetric walk need at least two radii (0 and a step)");
     const double step_mm = radii_mm[1] - radii_mm[0];
     for (std::size_t i = 0; i < radii_mm.size(); ++i) {
@@ -41,42 +67,74 @@ SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGri
         }
     }
     SpectralProfiles out;
-    out.material = stack.name;
+    out.material = material;
     out.model = "rte";
+    out.stderr_target = options.stderr_target;
     out.radii_mm.assign(radii_mm.begin(), radii_mm.end());
     const std::size_t n = radii_mm.size();
-    for (const double nm : wavelengths.nm()) {
+    std::vector<double> within_cm;
+    for (const double r : within_radii_mm(radii_mm)) within_cm.push_back(r / 10.0);
+    std::uint64_t rays_before = 0;
+    for (std::size_t index = 0; index < channels.size(); ++index) {
         RteRequest request;
-        request.stack = rte_stack_from(stack, nm);
+        request.stack = medium(index);
         request.photons = options.photons_per_wavelength;
+        request.stderr_target = options.stderr_target;
+        request.within_radii_cm = within_cm;
         request.seed = options.seed;
-        request.stream_key = nm;
+        request.stream_key = channels[index].stream_key;
         request.boundaries = options.boundaries;
         // 2n half-step rings: the last one also collects everything beyond (as MCML's last bin) and is not used.
         request.grid = RteGrid{0.01, 0.05 * step_mm, 0, static_cast<int>(2 * n), 0};
         request.cancel = options.cancel;
-        const std::size_t index = out.channels.size(), total = wavelengths.size();
+        const std::size_t total = channels.size();
         if (options.on_progress) {
-            request.on_progress = [&options, index, total, photons = options.photons_per_wavelength](const Progress& p) {
-                options.on_progress(Progress{index * photons + p.rays_done, total * photons, index, total});
+            // The wavelengths to come are expected to take as many photons as this one (unknown until it is estimated).
+            request.on_progress = [&options, index, total, rays_before](const Progress& p) {
+                const std::uint64_t expected = p.rays_expected > 0 ? rays_before + p.rays_expected * (total - index) : 0;
+                options.on_progress(Progress{rays_before + p.rays_done, expected, index, total});
             };
         }
         const auto result = solve_rte(request);
+        rays_before += result.photons;
         if (result.partial) {
             out.partial = true;
             break;
         }
         ChannelProfile c;
-        c.label = fmt::format("{:g} nm", nm);
-        c.wavelength_nm = nm;
+        c.label = channels[index].label;
+        c.wavelength_nm = channels[index].wavelength_nm;
         centred_rings(result.reflectance_r, n, c.reflectance_per_mm2, c.reflectance_stderr_per_mm2);
         if (transmittance) centred_rings(result.transmittance_r, n, c.transmittance_per_mm2, c.transmittance_stderr_per_mm2);
         c.total_reflectance = result.diffuse_reflectance.value;
         c.total_transmittance = result.transmittance.value;
         c.specular_reflectance = result.specular_reflectance.value;
+        c.rays = result.photons;
+        for (const auto* within : {&result.reflectance_within, &result.transmittance_within}) {
+            for (const auto& e : *within) c.within_radius_stderr = std::max(c.within_radius_stderr, e.stderr);
+        }
+        c.converged = !options.stderr_target || c.within_radius_stderr <= *options.stderr_target;
         out.channels.push_back(std::move(c));
     }
     return out;
+}
+
+}  // namespace
+
+SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGrid& wavelengths, std::span<const double> radii_mm, bool transmittance,
+                                    const RteProfileOptions& options) {
+    std::vector<ProfileChannel> channels;
+    for (const double nm : wavelengths.nm()) channels.push_back({fmt::format("{:g} nm", nm), nm, nm});
+    return walk_profiles(stack.name, channels, [&](std::size_t c) { return rte_stack_from(stack, channels[c].wavelength_nm); }, radii_mm,
+                         transmittance, options);
+}
+
+SpectralProfiles solve_rte_profiles(const HomogeneousMaterial& material, std::span<const double> radii_mm, bool transmittance,
+                                    const RteProfileOptions& options) {
+    // Streams keyed by the band's number, as solve_rte_bands keys them.
+    std::vector<ProfileChannel> channels;
+    for (std::size_t b = 0; b < material.bands.size(); ++b) channels.push_back({material.bands[b], 0.0, static_cast<double>(b + 1)});
+    return walk_profiles(material.name, channels, [&](std::size_t c) { return rte_band_slab(material, c); }, radii_mm, transmittance, options);
 }
 
 }  // namespace skinspec

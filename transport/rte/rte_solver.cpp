@@ -32,11 +32,11 @@ constexpr double roulette_survival = 0.1;
 
 // Channel layout of a photon's score.
 struct Channels {
-    std::size_t layers, nz, nr, na;
+    std::size_t layers, nz, nr, na, nw;
     std::size_t specular = 0, reflectance = 1, transmittance = 2, absorbed = 3, first_layer = 4;
-    std::size_t a_z, r_r, t_r, r_a, t_a, a_rz, r_ra, t_ra, count = 0;
-    Channels(std::size_t l, const RteGrid& g)
-        : layers(l), nz(static_cast<std::size_t>(g.nz)), nr(static_cast<std::size_t>(g.nr)), na(static_cast<std::size_t>(g.na)) {
+    std::size_t a_z, r_r, t_r, r_a, t_a, a_rz, r_ra, t_ra, r_within, t_within, count = 0;
+    Channels(std::size_t l, const RteGrid& g, std::size_t within)
+        : layers(l), nz(static_cast<std::size_t>(g.nz)), nr(static_cast<std::size_t>(g.nr)), na(static_cast<std::size_t>(g.na)), nw(within) {
         a_z = first_layer + layers;
         r_r = a_z + nz;
         t_r = r_r + nr;
@@ -46,7 +46,9 @@ struct Channels {
         r_ra = a_rz + nr * nz;
         t_ra = r_ra + nr * na;
         truncated = t_ra + nr * na;
-        count = truncated + 1;
+        r_within = truncated + 1;
+        t_within = r_within + nw;
+        count = t_within + nw;
     }
     std::size_t truncated;  // 1 for a photon stopped at the step limit (per absorption set in white mode)
 };
@@ -215,6 +217,10 @@ private:
         if (ch_.nr > 0) t.add_to_batch(o + (top ? ch_.r_r : ch_.t_r) + r_bin(r_cm), w);
         if (ch_.na > 0) t.add_to_batch(o + (top ? ch_.r_a : ch_.t_a) + a_bin(cos_exit), w);
         if (ch_.nr > 0 && ch_.na > 0) t.add_to_batch(o + (top ? ch_.r_ra : ch_.t_ra) + r_bin(r_cm) * ch_.na + a_bin(cos_exit), w);
+        const auto& within = request_.within_radii_cm;
+        for (auto k = static_cast<std::size_t>(std::lower_bound(within.begin(), within.end(), r_cm) - within.begin()); k < ch_.nw; ++k) {
+            lanes.scores[lane].add(o + (top ? ch_.r_within : ch_.t_within) + k, w);
+        }
     }
 
     // A finished photon: its deposits per layer (and in all) join its score, which joins the tally.
@@ -391,7 +397,13 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
             if (!(std::isfinite(mu) && mu >= 0.0)) throw InputError("absorption set: mu_a [1/cm] = " + format_number(mu) + " is outside [0, inf)");
         }
     }
-    const Channels channels(request.stack.layers.size(), g);
+    const auto& within = request.within_radii_cm;
+    for (std::size_t k = 0; k < within.size(); ++k) {
+        if (!(std::isfinite(within[k]) && within[k] > 0.0) || (k > 0 && !(within[k] > within[k - 1]))) {
+            throw InputError("within radii: " + format_number(within[k]) + " cm is not positive and above the one before");
+        }
+    }
+    const Channels channels(request.stack.layers.size(), g, within.size());
     const Walk walk(request, channels, mu_a_sets);
     const std::size_t sets = std::max<std::size_t>(1, mu_a_sets.size());
 
@@ -401,10 +413,15 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
     driver.stderr_target = request.stderr_target;
     driver.seed = request.seed;
     // The grids' standard errors are batch means: at least 64 batches when the budget allows (batches of 64 to 4096).
-    if (g.nz > 0 || g.nr > 0 || g.na > 0) driver.rays_per_batch = std::clamp<std::uint64_t>(request.photons / 64, 64, driver.rays_per_batch);
+    // With a target the rays are not known ahead: batches of 1024 give ~60 at the ~6e4 photons a 0.002 target takes.
+    if (g.nz > 0 || g.nr > 0 || g.na > 0) {
+        driver.rays_per_batch = std::clamp<std::uint64_t>(request.stderr_target ? 1024 : request.photons / 64, 64, driver.rays_per_batch);
+    }
     driver.on_progress = request.on_progress;
     driver.cancel = request.cancel;
-    const auto outcome = run_batches(driver, channels.count * sets, {channels.reflectance, channels.transmittance},
+    std::vector<std::size_t> targets{channels.reflectance, channels.transmittance};
+    for (std::size_t k = 0; k < within.size(); ++k) targets.insert(targets.end(), {channels.r_within + k, channels.t_within + k});
+    const auto outcome = run_batches(driver, channels.count * sets, targets,
                                      [&](std::size_t, RandomStream& random, std::uint64_t n, RayTally& tally) { walk.trace(random, n, tally); },
                                      sets);
 
@@ -440,6 +457,8 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
                                      [&](std::size_t i) { return 1.0 / (ring(i / std::max<std::size_t>(1, channels.nz)) * dz); });
             r.reflectance_ra = scaled(t, o + channels.r_ra, channels.nr * channels.na, ra_scale);
             r.transmittance_ra = scaled(t, o + channels.t_ra, channels.nr * channels.na, ra_scale);
+            r.reflectance_within = scaled(t, o + channels.r_within, channels.nw, one);
+            r.transmittance_within = scaled(t, o + channels.t_within, channels.nw, one);
         }
         results.push_back(std::move(r));
     }
