@@ -12,6 +12,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-venv
   libpugixml-dev libopenmpi-dev openmpi-bin libjemalloc-dev
   clang libclang-rt-14-dev
+  ccache
 )
 
 missing=()
