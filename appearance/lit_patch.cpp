@@ -43,6 +43,28 @@ double annulus_mean(const std::vector<double>& enclosed_values, double dr, doubl
     return (at(outer) - at(inner)) / (std::numbers::pi * (outer * outer - inner * inner));
 }
 
+// The kernel's pixels within `core` pixels (Chebyshev distance) of the centre, (2 core + 1)^2 row-major: each ring of the
+// profile (R(r_k) on [r_k - dr/2, r_k + dr/2), the disc of radius dr/2 at r = 0) carries its energy R(r_k) times its
+// area, shared among the core pixels by the share of its circle inside each (angles a quarter ring width apart). Near
+// the entry point, where a dark skin's blue light leaves within a few rings, no ring is sampled by points that miss it.
+std::vector<double> core_pixels(const std::vector<double>& values, double dr, double h, int core) {
+    const int side = 2 * core + 1;
+    std::vector<double> out(static_cast<std::size_t>(side) * side, 0.0);
+    const double reach = (core + 0.5) * h * std::sqrt(2.0);
+    out[static_cast<std::size_t>(core) * side + static_cast<std::size_t>(core)] += values.front() * std::numbers::pi * 0.25 * dr * dr;
+    for (std::size_t k = 1; k < values.size() && static_cast<double>(k) * dr <= reach; ++k) {
+        const double r = static_cast<double>(k) * dr, energy = values[k] * 2.0 * std::numbers::pi * r * dr;
+        const int angles = std::max(8, static_cast<int>(std::ceil(2.0 * std::numbers::pi * r / (0.25 * dr))));
+        const double share = energy / angles;
+        for (int a = 0; a < angles; ++a) {
+            const double phi = 2.0 * std::numbers::pi * (a + 0.5) / angles;
+            const auto i = static_cast<int>(std::lround(r * std::cos(phi) / h)), j = static_cast<int>(std::lround(r * std::sin(phi) / h));
+            if (std::max(std::abs(i), std::abs(j)) <= core) out[static_cast<std::size_t>(j + core) * side + static_cast<std::size_t>(i + core)] += share;
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 Illumination Illumination::spot(double radius_mm) {
@@ -175,25 +197,17 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
         }
         const auto& profile = out.profiles.channels[c];
         const auto within = enclosed(profile.reflectance_per_mm2, dr);
-        // Kernel: R(r) integrated over each pixel (8 x 8 samples near the centre, further out its mean over the annulus the
-        // pixel spans radially, times the pixel's area).
+        // Kernel: R(r) integrated over each pixel: near the centre the rings' energies shared by their circles' shares in
+        // each pixel (core_pixels), further out R's mean over the annulus the pixel spans radially, times its area.
+        constexpr int core = 3;
+        const auto centre = core_pixels(profile.reflectance_per_mm2, dr, h, core);
         std::vector<double> kernel(static_cast<std::size_t>(side) * side);
         double sum = 0.0;
         for (int j = -margin; j <= margin; ++j) {
             for (int i = -margin; i <= margin; ++i) {
-                double value = 0.0;
-                if (std::max(std::abs(i), std::abs(j)) <= 3) {
-                    for (int sy = 0; sy < samples_per_pixel_side; ++sy) {
-                        for (int sx = 0; sx < samples_per_pixel_side; ++sx) {
-                            const double x = (i - 0.5 + (sx + 0.5) / samples_per_pixel_side) * h;
-                            const double y = (j - 0.5 + (sy + 0.5) / samples_per_pixel_side) * h;
-                            value += interpolate(profile.reflectance_per_mm2, dr, std::hypot(x, y));
-                        }
-                    }
-                    value *= h * h / (samples_per_pixel_side * samples_per_pixel_side);
-                } else {
-                    value = annulus_mean(within, dr, std::hypot(i * h, j * h), h) * h * h;
-                }
+                const double value = std::max(std::abs(i), std::abs(j)) <= core
+                                         ? centre[static_cast<std::size_t>(j + core) * (2 * core + 1) + static_cast<std::size_t>(i + core)]
+                                         : annulus_mean(within, dr, std::hypot(i * h, j * h), h) * h * h;
                 kernel[static_cast<std::size_t>(j + margin) * side + static_cast<std::size_t>(i + margin)] = value;
                 sum += value;
             }
