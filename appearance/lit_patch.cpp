@@ -134,14 +134,19 @@ std::vector<double> Illumination::rasterize(const PatchGeometry& view, int margi
 }
 
 LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light,
-                          const PatchGeometry& view, const SpectralSolver& solver, const ProfileRequest& settings,
+                          const PatchGeometry& view, const SpectralSolver& solver, const ProfileRequest& settings, MeasurementGeometry geometry,
                           const std::function<void(std::size_t, std::size_t)>& on_progress, const std::atomic<bool>* cancel) {
     for (const int px : {view.width_px, view.height_px}) {
         if (px < 8 || px > 4096) throw InputError("image size " + std::to_string(px) + " px is outside [8, 4096]");
     }
     if (!(view.pixel_mm > 0.0 && view.pixel_mm <= 100.0)) throw InputError("pixel size = " + format_number(view.pixel_mm) + " mm is outside (0, 100]");
+    if (geometry == MeasurementGeometry::zero_45) {
+        throw InputError("--geometry 0-45: a lit patch shows the light leaving every point of the surface at every angle (sce, or sci with the "
+                         "first-surface reflection)");
+    }
     LitPatch out;
     out.geometry = view;
+    out.geometry_measured = geometry;
     // The kernel reaches half the larger side of the view: light from up to that far away is gathered.
     const int margin = std::max(view.width_px, view.height_px) / 2;
     out.kernel_radius_px = margin;
@@ -220,11 +225,13 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
         }
         const auto exitance = convolver.convolve(kernel);
         std::vector<float> image(static_cast<std::size_t>(view.width_px) * view.height_px);
+        // sci: the first-surface reflection where the light falls, as a sphere counts it.
+        const double specular = geometry == MeasurementGeometry::sci ? profile.specular_reflectance : 0.0;
         for (int y = 0; y < view.height_px; ++y) {
             for (int x = 0; x < view.width_px; ++x) {
+                const auto at = static_cast<std::size_t>(y + margin) * we + static_cast<std::size_t>(x + margin);
                 // FFT round-off (~1e-16 of the lit level) can leave dark pixels a hair below zero.
-                image[static_cast<std::size_t>(y) * view.width_px + x] =
-                    static_cast<float>(std::max(0.0, exitance[static_cast<std::size_t>(y + margin) * we + (x + margin)]));
+                image[static_cast<std::size_t>(y) * view.width_px + x] = static_cast<float>(std::max(0.0, exitance[at]) + specular * widened[at]);
             }
         }
         out.exitance.push_back(std::move(image));

@@ -4,7 +4,8 @@
 // the illumination convolved with the material's radial reflectance profile (seed 004 Eq. 5 and seed 002
 // Eq. 17 integrated over the surface for uniform angular response), per wavelength or band. The convolution
 // runs through FFTW (real-to-complex 2-D transforms). The specular first-surface reflection is not included
-// (it depends on the viewing direction); see docs/DIFFUSION.md.
+// (it depends on the viewing direction) unless the geometry is sci, which counts it as an integrating sphere does (the
+// first-surface reflectance times the irradiance at each point); see docs/PROFILES.md, "One geometry".
 #include <atomic>
 #include <functional>
 #include <string>
@@ -48,14 +49,16 @@ struct LitPatch {
     // Largest share of a channel's total diffuse reflectance outside the kernel or lost to sampling, put back
     // at the kernel's centre so that energy is conserved.
     double largest_kernel_correction = 0.0;
+    MeasurementGeometry geometry_measured = MeasurementGeometry::sce;  // what the exitance counts (sci: the first-surface reflection too)
     bool partial = false;
 };
 
 // InputError for a view outside [8, 4096] pixels a side or a pitch outside (0, 100] mm.
 // `settings`: the solver's switches and Monte Carlo settings (precision, budget or count, seed, what the user gave); its
-// wavelengths, radii and progress are the patch's own.
+// wavelengths, radii and progress are the patch's own. `geometry`: sce or sci (InputError for 0-45: a lit patch has
+// light leaving at every angle).
 LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light,
-                          const PatchGeometry& view, const SpectralSolver& solver, const ProfileRequest& settings,
+                          const PatchGeometry& view, const SpectralSolver& solver, const ProfileRequest& settings, MeasurementGeometry geometry,
                           const std::function<void(std::size_t done, std::size_t total)>& on_progress = {},
                           const std::atomic<bool>* cancel = nullptr);
 

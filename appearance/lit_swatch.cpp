@@ -30,11 +30,12 @@ Illumination pattern_lighting(const LinearImage& image, PatchGeometry& view) {
 }
 
 LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light, const PatchGeometry& view,
-                            const SpectralSolver& solver, const ProfileRequest& settings, IlluminantKind illuminant, ObserverKind observer,
+                            const SpectralSolver& solver, const ProfileRequest& settings, MeasurementGeometry geometry, IlluminantKind illuminant,
+                            ObserverKind observer,
                             const std::string& space, const std::function<void(std::size_t done, std::size_t total)>& on_progress,
                             const std::atomic<bool>* cancel) {
     LitSwatch out;
-    out.patch = render_lit_patch(material, wavelengths, light, view, solver, settings, on_progress, cancel);
+    out.patch = render_lit_patch(material, wavelengths, light, view, solver, settings, geometry, on_progress, cancel);
     if (out.patch.partial) return out;
     const auto& cm = ColorManagement::builtin();
     out.bands = std::holds_alternative<HomogeneousMaterial>(material);
@@ -53,18 +54,22 @@ void write_lit_swatch(const LitSwatch& swatch, const std::string& material, cons
     const auto& model = swatch.patch.profiles.model;
     ImageMetadata metadata{{"Software", std::string("skinspec ") + version},
                                  {"skinspec:model", model},
+                                 {"skinspec:geometry", std::string(to_string(swatch.patch.geometry_measured))},
                                  {"skinspec:material", material},
                                  {"skinspec:lighting", lighting},
                                  {"skinspec:field_mm", fmt::format("{:g}", field_mm)},
                                  {"skinspec:pixel_mm", fmt::format("{:g}", swatch.patch.geometry.pixel_mm)},
                                  {"skinspec:wavelengths", swatch.bands ? std::string("bands R, G, B") : wavelengths_text},
-                                 {"ImageDescription", fmt::format("skinspec lit swatch: {} under {} ({} mode; diffuse exitance, "
-                                                                  "no specular)", material, lighting, model)}};
+                                 {"ImageDescription", fmt::format("skinspec lit swatch: {} under {} ({} mode; geometry {}: {})", material, lighting, model,
+                                                                  to_string(swatch.patch.geometry_measured),
+                                                                  swatch.patch.geometry_measured == MeasurementGeometry::sci
+                                                                      ? "diffuse exitance and the first-surface reflection"
+                                                                      : "diffuse exitance, no first-surface reflection")}};
     if (!profile_shape.empty()) metadata.emplace_back("skinspec:profile_shape", profile_shape);
     if (const auto precision = profile_precision_line(swatch.patch.profiles); !precision.empty()) metadata.emplace_back("skinspec:profile_precision", precision);
     for (const auto& out : files.files) {
         if (out.extension() == ".exr") write_linear_image(out, swatch.image, files.space, files.half, metadata, cm);
-        else write_image_grid(out, {swatch.image}, 1, {fmt::format("{}\n{}, {:g} mm", material, lighting, field_mm)}, files.space, files.display, files.view, metadata, cm);
+        else write_image_grid(out, {swatch.image}, 1, {fmt::format("{}, {}\n{}, {:g} mm", material, to_string(swatch.patch.geometry_measured), lighting, field_mm)}, files.space, files.display, files.view, metadata, cm);
     }
 }
 

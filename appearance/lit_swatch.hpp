@@ -29,12 +29,13 @@ struct LitSwatch {
 // a band material's three bands taken as linear Rec.709). InputError for a band material without exactly three
 // bands. Stopped through `cancel`: partial, no image.
 LitSwatch render_lit_swatch(const Material& material, const WavelengthGrid& wavelengths, const Illumination& light, const PatchGeometry& view,
-                            const SpectralSolver& solver, const ProfileRequest& settings, IlluminantKind illuminant, ObserverKind observer,
+                            const SpectralSolver& solver, const ProfileRequest& settings, MeasurementGeometry geometry, IlluminantKind illuminant,
+                            ObserverKind observer,
                             const std::string& space, const std::function<void(std::size_t done, std::size_t total)>& on_progress = {},
                             const std::atomic<bool>* cancel = nullptr);
 
 // Writes the swatch's image to every file of `outputs` (as check_image_outputs returned them; the display-referred
-// ones labelled), with its provenance (material, model, lighting, field, wavelengths) and, unless empty, the profiles'
+// ones labelled, the geometry in the label), with its provenance (material, model, geometry, lighting, field, wavelengths) and, unless empty, the profiles'
 // stated shape error (metadata skinspec:profile_shape).
 void write_lit_swatch(const LitSwatch& swatch, const std::string& material, const Illumination& light, double field_mm,
                       const std::string& wavelengths_text, const ImageOutputs& outputs, const std::string& profile_shape = {});

@@ -21,6 +21,14 @@ namespace skinspec {
 // ~20 nm wide), 10 nm for coarser tolerances.
 WavelengthGrid swatch_wavelengths(double delta_e);
 
+// The one geometry of every image skinspec makes of skin (the swatch chart, a lit patch, the look-up texture) and of
+// what fit-image assumes of an image that does not state its own: sce, the light that entered the skin (docs/PROFILES.md,
+// "One geometry"). Skin's surface is rough: its first-surface reflection is a glossy lobe about each light's mirror
+// direction, which a view sees only where it sits in that lobe, while the light from inside leaves in every direction;
+// an albedo (a renderer adds its own specular lobe, a cross-polarised capture removes it) is that diffuse part. sci (a
+// spectrophotometer's sphere, `spectrum`'s default) is one --geometry away, and every image states its geometry.
+inline constexpr MeasurementGeometry image_geometry = MeasurementGeometry::sce;
+
 struct SwatchRequest {
     std::string material = "biospec-moderately";
     std::vector<MaterialOverride> overrides;
@@ -32,7 +40,7 @@ struct SwatchRequest {
     std::uint64_t max_rays_per_wavelength = 1'000'000;
     std::vector<std::string> sampling_options;  // as SolverRequest's: seed and ray budget given by the caller
     std::string solver = "biospec";  // a registry name (solvers/spectral_solver.hpp)
-    MeasurementGeometry geometry = MeasurementGeometry::sci;  // the colour of R measured this way
+    MeasurementGeometry geometry = image_geometry;  // the colour of R measured this way
     std::size_t patches_per_sweep = 64;  // patches solved together (replayed); 1: each patch traced on its own
     SolverSwitches switches;
     std::function<void(std::size_t patches_done, std::size_t patches_total)> on_progress;

@@ -68,12 +68,13 @@ void write_swatch_files(const SwatchChart& chart, const SwatchRequest& request, 
     for (const auto& [k, v] : chart.settings) {
         metadata.push_back({"skinspec:" + k, std::visit([](const auto& x) { return fmt::format("{}", x); }, v)});
     }
-    metadata.push_back({"ImageDescription", "skinspec swatch: " + request.material + ", " + parameters});
+    const auto geometry = std::string(to_string(request.geometry));
+    metadata.push_back({"ImageDescription", "skinspec swatch: " + request.material + ", " + parameters + "; geometry " + geometry});
 
     const ChartLayout layout{chart.columns, chart.rows, files.patch_px, 8};
     ChartAxes axes;
     if (!request.sweeps.empty()) {
-        axes.column_title = axis_title(request.sweeps[0]);
+        axes.column_title = axis_title(request.sweeps[0]) + " (" + geometry + ")";
         axes.column_values = axis_values(request.sweeps[0]);
     }
     if (request.sweeps.size() > 1) {

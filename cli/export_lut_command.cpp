@@ -110,7 +110,7 @@ void run_export_lut(const LutOptions& o) {
 
 void add_export_lut_command(CLI::App& exporter) {
     auto o = std::make_shared<LutOptions>();
-    o->solver.geometry = "sce";
+    o->solver.geometry = to_string(image_geometry);
     auto* cmd = exporter.add_subcommand("lut", "Melanosome x blood look-up texture of diffuse skin albedo (linear EXR), spectra and a preview");
     add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     cmd->add_option("--melanin", o->melanin, "epidermis.melanosome_fraction per column: FIRST:LAST:STEPS[:log]")->capture_default_str();

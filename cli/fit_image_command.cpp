@@ -44,7 +44,7 @@ struct FitImageOptions {
     std::string view = "Standard";
     std::uint64_t seed = 1;
     std::vector<std::string> sampling_given;
-    std::vector<std::string> colour_given;  // --space, --illuminant, --observer, --display, --view as given
+    std::vector<std::string> colour_given;  // --space, --illuminant, --observer, --display, --view, --geometry as given
     std::uint64_t max_rays = 1'000'000;
     unsigned threads = 0;
     bool overwrite = false;
@@ -108,6 +108,19 @@ void run_fit_image(const FitImageOptions& o) {
     request.fit.noise = o.noise;
     request.fit.gamut_sigma = o.gamut_sigma;
     const auto image = read_skin_image(o.image, request);
+    // An image skinspec wrote states how it was made: fitted so unless --space / --geometry say otherwise (a stated space
+    // is a float image's, whose values are read as they are, in whichever space).
+    const auto stated = stated_image_settings(o.image);
+    const bool space_stated = !multispectral && !given("--space") && stated.space;
+    const bool geometry_stated = !given("--geometry") && stated.geometry;
+    if (space_stated) request.space = *stated.space;
+    auto solver_options = o.solver;
+    if (geometry_stated) solver_options.geometry = to_string(*stated.geometry);
+    if (space_stated || geometry_stated) {
+        std::cerr << fmt::format("skinspec: note: {} states {}{}{} (skinspec wrote it): fitted so; --space / --geometry override\n", o.image,
+                                 space_stated ? "its colour space " + request.space : std::string(), space_stated && geometry_stated ? " and " : "",
+                                 geometry_stated ? "geometry " + solver_options.geometry : std::string());
+    }
 
     auto& table = request.table;
     table.material = chosen_material(o.preset, o.material_file);
@@ -121,7 +134,7 @@ void run_fit_image(const FitImageOptions& o) {
     const auto& solver = chosen_solver(o.solver, "biospec-adding-doubling");
     table.solver = std::string(solver.name());
     table.switches = solver_switches(o.solver);
-    table.geometry = measurement_geometry(o.solver, solver);
+    table.geometry = measurement_geometry(solver_options, solver);
 
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
@@ -179,7 +192,7 @@ void run_fit_image(const FitImageOptions& o) {
 
 void add_fit_image_command(CLI::App& app) {
     auto o = std::make_shared<FitImageOptions>();
-    o->solver.geometry = "sce";
+    o->solver.geometry = to_string(image_geometry);
     auto* cmd = app.add_subcommand("fit-image",
                                    "Melanosome and blood maps of a skin albedo image (RGB or multispectral) through the skin model, with "
                                    "uncertainties, residuals, a mask of what is not skin, and edits re-rendered (docs/FIT_IMAGE.md)");
@@ -218,7 +231,7 @@ void add_fit_image_command(CLI::App& app) {
     add_geometry_option(*cmd, o->solver);
     cmd->callback([o, cmd] {
         o->sampling_given = given_sampling_options(*cmd);
-        o->colour_given = given_options(*cmd, {"--space", "--illuminant", "--observer", "--display", "--view"});
+        o->colour_given = given_options(*cmd, {"--space", "--illuminant", "--observer", "--display", "--view", "--geometry"});
         run_fit_image(*o);
     });
 }

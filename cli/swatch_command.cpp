@@ -80,10 +80,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     const auto& solver = chosen_profile_solver(o.solver);
     check_overrides(solver, material, overrides);
     const auto switches = solver_switches(o.solver);
-    if (measurement_geometry(o.solver, solver) != MeasurementGeometry::sci) {
-        throw InputError("--geometry " + o.solver.geometry + ": a lit patch shows the light leaving every point of the surface (sci); "
-                         "other geometries are for the chart");
-    }
+    const auto geometry = measurement_geometry(o.solver, solver);
     const auto illuminant = parse_illuminant(o.illuminant, "--illuminant");
     const auto observer = parse_observer(o.observer, "--observer");
     const auto grid = WavelengthGrid::parse(o.wavelengths, "--wavelengths");
@@ -100,7 +97,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     settings.max_rays_per_wavelength = o.max_rays;
     settings.seed = o.seed;
     settings.sampling_options = o.sampling_given;
-    const auto swatch = render_lit_swatch(material, grid, light, view, solver, settings, illuminant, observer, files.space,
+    const auto swatch = render_lit_swatch(material, grid, light, view, solver, settings, geometry, illuminant, observer, files.space,
                                           [&bar](std::size_t done, std::size_t total) { bar(Progress{0, 0, done, total}); },
                                           &InterruptGuard::cancel_flag());
     bar.clear();
@@ -234,6 +231,7 @@ void run_swatch(const SwatchOptions& o) {
 
 void add_swatch_command(CLI::App& app) {
     auto o = std::make_shared<SwatchOptions>();
+    o->solver.geometry = to_string(image_geometry);
     auto* cmd = app.add_subcommand("swatch", "Chart image of simulated skin colours over one or two stack fields");
     add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     cmd->add_option("--vary", o->vary,

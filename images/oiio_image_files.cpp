@@ -44,6 +44,9 @@ std::string read(const std::string& file, double max_bytes, DataImage& out) {
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.values.data())) {
         return "cannot be read as an image (" + in->geterror() + ")";
     }
+    for (const auto& attribute : spec.extra_attribs) {
+        if (attribute.type() == OIIO::TypeDesc::STRING) out.metadata.emplace_back(attribute.name().string(), attribute.get_string());
+    }
     return {};
 }
 

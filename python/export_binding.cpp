@@ -140,7 +140,7 @@ void bind_exports(py::module_& m) {
           py::arg("material"), py::arg("output"), py::kw_only(), py::arg("melanin") = "0.01:0.42:64:log",
           py::arg("blood") = "0.002:0.05:64:log", py::arg("set") = py::none(), py::arg("delta_e") = 0.5, py::arg("illuminant") = "D65",
           py::arg("observer") = "2", py::arg("mode") = "biospec", py::arg("seed") = py::none(), py::arg("max_rays") = py::none(),
-          py::arg("geometry") = "sce", py::arg("space") = "ACEScg", py::arg("half") = false, py::arg("spectra") = py::none(),
+          py::arg("geometry") = std::string(to_string(image_geometry)), py::arg("space") = "ACEScg", py::arg("half") = false, py::arg("spectra") = py::none(),
           py::arg("preview") = py::none(), py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("threads") = py::none(),
           py::arg("progress") = py::none(), py::arg("overwrite") = false);
     m.def("export_profile", &export_profile, R"doc(R(r) fitted as a sum of Gaussians with shared variances (d'Eon et al. 2007), as `skinspec export profile` fits it.

@@ -30,16 +30,25 @@ SkinImage image_argument(const py::object& image, const SkinImageRequest& reques
 }
 
 py::object fit_image(const py::object& image, const std::string& material, const std::string& melanin, const std::string& blood,
-                     const py::object& set, const std::string& space, const py::object& bands, const py::object& white, const py::object& noise,
-                     double gamut_sigma, const py::object& edit, const std::string& solver, const std::string& geometry, double delta_e,
+                     const py::object& set, const py::object& space, const py::object& bands, const py::object& white, const py::object& noise,
+                     double gamut_sigma, const py::object& edit, const std::string& solver, const py::object& geometry, double delta_e,
                      const std::string& illuminant, const std::string& observer, const py::object& seed, const py::object& max_rays,
                      const py::object& threads, const py::object& progress, const py::kwargs& switches) {
+    // An image file skinspec wrote states its colour space and geometry (stated_image_settings): taken unless given.
+    const auto stated = is_path(image) ? stated_image_settings(path_argument(image, "image")) : StatedImageSettings{};
+    const auto chosen_geometry = !geometry.is_none() ? geometry.cast<std::string>()
+                                 : stated.geometry ? std::string(to_string(*stated.geometry))
+                                                   : std::string(to_string(image_geometry));
     SkinImageRequest request;
-    request.table = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, geometry, switches);
+    request.table = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, chosen_geometry, switches);
     const auto u = lut_axis(lut_melanin_field, melanin, "melanin");
     const auto v = lut_axis(lut_blood_field, blood, "blood");
     request.table.sweeps = {u, v};
-    if (bands.is_none()) request.space = ColorManagement::builtin().canonical_space(space, "space");
+    if (bands.is_none()) {
+        request.space = !space.is_none() ? ColorManagement::builtin().canonical_space(space.cast<std::string>(), "space")
+                        : stated.space     ? *stated.space
+                                           : std::string("Linear Rec.709");
+    }
     else request.bands = read_band_sensitivities(path_argument(bands, "bands"));
     request.white = finite_vector(white, "white");
     if (!noise.is_none()) request.fit.noise = one_number(noise, "noise");
@@ -92,15 +101,16 @@ void bind_image_fit(py::module_& m) {
     channel value (None: estimated from the residuals); gamut_sigma: a residual above this many noise sigmas is outside
     the model's gamut; edit: "FIELD=*SCALE" or "FIELD=VALUE" (or a list): the image re-rendered with the fitted fields
     changed, returned as "edited" (fitted pixels whose edited fields leave the table unchanged, counted in
-    "edit"); mode (the solver, as --mode; default "biospec-adding-doubling"), geometry (default "sce"), delta_e,
+    "edit"); mode (the solver, as --mode; default "biospec-adding-doubling"), geometry and space (default None: what an image
+    file skinspec wrote states, else "sce" and "Linear Rec.709"), delta_e,
     illuminant, observer, seed, max_rays, threads, progress (called with the table's nodes, then the image's rows) and
     solver switches as skinspec.swatch takes them. Returns the command's --json
     summary with "maps": (height, width) arrays named as the maps' OpenEXR channels (both fields, "FIELD.stderr",
     "residual", "status": 0 fitted, 1 outside the model's gamut, 2 on the table's edge, 3 invalid, 4 not fitted).)doc",
           py::arg("image"), py::kw_only(), py::arg("material") = "biospec-moderately", py::arg("melanin") = "0.005:0.45:24:log",
-          py::arg("blood") = "0.001:0.1:16:log", py::arg("set") = py::none(), py::arg("space") = "Linear Rec.709", py::arg("bands") = py::none(),
+          py::arg("blood") = "0.001:0.1:16:log", py::arg("set") = py::none(), py::arg("space") = py::none(), py::arg("bands") = py::none(),
           py::arg("white") = 1.0, py::arg("noise") = py::none(), py::arg("gamut_sigma") = 4.0, py::arg("edit") = py::none(),
-          py::arg("mode") = "biospec-adding-doubling", py::arg("geometry") = "sce", py::arg("delta_e") = 0.5, py::arg("illuminant") = "D65",
+          py::arg("mode") = "biospec-adding-doubling", py::arg("geometry") = py::none(), py::arg("delta_e") = 0.5, py::arg("illuminant") = "D65",
           py::arg("observer") = "2", py::arg("seed") = py::none(), py::arg("max_rays") = py::none(), py::arg("threads") = py::none(),
           py::arg("progress") = py::none());
 }

@@ -59,7 +59,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
                     double spot_radius_mm, const py::object& wavelengths, const py::object& mode, const std::string& illuminant,
                     const std::string& observer, const std::string& space, const py::object& output, bool half, const std::string& display,
                     const std::string& view_name, bool overwrite, const py::object& progress, const py::object& rays, const py::object& stderr_target,
-                    const py::object& max_rays, const py::object& seed, const py::kwargs& switches) {
+                    const py::object& max_rays, const py::object& seed, const std::string& geometry, const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     auto view = lit_view(field_mm, pixels);
     const auto files = check_image_outputs(ImageOutputs{output_paths(output, "output"), space, half, display, view_name, overwrite});
@@ -74,7 +74,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
     LitSwatch swatch;
     run_interruptible(
         [&](const CancelFlag& cancel, const std::function<void(const Progress&)>& report) {
-            swatch = render_lit_swatch(skin.material, grid, light, view, solver, settings, parse_illuminant(illuminant, "illuminant"),
+            swatch = render_lit_swatch(skin.material, grid, light, view, solver, settings, parse_measurement_geometry(geometry, "geometry"), parse_illuminant(illuminant, "illuminant"),
                                        parse_observer(observer, "observer"), files.space,
                                        [&report](std::size_t done, std::size_t total) { report(Progress{0, 0, done, total}); }, &cancel);
         },
@@ -108,6 +108,7 @@ py::dict lit_swatch(const py::object& material, const std::string& lighting, con
     d["shape"] = profile_shape_object(solver, skin.material, shape);
     d["kernel_reach_mm"] = patch.kernel_radius_px * view.pixel_mm;
     d["largest_kernel_correction"] = patch.largest_kernel_correction;
+    d["geometry"] = std::string(to_string(patch.geometry_measured));
     d["precision"] = profile_precision_line(patch.profiles);
     d["files"] = written;
     d["warnings"] = summarise_warnings(patch.profiles.warnings);
@@ -213,7 +214,8 @@ void bind_swatch(py::module_& m) {
     width, 3) linear Rec.709, or an image file (the view takes its aspect); field_mm: the view's width; pixels: its
     width in pixels, [8, 4096]; wavelengths: nm (default 400-700 every 10); mode: a solver that computes profiles
     (default None: rte, the exact transport; rays, stderr, max_rays, seed as skinspec.profiles takes them; or a diffusion
-    mode) with its switches as keywords; space: the working space of "rgb"; output: a file or a list
+    mode) with its switches as keywords; geometry: "sce" (default, the light from inside) or "sci" (with the first-surface
+    reflection where the light falls); space: the working space of "rgb"; output: a file or a list
     (.exr linear; .png, .tif display-referred through display / view), checked before any work. Returns rgb
     (height, width, 3), exitance per channel (channels, height, width; diffuse exitance per unit irradiance, no
     specular), labels, wavelength_nm, pixel_mm, kernel_reach_mm, largest_kernel_correction, files and warnings.)doc",
@@ -222,7 +224,7 @@ void bind_swatch(py::module_& m) {
           py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("space") = "ACEScg", py::arg("output") = py::none(),
           py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("overwrite") = false,
           py::arg("progress") = py::none(), py::arg("rays") = py::none(), py::arg("stderr") = py::none(), py::arg("max_rays") = py::none(),
-          py::arg("seed") = py::none());
+          py::arg("seed") = py::none(), py::arg("geometry") = std::string(to_string(image_geometry)));
     m.def("swatch", &swatch, R"doc(The colours of a material over one or two swept fields, as `skinspec swatch` computes them (no image is written).
 
     material: a preset name or .toml path; vary: "FIELD=FIRST:LAST:STEPS[:log]" strings (first: columns, second:
@@ -236,7 +238,7 @@ void bind_swatch(py::module_& m) {
     ita_deg, category; and the files written.)doc",
           py::arg("material") = "biospec-moderately", py::arg("vary") = py::none(), py::kw_only(), py::arg("set") = py::none(),
           py::arg("delta_e") = SwatchRequest{}.delta_e, py::arg("illuminant") = "D65", py::arg("observer") = "2", py::arg("mode") = "biospec",
-          py::arg("seed") = py::none(), py::arg("max_rays") = py::none(), py::arg("geometry") = "sci", py::arg("space") = "ACEScg",
+          py::arg("seed") = py::none(), py::arg("max_rays") = py::none(), py::arg("geometry") = std::string(to_string(image_geometry)), py::arg("space") = "ACEScg",
           py::arg("output") = py::none(), py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard",
           py::arg("patch_size") = SwatchFiles{}.patch_px, py::arg("overwrite") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());
 }

@@ -39,7 +39,8 @@ std::vector<std::size_t> spread(std::size_t n, std::size_t k) {
 // description in every layer (adding-doubling cannot solve it). `accuracy`: adding-doubling's own accuracy estimate at
 // the middle of `at` (its 8 channels are ~0.007 off on skin: the stated error includes it).
 std::optional<std::vector<double>> measured_difference(const LayerStack& stack, const std::vector<WavelengthResult>& rows,
-                                                       const std::vector<std::size_t>& at, double incidence_deg, double& accuracy) {
+                                                       const std::vector<std::size_t>& at, double incidence_deg, MeasurementGeometry geometry,
+                                                       double& accuracy) {
     if (!std::all_of(stack.layers.begin(), stack.layers.end(), [](const TissueLayer& l) { return l.volumetric.has_value(); })) return std::nullopt;
     // The expanded phase functions depend on neither mu_a nor mu_s: one cache per thread serves every spectrum and
     // every member of a sweep (it compares entries by content and holds at most 16).
@@ -55,7 +56,7 @@ std::optional<std::vector<double>> measured_difference(const LayerStack& stack, 
         const auto ad = stack.model.volumetric_matched_to_biospec
                             ? solve_biospec_adding_doubling(stack, nm, incidence_deg, BiospecAdOptions{options, FoldIntoSkin::drop, std::nullopt}, &phases).totals
                             : solve_adding_doubling(rte_stack_from(stack, nm), AdIncidence{false, incidence_deg}, options, &phases);
-        difference[i] = rows[i].reflectance.value - (ad.diffuse_reflectance + ad.specular_reflectance);
+        difference[i] = rows[i].reflectance.value - (ad.diffuse_reflectance + (geometry == MeasurementGeometry::sce ? 0.0 : ad.specular_reflectance));
         if (check) accuracy = ad.accuracy;
     }
     for (std::size_t s = 0; s + 1 < at.size(); ++s) {
@@ -128,6 +129,7 @@ public:
                 .switches = {SolverSwitch::roughness},
                 .replay_fields = {},
                 .material_needs = "reduced_scattering_table or reduced_scattering_* in every layer",
+                .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce},
                 .bottom = !semi_infinite,
                 .layer_refractive_indices = !semi_infinite,
                 .descriptions = {ScatteringDescription::reduced},
@@ -212,7 +214,7 @@ public:
             const auto& stack = std::get<LayerStack>(material);
             const double incidence = request.spectral.incidence_deg;
             wanted_differences[k] = measured_difference(stack, i < results.size() ? results[i].wavelengths : solve(material, request).wavelengths, at, incidence,
-                                                        accuracies[k]);
+                                                        request.spectral.geometry, accuracies[k]);
         });
         meaning += fmt::format(", plus {}'s own accuracy there (twice the change of its R with the channels doubled, at the middle measured wavelength{})",
                                reference, members > 1 ? ", the largest of the measured members around it" : "");

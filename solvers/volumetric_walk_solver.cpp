@@ -28,6 +28,7 @@ public:
             .switches = {SolverSwitch::boundaries},
             .replay_fields = absorption_only_fields(),
             .material_needs = "volumetric_mu_s_per_cm_at_500nm (and volumetric_g / volumetric_phase) in every layer",
+            .geometries = {MeasurementGeometry::sci, MeasurementGeometry::sce},
             .descriptions = {ScatteringDescription::volumetric},
         };
         return caps;

@@ -28,6 +28,7 @@ struct DataImage {
     std::vector<float> values;
     bool floating_point = false;  // read from a half or float file
     std::vector<std::string> channel_names;
+    ImageMetadata metadata;  // read: the file's string attributes (e.g. skinspec:geometry, colorspace); not written
 };
 
 // How pixels are stored in the file written.
@@ -70,6 +71,6 @@ struct ImageModuleFunctions {
     std::string (*render_text)(DataImage& image, int x, int y, const std::string& text, int font_px, const std::string& font,
                                const std::array<float, 3>& colour);
 };
-inline constexpr int image_module_interface_version = 2;
+inline constexpr int image_module_interface_version = 3;
 
 }  // namespace skinspec

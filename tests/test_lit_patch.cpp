@@ -14,7 +14,7 @@ TEST_CASE("a uniformly lit patch shows the total diffuse reflectance", "[lit-pat
     const auto marble = load_material("jensen2001-marble");
     const PatchGeometry view{64, 64, 0.5};
     const auto patch = render_lit_patch(marble, WavelengthGrid::list({550.0}), Illumination::pattern(std::vector<float>(64 * 64, 1.0f), 64, 64),
-                                        view, find_solver("multipole"), {});
+                                        view, find_solver("multipole"), {}, MeasurementGeometry::sce);
     REQUIRE(patch.exitance.size() == 3);
     for (std::size_t c = 0; c < 3; ++c) {
         const double centre = patch.exitance[c][32 * 64 + 32];
@@ -28,7 +28,7 @@ TEST_CASE("a uniformly lit patch shows the total diffuse reflectance", "[lit-pat
 TEST_CASE("light bleeds across a shadow edge, red further than blue", "[lit-patch]") {
     const auto skin = load_material("biospec-lightly");
     const PatchGeometry view{128, 16, 0.08};
-    const auto patch = render_lit_patch(skin, WavelengthGrid::list({450.0, 650.0}), Illumination::edge(), view, find_solver("multipole"), {});
+    const auto patch = render_lit_patch(skin, WavelengthGrid::list({450.0, 650.0}), Illumination::edge(), view, find_solver("multipole"), {}, MeasurementGeometry::sce);
     REQUIRE(patch.exitance.size() == 2);
     const auto at = [&](std::size_t c, int x) { return patch.exitance[c][8 * 128 + x]; };
     for (std::size_t c = 0; c < 2; ++c) {
@@ -44,7 +44,7 @@ TEST_CASE("light bleeds across a shadow edge, red further than blue", "[lit-patc
 TEST_CASE("a spot: exitance integrates to R_d times the lit area", "[lit-patch]") {
     const auto marble = load_material("jensen2001-marble");
     const PatchGeometry view{96, 96, 0.25};
-    const auto patch = render_lit_patch(marble, WavelengthGrid::list({550.0}), Illumination::spot(2.0), view, find_solver("multipole"), {});
+    const auto patch = render_lit_patch(marble, WavelengthGrid::list({550.0}), Illumination::spot(2.0), view, find_solver("multipole"), {}, MeasurementGeometry::sce);
     for (std::size_t c = 0; c < 3; ++c) {
         double sum = 0.0;
         for (const float v : patch.exitance[c]) sum += v * view.pixel_mm * view.pixel_mm;
@@ -52,7 +52,7 @@ TEST_CASE("a spot: exitance integrates to R_d times the lit area", "[lit-patch]"
         // What diffuses beyond the 24 mm view is missing (marble's red band reaches furthest).
         CHECK(sum == Approx(patch.profiles.channels[c].total_reflectance * lit_area).epsilon(0.03));
     }
-    CHECK_THROWS_WITH(render_lit_patch(marble, WavelengthGrid::list({550.0}), Illumination::spot(2.0), {4, 96, 0.25}, find_solver("multipole"), {}),
+    CHECK_THROWS_WITH(render_lit_patch(marble, WavelengthGrid::list({550.0}), Illumination::spot(2.0), {4, 96, 0.25}, find_solver("multipole"), {}, MeasurementGeometry::sce),
                       Catch::Contains("image size 4 px is outside [8, 4096]"));
     CHECK_THROWS_WITH(Illumination::spot(-1.0), Catch::Contains("spot radius = -1 mm is outside (0, inf)"));
 }
@@ -66,6 +66,6 @@ TEST_CASE("the kernel holds the light that leaves next to the entry point", "[li
     const PatchGeometry view{64, 64, 0.08};
     ProfileRequest settings;
     settings.stderr_target = 0.004;
-    const auto patch = render_lit_patch(skin, WavelengthGrid::list({450.0}), Illumination::spot(1.0), view, default_profile_solver(), settings);
+    const auto patch = render_lit_patch(skin, WavelengthGrid::list({450.0}), Illumination::spot(1.0), view, default_profile_solver(), settings, MeasurementGeometry::sce);
     CHECK(patch.largest_kernel_correction < 0.02);
 }

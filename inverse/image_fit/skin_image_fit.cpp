@@ -191,4 +191,14 @@ nlohmann::ordered_json skin_image_summary_json(const SkinImageFit& result, const
             {"seconds", result.seconds}};
 }
 
+StatedImageSettings stated_image_settings(const std::filesystem::path& file) {
+    const auto image = read_data_image(file);
+    StatedImageSettings out;
+    for (const auto& [key, value] : image.metadata) {
+        if (key == "skinspec:geometry") out.geometry = parse_measurement_geometry(value, file.string() + ": skinspec:geometry");
+        if (key == "colorspace" && image.floating_point) out.space = ColorManagement::builtin().canonical_space(value, file.string() + ": colorspace");
+    }
+    return out;
+}
+
 }  // namespace skinspec

@@ -448,7 +448,7 @@ void lit_swatch_timings(Benchmark& bench) {
         for (const auto* solver : {&find_solver("matched-multipole"), &default_profile_solver()}) {
             bench.stage(fmt::format("{}: lit swatch (spot, 256 px, 31 wavelengths) by {}", name, solver->name()));
             const auto start = Clock::now();
-            const auto patch = render_lit_patch(material, grid, Illumination::spot(2.0), view, *solver, ProfileRequest{}, {}, bench.options().cancel);
+            const auto patch = render_lit_patch(material, grid, Illumination::spot(2.0), view, *solver, ProfileRequest{}, image_geometry, {}, bench.options().cancel);
             const double seconds = seconds_since(start);
             bench.check_cancel();
             if (solver->capabilities().uncertainty) {

@@ -143,7 +143,7 @@ skinspec_malformed_input("fit 0-45 with incidence" 2 "geometry 0-45 defines norm
 skinspec_malformed_input("spectrum one ray (its standard error read 0)" 105 "--rays: Value 1 not in range 100 to" - spectrum --rays 1 --wavelengths 550)
 skinspec_malformed_input("swatch budget below the fewest rays" 105 "--max-rays: Value 10 not in range 100 to" - swatch --max-rays 10)
 skinspec_malformed_input("spectrum unknown geometry" 2 "--geometry: 'd8' is not a measurement geometry \\(allowed: sci, sce, 0-45\\)" - spectrum --geometry d8 --rays 100)
-skinspec_malformed_input("rte 0-45" 2 "solver 'rte' does not measure R in geometry 0-45 \\(it offers sci; 0-45 is offered by: biospec\\)" - spectrum --mode rte --geometry 0-45 --material white_reflector.toml --rays 100)
+skinspec_malformed_input("rte 0-45" 2 "solver 'rte' does not measure R in geometry 0-45 \\(it offers sci, sce; 0-45 is offered by: biospec\\)" - spectrum --mode rte --geometry 0-45 --material white_reflector.toml --rays 100)
 skinspec_malformed_input("unknown variant" 2 "'biospec-2026' is not a model variant \\(allowed: biospec, biospec-2004, biospec-authors-code\\)" - spectrum --variant biospec-2026 --rays 100)
 skinspec_malformed_input("unknown Rayleigh turn" 2 "key 'model.rayleigh_turn': 'top' is not a Rayleigh turn rule" - spectrum --set model.rayleigh_turn=top --rays 100)
 skinspec_malformed_input("export lut needs an output" 106 "--output is required" - export lut)
@@ -164,7 +164,7 @@ skinspec_malformed_input("export mitsuba band material" 2 "'jensen2001-skin1' is
 skinspec_malformed_input("export mitsuba bad phase" 2 "--phase: 'mie' is not a phase export \\(allowed: own, hg\\)" "${out}/s5.xml" export mitsuba --phase mie -o ${out}/s5.xml)
 skinspec_malformed_input("export mitsuba wrong extension" 2 "s6.pbrt: .*allowed: .xml" "${out}/s6.pbrt" export mitsuba -o ${out}/s6.pbrt)
 skinspec_malformed_input("export mitsuba wavelength outside the data" 2 "2600 nm is outside the tabulated domain" "${out}/s7.xml;${out}/s7_spectra" export mitsuba --wavelengths 2600 -o ${out}/s7.xml)
-skinspec_malformed_input("export lut sce from multipole" 2 "solver 'multipole' does not measure R in geometry sce" "${out}/lut6.exr" export lut --mode multipole -o ${out}/lut6.exr)
+skinspec_malformed_input("export lut 0-45 from multipole" 2 "solver 'multipole' does not measure R in geometry 0-45" "${out}/lut6.exr" export lut --mode multipole --geometry 0-45 -o ${out}/lut6.exr)
 skinspec_malformed_input("fit preset and material" 2 "give --preset or --material, not both" "${out}/fit_both.csv" fit-spectrum fit_two.csv --preset biospec-lightly --material ../../data/materials/biospec-heavily.toml --output ${out}/fit_both.csv)
 # Reliability (issue 32): a result that is not finite, or outside its physical range, is never written and never
 # exits 0; nan and inf are not numbers any option takes.

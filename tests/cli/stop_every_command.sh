@@ -63,7 +63,7 @@ run() {
 "$program" export lut --mode multipole --geometry sci --melanin 0.01:0.1:2 --blood 0.01:0.02:2 --space "Linear Rec.709" -o albedo.exr > /dev/null 2>&1
 run "fit-image" HUP - - fit-image albedo.exr --mode biospec --delta-e 0.05 -o maps.exr
 run "spectrum" INT spectrum.json '"partial": true' spectrum --preset biospec-lightly --wavelengths 400:700:1 --stderr 0.0002 --output spectrum.json
-run "swatch" TERM swatch.png - swatch --delta-e 0.05 -o swatch.png
+run "swatch" TERM swatch.png - swatch --delta-e 0.01 -o swatch.png
 run "swatch --lit" HUP - - swatch --lit spot --pixels 1024 --wavelengths 400:700:2 -o lit.png
 run "export lut" INT lut.exr - export lut --delta-e 0.05 -o lut.exr
 run "fit-spectrum" TERM fit.json '"partial": true' fit-spectrum "$inputs/fit_two.csv" --rays 400000 --starts 32 --output fit.json

@@ -25,6 +25,37 @@ def test_fit_image_recovers_the_fields_of_a_swatch_made_by_the_model():
     assert (out["edited"] > truth["rgb"]).all()
 
 
+def test_fit_image_fits_the_swatch_chart_skinspec_wrote_with_both_defaults(tmp_path):
+    # One geometry everywhere (docs/PROFILES.md): `skinspec swatch` with its defaults (the BioSpec walk to CIEDE2000 0.3,
+    # sce, ACEScg) and fit-image with its own read the same skin. The chart's EXR states its geometry and colour space,
+    # and every pixel of its 8 x 5 patches (112 px, 8 px gaps) is fitted back to the values it was made from: within
+    # 6 % in melanin and 10 % in blood (measured: up to 4.5 % and 8 %: the chart's walk against the table's
+    # biospec-adding-doubling, CIEDE2000 ~0.2 apart, and the table's spline). Not the blood of the darkest column
+    # (melanosome fraction 0.42): there the colour barely depends on the blood and it comes back 41-57 % high
+    # (docs/FIT_IMAGE.md).
+    import os
+    import subprocess
+    chart = tmp_path / "chart.exr"
+    subprocess.run([os.environ["SKINSPEC_PROGRAM"], "swatch", "-o", str(chart)], capture_output=True, check=True)
+    out = skinspec.fit_image(chart, melanin="0.005:0.45:24:log", blood="0.001:0.1:16:log")
+    assert out["space"] == "ACEScg"
+    maps = out["maps"]
+    melanin = 0.01 * (0.42 / 0.01) ** (np.arange(8) / 7)
+    blood = np.linspace(0.002, 0.05, 5)
+    for row in range(5):
+        for column in range(8):
+            patch = (slice(8 + row * 120, 8 + row * 120 + 112), slice(8 + column * 120, 8 + column * 120 + 112))
+            assert (maps["status"][patch] == 0).all(), (row, column)
+            assert np.median(maps["epidermis.melanosome_fraction"][patch]) == pytest.approx(melanin[column], rel=0.06)
+            if column < 7:
+                assert np.median(maps["dermis.blood_fraction"][patch]) == pytest.approx(blood[row], rel=0.10)
+    # The gaps between the patches are not skin, and are said to be.
+    assert (maps["status"][0:8, :] == 1).all()
+    # Fitted as sci (given: it overrides what the image states), the model no longer reaches the chart's darker colours
+    # (60 % of the patches' pixels, measured).
+    assert skinspec.fit_image(chart, geometry="sci")["pixels"]["fitted"] < 0.9 * 40 * 112 * 112
+
+
 def test_fit_image_refuses_bad_arguments():
     rgb = np.full((2, 2, 3), 0.3)
     with pytest.raises(skinspec.InputError, match=r"expected an array \(height, width, 3\)"):

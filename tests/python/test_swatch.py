@@ -16,7 +16,12 @@ def test_swatch_equals_the_command(cli):
     assert ours["shape"] == (1, 3)
     np.testing.assert_allclose(ours["Lab"].reshape(-1, 3), [p["Lab"] for p in theirs["patches"]], rtol=0, atol=1e-12)
     assert ours["reflectance"].shape == (1, 3, len(ours["wavelength_nm"]))
-    assert list(ours["category"]) == ["intermediate", "brown", "dark"]
+    # Each patch's category is its ITA's (Chardon, Cretois & Hourseau 1991: ITA = atan((L* - 50) / b*); above 55 very
+    # light, 41 light, 28 intermediate, 10 tan, -30 brown, else dark).
+    L, b = ours["Lab"][0, :, 0], ours["Lab"][0, :, 2]
+    ita = np.degrees(np.arctan((L - 50.0) / b))
+    limits = ((55, "very light"), (41, "light"), (28, "intermediate"), (10, "tan"), (-30, "brown"), (-np.inf, "dark"))
+    assert list(ours["category"]) == [next(name for limit, name in limits if a > limit) for a in ita]
     # More melanin, darker skin: L* falls along the row.
     assert np.all(np.diff(ours["Lab"][0, :, 0]) < 0)
 

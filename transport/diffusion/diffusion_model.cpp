@@ -236,11 +236,12 @@ DiffusionMaterial diffusion_material(const HomogeneousMaterial& m, std::size_t b
 namespace {
 
 
-WavelengthResult row(const DiffusionMaterial& m, double wavelength_nm, const Quantities& q) {
+// R as `geometry` measures it: sce leaves out the first-surface (specular) reflection.
+WavelengthResult row(const DiffusionMaterial& m, double wavelength_nm, const Quantities& q, MeasurementGeometry geometry) {
     WavelengthResult w;
     w.wavelength_nm = wavelength_nm;
     if (q.reflectance) {
-        w.reflectance = {m.total_reflectance(), 0.0};
+        w.reflectance = {m.total_reflectance() - (geometry == MeasurementGeometry::sce ? m.specular_reflectance : 0.0), 0.0};
         w.specular_reflectance = {m.specular_reflectance, 0.0};
     }
     if (q.transmittance) w.transmittance = {m.total_transmittance(), 0.0};
@@ -270,7 +271,7 @@ SpectralResult solve_diffusion_spectrum(const LayerStack& stack, const SpectralR
         const auto m = diffusion_material(stack, nm, options, request.incidence_deg);
         if (result.layer_names.empty()) result.layer_names = m.slab_names;
         for (const auto& w : m.warnings) result.warnings.push_back(result_warning(w, fmt::format("{:g} nm", nm)));
-        result.wavelengths.push_back(row(m, nm, request.quantities));
+        result.wavelengths.push_back(row(m, nm, request.quantities, request.geometry));
     }
     return result;
 }
@@ -282,7 +283,7 @@ SpectralResult solve_diffusion_bands(const HomogeneousMaterial& material, const 
     for (std::size_t b = 0; b < material.bands.size(); ++b) {
         const auto m = diffusion_material(material, b, options, request.incidence_deg);
         for (const auto& w : m.warnings) result.warnings.push_back(result_warning(w, "band " + material.bands[b]));
-        result.wavelengths.push_back(row(m, 0.0, request.quantities));
+        result.wavelengths.push_back(row(m, 0.0, request.quantities, request.geometry));
     }
     return result;
 }

@@ -555,7 +555,9 @@ std::vector<SpectralResult> walk_rows(std::vector<SpectralResult> out, const Spe
             const auto& res = results[s];
             WavelengthResult w;
             w.wavelength_nm = nm;
-            w.reflectance = {res.specular_reflectance.value + res.diffuse_reflectance.value, res.diffuse_reflectance.stderr};
+            // sce leaves out the first-surface reflection (the specular, taken deterministically at launch).
+            const double specular = request.geometry == MeasurementGeometry::sce ? 0.0 : res.specular_reflectance.value;
+            w.reflectance = {specular + res.diffuse_reflectance.value, res.diffuse_reflectance.stderr};
             w.specular_reflectance = res.specular_reflectance;
             w.transmittance = res.transmittance;
             w.absorptance_layers = res.absorption_layers;
