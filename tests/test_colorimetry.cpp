@@ -1,7 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <functional>
 #include <vector>
 
+#include "spectral/cie.hpp"
 #include "spectral/colorimetry.hpp"
 #include "spectral/input_error.hpp"
 
@@ -74,4 +77,44 @@ TEST_CASE("chromaticity of black is defined", "[colorimetry]") {
     const auto xy = chromaticity(XYZ{});
     CHECK(xy.x == 0.0);
     CHECK(xy.y == 0.0);
+}
+
+TEST_CASE("colours of steps, ramps and narrow bands on 5, 10 and 20 nm grids equal the 1 nm CIE sums", "[colorimetry]") {
+    // The reference is CIE 015:2018 Eq. 7.1-7.2 summed here at every 1 nm of the CIE tables (360-830 nm), with the
+    // spectrum linearly interpolated between its samples by this test's own arithmetic: k = 1 / sum ybar S_illuminant,
+    // X = k sum R xbar S. Flat spectra cannot tell which way a sample's weight is interpolated (t against 1 - t moved Lab by
+    // ~0.2 unseen); these spectra change between every pair of samples.
+    const auto& cmf = observer(ObserverKind::cie1931_2deg);
+    const auto& d65 = illuminant(IlluminantKind::d65);
+    const std::vector<std::pair<const char*, std::function<double(double)>>> shapes{
+        {"step at 550 nm", [](double nm) { return nm < 550.0 ? 0.1 : 0.7; }},
+        {"ramp", [](double nm) { return 0.05 + 0.9 * (nm - 360.0) / 470.0; }},
+        {"narrow band at 575 nm", [](double nm) { return std::exp(-0.5 * std::pow((nm - 575.0) / 6.0, 2.0)); }},
+        {"skin-like", [](double nm) { return 0.1 + 0.5 / (1.0 + std::exp(-(nm - 590.0) / 12.0)) - 0.05 * std::exp(-0.5 * std::pow((nm - 542.0) / 10.0, 2.0)); }},
+    };
+    for (const double step : {5.0, 10.0, 20.0}) {
+        std::vector<double> nm;  // from at or below 360 nm up to 830 nm
+        for (double w = 830.0 - step * std::ceil(470.0 / step); w <= 830.0 + 1e-9; w += step) nm.push_back(w);
+        const TristimulusWeights weights(nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::error);
+        for (const auto& [name, shape] : shapes) {
+            std::vector<double> samples;
+            for (const double w : nm) samples.push_back(shape(w));
+            double x = 0.0, y = 0.0, z = 0.0, norm = 0.0;
+            for (int w = 360; w <= 830; ++w) {
+                const auto i = std::min(static_cast<std::size_t>((w - nm.front()) / step), nm.size() - 2);
+                const double t = (w - nm[i]) / step;
+                const double r = (1.0 - t) * samples[i] + t * samples[i + 1];
+                const double e = d65.power(w);
+                x += r * cmf.xbar(w) * e;
+                y += r * cmf.ybar(w) * e;
+                z += r * cmf.zbar(w) * e;
+                norm += cmf.ybar(w) * e;
+            }
+            const auto got = weights.integrate(samples);
+            INFO(name << " on a " << step << " nm grid");
+            CHECK(got.X == Approx(x / norm).epsilon(1e-10));
+            CHECK(got.Y == Approx(y / norm).epsilon(1e-10));
+            CHECK(got.Z == Approx(z / norm).epsilon(1e-10));
+        }
+    }
 }
