@@ -128,14 +128,9 @@ std::vector<McmlRun> read_mci(const std::filesystem::path& file) {
     return out;
 }
 
-std::string mco_text(const McmlRun& run, const RteResult& r, const std::string& time_report, bool grids) {
+std::string run_parameters_text(const McmlRun& run) {
     const auto& g = run.grid;
-    std::string out = "A1 \t# Version number of the file format.\n\n"
-                      "####\n# Data categories include: \n# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n"
-                      "# A_rz, Rd_ra, Tt_ra \n####\n\n";
-    out += "# " + time_report + "\n\n";
-    out += "InParm \t\t\t# Input parameters. cm is used.\n";
-    out += fmt::format("{} \tA\t\t# output file name, ASCII.\n", run.output_file);
+    std::string out = fmt::format("{} \tA\t\t# output file name, ASCII.\n", run.output_file);
     out += fmt::format("{} \t\t\t# No. of photons\n", run.photons);
     out += fmt::format("{:G}\t{:G}\t\t# dz, dr [cm]\n", g.dz_cm, g.dr_cm);
     out += fmt::format("{}\t{}\t{}\t# No. of dz, dr, da.\n\n", g.nz, g.nr, g.na);
@@ -147,7 +142,25 @@ std::string mco_text(const McmlRun& run, const RteResult& r, const std::string& 
         out += fmt::format("{:G}\t{:G}\t{:G}\t{:G}\t{:G}\t# layer {}\n", l.refractive_index, l.mu_a_per_cm, l.mu_s_per_cm, l.phase.g,
                            l.thickness_cm, k + 1);
     }
-    out += fmt::format("{:G}\t\t\t\t\t# n for medium below\n\n", run.stack.below_refractive_index);
+    out += fmt::format("{:G}\t\t\t\t\t# n for medium below\n", run.stack.below_refractive_index);
+    return out;
+}
+
+std::string mci_text(const std::vector<McmlRun>& runs, const std::vector<std::string>& comments) {
+    std::string out = "####\n";
+    for (const auto& c : comments) out += "# " + c + "\n";
+    out += "####\n1.0\t\t\t\t\t# file version\n";
+    out += fmt::format("{}\t\t\t\t\t# number of runs\n", runs.size());
+    for (std::size_t i = 0; i < runs.size(); ++i) out += fmt::format("\n#### SPECIFY DATA FOR RUN {}\n#InParm\n", i + 1) + run_parameters_text(runs[i]);
+    return out;
+}
+
+std::string mco_text(const McmlRun& run, const RteResult& r, const std::string& time_report, bool grids) {
+    std::string out = "A1 \t# Version number of the file format.\n\n"
+                      "####\n# Data categories include: \n# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n"
+                      "# A_rz, Rd_ra, Tt_ra \n####\n\n";
+    out += "# " + time_report + "\n\n";
+    out += "InParm \t\t\t# Input parameters. cm is used.\n" + run_parameters_text(run) + "\n";
     out += "RAT #Reflectance, absorption, transmission. \n";
     out += fmt::format("{:<14.6G} \t#Specular reflectance [-]\n", r.specular_reflectance.value);
     out += fmt::format("{:<14.6G} \t#Diffuse reflectance [-]\n", r.diffuse_reflectance.value);

@@ -23,6 +23,13 @@ struct McmlRun {
 // InputError naming file, line, field, value and range for any malformed entry.
 std::vector<McmlRun> read_mci(const std::filesystem::path& file);
 
+// One run's input parameters in MCML's layout (output file, photons, grid, layers, ambient indices): a run of a `.mci`
+// file, and the InParm block of its `.mco`.
+std::string run_parameters_text(const McmlRun& run);
+// A `.mci` file of `runs` (MCML 1.2 reads it, as does read_mci), `comments` as its opening comment lines. Phase
+// functions are written as their g (MCML's HG): a run's stack must hold HG layers only, and no bottom reflector.
+std::string mci_text(const std::vector<McmlRun>& runs, const std::vector<std::string>& comments);
+
 // The .mco text of one run (MCML 1.2 layout; `time_report` becomes the "# ..." line after the header).
 // With `grids` false (a deterministic solver's totals) the file ends after A_l with a note.
 std::string mco_text(const McmlRun& run, const RteResult& result, const std::string& time_report, bool grids = true);
