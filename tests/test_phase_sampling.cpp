@@ -54,5 +54,11 @@ TEST_CASE("thin-layer g interpolates between 436 and 546 nm and holds outside", 
     CHECK(vg.epidermis(491.0) == Approx((0.748 + 0.781) / 2.0));
     CHECK(vg.stratum_corneum(700.0) == Approx(0.917));
     CHECK(vg.stratum_corneum(300.0) == Approx(0.900));
-    CHECK(thin_layer_asymmetry_rms().stratum_corneum(546.0) == Approx(0.9426).margin(2e-4));
+    // Baranoski et al. 2005 Table 2, RMS metric: 0.935, 0.943, 0.761, 0.821, printed to 3 decimals (+- 0.0005), fitted to
+    // Bruls & van der Leun's curves as the data tables digitise them (SC 436 nm comes to 0.93445 here): within 0.001.
+    const auto rms = thin_layer_asymmetry_rms();
+    CHECK(rms.stratum_corneum(436.0) == Approx(0.935).margin(1e-3));
+    CHECK(rms.stratum_corneum(546.0) == Approx(0.943).margin(1e-3));
+    CHECK(rms.epidermis(436.0) == Approx(0.761).margin(1e-3));
+    CHECK(rms.epidermis(546.0) == Approx(0.821).margin(1e-3));
 }

@@ -226,7 +226,12 @@ TEST_CASE("a material of 17 layers fits: the gradient has one entry per layer", 
     const auto fit = fitter.fit("seventeen", measured);
     REQUIRE(fit.parameters.size() == 2);
     for (std::size_t i = 0; i < 2; ++i) CHECK(std::isfinite(fit.parameter_stderr[i]));
-    CHECK(fit.parameters[0] == Approx(stack.layers[1].melanosome_fraction).epsilon(0.25));
+    // Both fields back within 4 of their stated standard errors (was: melanin to 25 %, blood unchecked).
+    const double truth[2] = {stack.layers[1].melanosome_fraction, stack.layers[2].blood_fraction};
+    for (std::size_t i = 0; i < 2; ++i) {
+        INFO("parameter " << i << ": " << fit.parameters[i] << " +- " << fit.parameter_stderr[i] << " against " << truth[i]);
+        CHECK(std::abs(fit.parameters[i] - truth[i]) < 4.0 * fit.parameter_stderr[i]);
+    }
     CHECK(fit.rms < 0.01);
 }
 
