@@ -95,6 +95,9 @@ TEST_CASE("synthetic round trip of seed 001 Sec. 4.1", "[profile-fit]") {
     const auto estimate = solve_profile(system);
     const auto fit = fit_dipole(estimate.distances_mm, estimate.profile_per_mm2, estimate.has_data, {});
     CHECK(fit.reduced_scattering_per_mm == Approx(2.19).epsilon(0.05));
+    INFO("sigma_a " << fit.absorption_per_mm << " +- " << fit.absorption_stderr_per_mm << ", sigma_s' " << fit.reduced_scattering_per_mm << " +- "
+                    << fit.reduced_scattering_stderr_per_mm);
+    CHECK(std::abs(fit.absorption_per_mm - 0.002) < 4.0 * fit.absorption_stderr_per_mm);
     const Dipole fitted({fit.reduced_scattering_per_mm, fit.absorption_per_mm, 1.3});
     const auto again = render_planar(scene, [&](double x) { return fitted.radial_reflectance(x); });
     CHECK(psnr_db(scene.observed, again, scene.valid) > 40.0);
