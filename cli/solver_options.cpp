@@ -77,8 +77,8 @@ void add_profile_sampling_options(CLI::App& command, ProfileSampling& sampling) 
                                       "1-2-5 series up to the reach is at most this")
                        ->capture_default_str()
                        ->check(CLI::Range(1e-6, 0.5));
-    add_ray_count_option(command, "--max-rays", sampling.max_rays, "rte: photon budget per wavelength with --stderr")->capture_default_str();
-    add_ray_count_option(command, "--rays", sampling.rays, "rte: exactly this many photons per wavelength instead of --stderr")->excludes(target);
+    auto* budget = add_ray_count_option(command, "--max-rays", sampling.max_rays, "rte: photon budget per wavelength with --stderr")->capture_default_str();
+    add_ray_count_option(command, "--rays", sampling.rays, "rte: exactly this many photons per wavelength instead of --stderr")->excludes(target)->excludes(budget);
     add_seed_option(command, sampling.seed, "rte: random seed");
 }
 

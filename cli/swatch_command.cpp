@@ -38,6 +38,7 @@ struct SwatchOptions {
     std::string illuminant = "D65";
     std::string observer = "2";
     double delta_e = 0.3;
+    bool delta_e_given = false;  // a chart's tolerance: refused with --lit, whose precision is --stderr
     std::vector<std::string> outputs;
     std::string space = "ACEScg";
     bool half = false;
@@ -65,6 +66,7 @@ void run_lit_swatch(const SwatchOptions& o) {
     const std::string name = chosen_material(o.preset, o.material_file);
     if (!o.vary.empty()) throw InputError("--vary: a lit swatch shows one material (use --set for its parameters)");
     if (o.outputs.empty()) throw InputError("--lit: give at least one -o FILE (.exr, .png, .tif)");
+    if (o.delta_e_given) throw InputError("--delta-e: a chart's colour tolerance; a lit swatch's precision is --stderr");
     const auto& kind = o.lit.front();
     if (kind != "spot" && kind != "edge" && kind != "pattern") {
         throw InputError("--lit: '" + kind + "' is not a lighting (allowed: spot, edge, pattern FILE)");
@@ -269,6 +271,7 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--spot-radius", o->spot_radius_mm, "With --lit spot: radius of the lit disc in mm")->capture_default_str();
     cmd->callback([o, cmd] {
         o->sampling_given = given_options(*cmd, {"--seed", "--max-rays", "--stderr"});
+        o->delta_e_given = !given_options(*cmd, {"--delta-e"}).empty();
         run_swatch(*o);
     });
 }

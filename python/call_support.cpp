@@ -84,7 +84,9 @@ ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const
 }
 
 void apply_profile_sampling(const ProfileSamplingArguments& sampling, ProfileRequest& request) {
-    if (!sampling.rays.is_none() && !sampling.stderr_target.is_none()) throw InputError("rays and stderr: give an exact photon count or a precision target, not both");
+    if (!sampling.rays.is_none() && !(sampling.stderr_target.is_none() && sampling.max_rays.is_none())) {
+        throw InputError("rays and stderr / max_rays: give an exact photon count or a precision target (and its budget), not both");
+    }
     if (!sampling.rays.is_none()) request.rays_per_wavelength = whole_number(sampling.rays, 1.0, 1e15, "rays");
     if (!sampling.stderr_target.is_none()) {
         request.stderr_target = one_number(sampling.stderr_target, "stderr");

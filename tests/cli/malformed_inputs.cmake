@@ -101,6 +101,8 @@ skinspec_malformed_input("multipole takes no fold" 2 "solver 'multipole' does no
 skinspec_malformed_input("biospec takes no boundaries" 2 "solver 'biospec' does not take the switch 'boundaries' \\(taken by: rte\\)" - spectrum --boundaries split --rays 100)
 skinspec_malformed_input("adding-doubling band material" 2 "solver 'adding-doubling' needs a layered material; 'jensen2001-skin1' is a homogeneous material given per band" - spectrum --mode adding-doubling --preset jensen2001-skin1)
 skinspec_malformed_input("profile count and target" 108 "--stderr excludes --rays" - profile --rays 1000 --stderr 0.01)
+skinspec_malformed_input("profile count and budget" 108 "--max-rays excludes --rays" - profile --rays 1000 --max-rays 5000)
+skinspec_malformed_input("lit swatch with a chart's tolerance" 2 "--delta-e: a chart's colour tolerance; a lit swatch's precision is --stderr" - swatch --lit edge --delta-e 0.1 -o ${out}/lit_delta.png)
 skinspec_malformed_input("profile target of a diffusion mode" 2 "--stderr: solver 'multipole' is deterministic and takes no Monte Carlo setting" - profile --mode multipole --stderr 0.01)
 skinspec_malformed_input("profile target out of range" 105 "--stderr: Value 0 not in range 0\\.000001 to 0\\.500000" - profile --stderr 0)
 skinspec_malformed_input("chart with a profile target" 2 "--stderr: the precision of a lit swatch's profiles \\(with --lit\\); a chart's is --delta-e" - swatch --stderr 0.01)

@@ -177,8 +177,10 @@ def test_volumetric_profiles_equal_the_cli_with_standard_errors():
                             "--radii", "0:1:0.25", "--stderr", "0.004"], capture_output=True, text=True, check=True).stdout
     rows = np.array([[float(v) for v in line.split(",")] for line in table.splitlines() if line and line[0].isdigit()])
     np.testing.assert_allclose(default.R_per_mm2[0], rows[:, 1], rtol=1e-8)
-    with pytest.raises(skinspec.InputError, match="rays and stderr"):
+    with pytest.raises(skinspec.InputError, match="rays and stderr / max_rays"):
         skinspec.profiles("biospec-moderately", radii, [550], rays=1000, stderr=0.01)
+    with pytest.raises(skinspec.InputError, match="rays and stderr / max_rays"):
+        skinspec.profiles("biospec-moderately", radii, [550], rays=1000, max_rays=5000)
     with pytest.raises(skinspec.InputError, match="equal steps"):
         skinspec.profiles("biospec-moderately", [0.1, 0.2, 0.3], [550], mode="rte", rays=100)
 
