@@ -110,7 +110,7 @@ void run_fit_image(const FitImageOptions& o) {
     const auto image = read_skin_image(o.image, request);
     // An image skinspec wrote states how it was made: fitted so unless --space / --geometry say otherwise (a stated space
     // is a float image's, whose values are read as they are, in whichever space).
-    const auto stated = stated_image_settings(o.image);
+    const auto& stated = image.stated;
     const bool space_stated = !multispectral && !given("--space") && stated.space;
     const bool geometry_stated = !given("--geometry") && stated.geometry;
     if (space_stated) request.space = *stated.space;

@@ -34,21 +34,13 @@ py::object fit_image(const py::object& image, const std::string& material, const
                      double gamut_sigma, const py::object& edit, const std::string& solver, const py::object& geometry, double delta_e,
                      const std::string& illuminant, const std::string& observer, const py::object& seed, const py::object& max_rays,
                      const py::object& threads, const py::object& progress, const py::kwargs& switches) {
-    // An image file skinspec wrote states its colour space and geometry (stated_image_settings): taken unless given.
-    const auto stated = is_path(image) ? stated_image_settings(path_argument(image, "image")) : StatedImageSettings{};
-    const auto chosen_geometry = !geometry.is_none() ? geometry.cast<std::string>()
-                                 : stated.geometry ? std::string(to_string(*stated.geometry))
-                                                   : std::string(to_string(image_geometry));
     SkinImageRequest request;
-    request.table = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays, chosen_geometry, switches);
+    request.table = swatch_request_argument(material, set, delta_e, illuminant, observer, solver, seed, max_rays,
+                                            geometry.is_none() ? std::string(to_string(image_geometry)) : geometry.cast<std::string>(), switches);
     const auto u = lut_axis(lut_melanin_field, melanin, "melanin");
     const auto v = lut_axis(lut_blood_field, blood, "blood");
     request.table.sweeps = {u, v};
-    if (bands.is_none()) {
-        request.space = !space.is_none() ? ColorManagement::builtin().canonical_space(space.cast<std::string>(), "space")
-                        : stated.space     ? *stated.space
-                                           : std::string("Linear Rec.709");
-    }
+    if (bands.is_none()) request.space = ColorManagement::builtin().canonical_space(space.is_none() ? "Linear Rec.709" : space.cast<std::string>(), "space");
     else request.bands = read_band_sensitivities(path_argument(bands, "bands"));
     request.white = finite_vector(white, "white");
     if (!noise.is_none()) request.fit.noise = one_number(noise, "noise");
@@ -57,6 +49,10 @@ py::object fit_image(const py::object& image, const std::string& material, const
         for (const auto& e : name_list(edit, "edit")) request.edits.push_back(parse_field_edit(e, u.field, v.field));
     }
     const auto pixels = image_argument(image, request);
+    // An image file skinspec wrote states its colour space and geometry (stated_image_settings): taken unless given (a
+    // stated space is a float image's, whose values are read as they are).
+    if (bands.is_none() && space.is_none() && pixels.stated.space) request.space = *pixels.stated.space;
+    if (geometry.is_none() && pixels.stated.geometry) request.table.geometry = *pixels.stated.geometry;
     const ThreadLimit limit(threads);
     SkinImageFit result;
     run_interruptible(

@@ -253,7 +253,10 @@ void write_data_image(const std::filesystem::path& file, const DataImage& image,
 }
 
 LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm) {
-    const auto in = read_data_image(file);
+    return linear_image(read_data_image(file), working_space, cm);
+}
+
+LinearImage linear_image(const DataImage& in, std::string_view working_space, const ColorManagement& cm) {
     LinearImage out{in.width, in.height, std::vector<float>(static_cast<std::size_t>(in.width) * in.height * 3)};
     for (std::size_t p = 0; p < static_cast<std::size_t>(in.width) * in.height; ++p) {
         for (int c = 0; c < 3; ++c) out.rgb[p * 3 + c] = in.values[p * in.channels + std::min(c, in.channels - 1)];

@@ -75,6 +75,8 @@ void write_data_image(const std::filesystem::path& file, const DataImage& image,
 // Any image OpenImageIO reads, as scene-linear `working_space` RGB: 8/16-bit files are taken as sRGB-encoded,
 // float files (EXR) as already in `working_space`; grey images are replicated to RGB.
 LinearImage read_linear_image(const std::filesystem::path& file, std::string_view working_space, const ColorManagement& cm);
+// The same of an image already read (read_data_image).
+LinearImage linear_image(const DataImage& in, std::string_view working_space, const ColorManagement& cm);
 
 // A labelled grid of equally sized panels (linear `working_space`), display-referred through the OCIO
 // display/view, row-major, as PNG or TIFF.

@@ -49,16 +49,21 @@ void check_skin_image_request(const SkinImageRequest& request) {
 SkinImage read_skin_image(const std::filesystem::path& file, const SkinImageRequest& request) {
     check_skin_image_request(request);
     SkinImage out;
+    auto image = read_data_image(file);
+    out.stated = stated_image_settings(image, file.string());
     if (request.bands) {
-        auto image = read_data_image(file);
         if (static_cast<std::size_t>(image.channels) != request.bands->names.size()) {
             throw InputError(file.string() + ": " + std::to_string(image.channels) + " channels, but the band sensitivities describe " +
                              std::to_string(request.bands->names.size()) + " bands");
         }
-        out = {image.width, image.height, std::move(image.values)};
+        out.width = image.width;
+        out.height = image.height;
+        out.values = std::move(image.values);
     } else {
-        auto image = read_linear_image(file, ColorManagement::builtin().canonical_space(request.space, "--space"), ColorManagement::builtin());
-        out = {image.width, image.height, std::move(image.rgb)};
+        auto rgb = linear_image(image, ColorManagement::builtin().canonical_space(request.space, "--space"), ColorManagement::builtin());
+        out.width = rgb.width;
+        out.height = rgb.height;
+        out.values = std::move(rgb.rgb);
     }
     return out;
 }
@@ -191,12 +196,11 @@ nlohmann::ordered_json skin_image_summary_json(const SkinImageFit& result, const
             {"seconds", result.seconds}};
 }
 
-StatedImageSettings stated_image_settings(const std::filesystem::path& file) {
-    const auto image = read_data_image(file);
+StatedImageSettings stated_image_settings(const DataImage& image, const std::string& name) {
     StatedImageSettings out;
     for (const auto& [key, value] : image.metadata) {
-        if (key == "skinspec:geometry") out.geometry = parse_measurement_geometry(value, file.string() + ": skinspec:geometry");
-        if (key == "colorspace" && image.floating_point) out.space = ColorManagement::builtin().canonical_space(value, file.string() + ": colorspace");
+        if (key == "skinspec:geometry") out.geometry = parse_measurement_geometry(value, name + ": skinspec:geometry");
+        if (key == "colorspace" && image.floating_point) out.space = ColorManagement::builtin().canonical_space(value, name + ": colorspace");
     }
     return out;
 }

@@ -31,10 +31,22 @@ struct SkinImageRequest {
 };
 
 // An image as the fit takes it: the request's channels per pixel, interleaved, in the image's own units.
+// What an image states of itself where skinspec wrote it (swatch, swatch --lit, export lut): the geometry its colours
+// were computed for (skinspec:geometry) and, for a float image, the linear colour space its values are in (colorspace).
+// Unset where the file states nothing (or not a value skinspec knows: InputError names it). fit-image takes them
+// unless --geometry / --space are given, so that it fits the image the way it was made (docs/PROFILES.md). `name`
+// names the file in an error.
+struct StatedImageSettings {
+    std::optional<MeasurementGeometry> geometry;
+    std::optional<std::string> space;  // canonical OCIO name
+};
+StatedImageSettings stated_image_settings(const DataImage& image, const std::string& name);
+
 struct SkinImage {
     int width = 0;
     int height = 0;
     std::vector<float> values;
+    StatedImageSettings stated;  // what the file says of itself (nothing for an array)
 };
 
 struct SkinImageFit {
@@ -61,15 +73,6 @@ SkinImage read_skin_image(const std::filesystem::path& file, const SkinImageRequ
 
 SkinImageFit fit_skin_image(const SkinImageRequest& request, const SkinImage& image);
 
-// What an image states of itself where skinspec wrote it (swatch, swatch --lit, export lut): the geometry its colours
-// were computed for (skinspec:geometry) and, for a float image, the linear colour space its values are in (colorspace).
-// Unset where the file states nothing (or not a value skinspec knows: InputError names it). fit-image takes them
-// unless --geometry / --space are given, so that it fits the image the way it was made (docs/PROFILES.md).
-struct StatedImageSettings {
-    std::optional<MeasurementGeometry> geometry;
-    std::optional<std::string> space;  // canonical OCIO name
-};
-StatedImageSettings stated_image_settings(const std::filesystem::path& file);
 
 // The maps as an image: the two fields, their standard uncertainties ("FIELD.stderr"), the RMS residual and the
 // status (PixelStatus codes) per pixel.

@@ -217,6 +217,7 @@ private:
         if (ch_.nr > 0) t.add_to_batch(o + (top ? ch_.r_r : ch_.t_r) + r_bin(r_cm), w);
         if (ch_.na > 0) t.add_to_batch(o + (top ? ch_.r_a : ch_.t_a) + a_bin(cos_exit), w);
         if (ch_.nr > 0 && ch_.na > 0) t.add_to_batch(o + (top ? ch_.r_ra : ch_.t_ra) + r_bin(r_cm) * ch_.na + a_bin(cos_exit), w);
+        if (ch_.nw == 0) return;
         const auto& within = request_.within_radii_cm;
         for (auto k = static_cast<std::size_t>(std::lower_bound(within.begin(), within.end(), r_cm) - within.begin()); k < ch_.nw; ++k) {
             lanes.scores[lane].add(o + (top ? ch_.r_within : ch_.t_within) + k, w);
