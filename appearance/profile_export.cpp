@@ -1,5 +1,7 @@
 #include "appearance/profile_export.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "appearance/profile_shape_report.hpp"
@@ -49,13 +51,15 @@ void check_profile_export(const std::string& material, bool bands, const Profile
     check_gaussian_count(request.gaussians);
 }
 
-ProfileExport fit_profile_export(const SpectralProfiles& profiles, bool bands, const ProfileExportRequest& request) {
+namespace {
+
+// The export without its fit: the channels' names, totals and profiles (R(r) per channel, 1/mm^2).
+ProfileExport export_channels(const SpectralProfiles& profiles, bool bands, const ProfileExportRequest& request, std::vector<std::vector<double>>& profiles_per_mm2) {
     check_profile_export(profiles.material, bands, request);
     ProfileExport out;
     out.material = profiles.material;
     out.model = profiles.model;
     out.radii_mm = profiles.radii_mm;
-    std::vector<std::vector<double>> profiles_per_mm2;
     if (bands || request.per == ProfileChannels::wavelength) {
         for (const auto& c : profiles.channels) {
             out.names.push_back(c.label);
@@ -67,11 +71,79 @@ ProfileExport fit_profile_export(const SpectralProfiles& profiles, bool bands, c
         rgb_channels(profiles, request, out, profiles_per_mm2);
         out.channels_text = "RGB in " + request.space + " (" + std::string(short_name(request.illuminant)) + ", " + std::string(short_name(request.observer)) + ")";
     }
-    out.fit = fit_gaussian_sum(GaussianSumRequest{out.radii_mm, profiles_per_mm2, request.gaussians, out.total_reflectance});
     return out;
 }
 
-nlohmann::ordered_json profile_export_json(const ProfileExport& e) {
+}  // namespace
+
+ProfileExport fit_profile_export(const SpectralProfiles& profiles, bool bands, const ProfileExportRequest& request) {
+    std::vector<std::vector<double>> profiles_per_mm2;
+    auto out = export_channels(profiles, bands, request, profiles_per_mm2);
+    out.fit = fit_gaussian_sum(GaussianSumRequest{out.radii_mm, profiles_per_mm2, request.gaussians, out.total_reflectance, {}});
+    return out;
+}
+
+std::vector<std::size_t> grid_corners_and_middle(const std::vector<std::size_t>& axis_sizes) {
+    std::size_t count = 1;
+    for (const auto n : axis_sizes) count *= n;
+    std::vector<std::size_t> out;
+    // Member index of a position (the first axis fastest, sweep_grid's order).
+    const auto index = [&](const std::vector<std::size_t>& at) {
+        std::size_t i = 0, stride = 1;
+        for (std::size_t a = 0; a < axis_sizes.size(); ++a) {
+            i += at[a] * stride;
+            stride *= axis_sizes[a];
+        }
+        return i;
+    };
+    for (std::size_t corner = 0; corner < (std::size_t{1} << axis_sizes.size()); ++corner) {
+        std::vector<std::size_t> at;
+        for (std::size_t a = 0; a < axis_sizes.size(); ++a) at.push_back((corner >> a) & 1 ? axis_sizes[a] - 1 : 0);
+        out.push_back(index(at));
+    }
+    std::vector<std::size_t> middle;
+    for (const auto n : axis_sizes) middle.push_back(n / 2);
+    out.push_back(index(middle));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    if (!out.empty() && out.back() >= count) throw InputError("profile grid: positions beyond its members");
+    return out;
+}
+
+ProfileExportGrid fit_profile_export_grid(const std::vector<SpectralProfiles>& members, std::vector<SweepAxis> axes, bool bands,
+                                          const ProfileExportRequest& request) {
+    std::vector<std::size_t> sizes;
+    std::size_t count = 1;
+    for (const auto& a : axes) {
+        sizes.push_back(a.values.size());
+        count *= a.values.size();
+    }
+    if (members.empty() || members.size() != count) {
+        throw InputError("profile grid: " + std::to_string(members.size()) + " members' profiles for a grid of " + std::to_string(count));
+    }
+    ProfileExportGrid grid;
+    grid.axes = std::move(axes);
+    std::vector<std::vector<std::vector<double>>> profiles(members.size());
+    for (std::size_t i = 0; i < members.size(); ++i) grid.members.push_back(export_channels(members[i], bands, request, profiles[i]));
+    // One set of variances for the grid, fitted to its corners and middle together (every channel of each).
+    grid.variances_fitted_to = grid_corners_and_middle(sizes);
+    GaussianSumRequest joint{grid.members.front().radii_mm, {}, request.gaussians, {}, {}};
+    for (const auto i : grid.variances_fitted_to) {
+        joint.profiles_per_mm2.insert(joint.profiles_per_mm2.end(), profiles[i].begin(), profiles[i].end());
+        joint.total_reflectance.insert(joint.total_reflectance.end(), grid.members[i].total_reflectance.begin(), grid.members[i].total_reflectance.end());
+    }
+    const auto variances = fit_gaussian_sum(joint).variances_mm2;
+    for (std::size_t i = 0; i < members.size(); ++i) {
+        auto& m = grid.members[i];
+        m.fit = fit_gaussian_sum(GaussianSumRequest{m.radii_mm, profiles[i], request.gaussians, m.total_reflectance, variances});
+    }
+    return grid;
+}
+
+namespace {
+
+// The fit's channels: weights, totals and errors of each.
+nlohmann::ordered_json fit_entries(const ProfileExport& e) {
     nlohmann::ordered_json channels = nlohmann::ordered_json::array();
     for (std::size_t c = 0; c < e.names.size(); ++c) {
         const double total = e.total_reflectance[c];
@@ -85,6 +157,11 @@ nlohmann::ordered_json profile_export_json(const ProfileExport& e) {
         entry["profile_relative_l2_error"] = e.fit.relative_l2_error[c];
         channels.push_back(std::move(entry));
     }
+    return channels;
+}
+
+// What every export document begins with, from `e` (for a grid: its first member, the material it varies).
+nlohmann::ordered_json document_head(const ProfileExport& e) {
     nlohmann::ordered_json document;
     document["skinspec_version"] = version;
     document["kind"] = "sum of Gaussians: R(r) = sum_i w_i exp(-r^2 / (2 v_i)) / (2 pi v_i)";
@@ -94,9 +171,47 @@ nlohmann::ordered_json profile_export_json(const ProfileExport& e) {
     document["channels"] = e.channels_text;
     document["radii_mm"] = {{"first", e.radii_mm.front()}, {"last", e.radii_mm.back()}, {"count", e.radii_mm.size()}};
     document["variances_mm2"] = e.fit.variances_mm2;
-    document["fit"] = channels;
+    return document;
+}
+
+const nlohmann::ordered_json& units() {
+    static const nlohmann::ordered_json u = {{"variances", "mm^2"}, {"r", "mm"}, {"R(r)", "1/mm^2"}, {"weights", "unitless"}};
+    return u;
+}
+
+}  // namespace
+
+nlohmann::ordered_json profile_export_json(const ProfileExport& e) {
+    auto document = document_head(e);
+    document["fit"] = fit_entries(e);
     if (e.shape) document["profile_shape"] = profile_shape_json(*e.shape);
-    document["units"] = {{"variances", "mm^2"}, {"r", "mm"}, {"R(r)", "1/mm^2"}, {"weights", "unitless"}};
+    document["units"] = units();
+    return document;
+}
+
+nlohmann::ordered_json profile_export_grid_json(const ProfileExportGrid& grid) {
+    auto document = document_head(grid.members.front());
+    document["variances_fitted_to"] = "the grid's corners and middle member together (members " + [&] {
+        std::string list;
+        for (const auto i : grid.variances_fitted_to) list += (list.empty() ? "" : ", ") + std::to_string(i);
+        return list;
+    }() + "); every member's weights for them";
+    nlohmann::ordered_json axes = nlohmann::ordered_json::array();
+    for (const auto& a : grid.axes) axes.push_back({{"field", a.field}, {"values", a.values}});
+    document["axes"] = axes;
+    document["member_order"] = "the first axis fastest";
+    nlohmann::ordered_json members = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < grid.members.size(); ++i) {
+        nlohmann::ordered_json values;
+        std::size_t rest = i;
+        for (const auto& a : grid.axes) {
+            values[a.field] = a.values[rest % a.values.size()];
+            rest /= a.values.size();
+        }
+        members.push_back({{"values", values}, {"fit", fit_entries(grid.members[i])}});
+    }
+    document["members"] = members;
+    document["units"] = units();
     return document;
 }
 
@@ -115,6 +230,32 @@ std::string profile_export_table_csv(const ProfileExport& e) {
         out += fmt::format("{:.9g}", e.fit.variances_mm2[i]);
         for (const auto& w : e.fit.weights) out += fmt::format(",{:.9g}", w[i]);
         out += '\n';
+    }
+    return out;
+}
+
+std::string profile_export_grid_table_csv(const ProfileExportGrid& grid) {
+    const auto& first = grid.members.front();
+    std::string out = profile_export_header(first) + "# variances_mm2 [mm^2], shared by every member:";
+    for (const double v : first.fit.variances_mm2) out += fmt::format(" {:.9g}", v);
+    out += "\n# units: weights unitless (each Gaussian integrates to 1 over the plane); total_reflectance_fit unitless; profile_relative_l2_error unitless\n";
+    for (const auto& a : grid.axes) out += a.field + ",";
+    out += "channel";
+    for (std::size_t i = 0; i < first.fit.variances_mm2.size(); ++i) out += fmt::format(",weight_{}", i + 1);
+    out += ",total_reflectance_fit,profile_relative_l2_error\n";
+    for (std::size_t m = 0; m < grid.members.size(); ++m) {
+        std::string values;
+        std::size_t rest = m;
+        for (const auto& a : grid.axes) {
+            values += fmt::format("{:.9g},", a.values[rest % a.values.size()]);
+            rest /= a.values.size();
+        }
+        const auto& e = grid.members[m];
+        for (std::size_t c = 0; c < e.names.size(); ++c) {
+            out += values + e.names[c];
+            for (const double w : e.fit.weights[c]) out += fmt::format(",{:.9g}", w);
+            out += fmt::format(",{:.9g},{:.9g}\n", e.fit.fitted_total[c], e.fit.relative_l2_error[c]);
+        }
     }
     return out;
 }

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inverse/gaussian_sum/gaussian_sum_fit.hpp"
+#include "materials/parameter_sweep.hpp"
 #include "solvers/profile_shape_check.hpp"
 #include "spectral/colorimetry.hpp"
 #include "transport/diffusion/diffusion_profiles.hpp"
@@ -47,6 +48,27 @@ void check_profile_export(const std::string& material, bool bands, const Profile
 // `profiles`: per wavelength (an RGB fit integrates them against the observer) or per band (`bands`). InputError as
 // check_profile_export and fit_gaussian_sum.
 ProfileExport fit_profile_export(const SpectralProfiles& profiles, bool bands, const ProfileExportRequest& request);
+
+// A grid of materials (a pigmentation sweep) fitted as a renderer interpolates it between texels: one set of variances
+// for every member (fitted to the grid's corners and middle member together, every channel of each), each member's
+// weights for them by non-negative least squares, each member's own errors. Axes: the swept fields and their values;
+// members in sweep_grid order (the first axis fastest).
+struct ProfileExportGrid {
+    std::vector<SweepAxis> axes;
+    std::vector<ProfileExport> members;
+    std::vector<std::size_t> variances_fitted_to;  // member indices
+};
+// The members at the corners and the middle of a grid with these axis sizes (indices, increasing, no repeats).
+std::vector<std::size_t> grid_corners_and_middle(const std::vector<std::size_t>& axis_sizes);
+// InputError as fit_profile_export, and for a member count other than the product of the axis sizes.
+ProfileExportGrid fit_profile_export_grid(const std::vector<SpectralProfiles>& members, std::vector<SweepAxis> axes, bool bands,
+                                          const ProfileExportRequest& request);
+// The grid as `skinspec export profile --vary ... -o F.json` writes it: the shared variances, then per member its
+// values of the swept fields and its channels' weights and errors (as profile_export_json's "fit").
+nlohmann::ordered_json profile_export_grid_json(const ProfileExportGrid& grid);
+// Its CSV table: one row per member and channel: the swept fields' values, the channel, its weight per Gaussian (the
+// variances in the header), the fit's total and relative L2 error.
+std::string profile_export_grid_table_csv(const ProfileExportGrid& grid);
 
 // The fit as `skinspec export profile -o F.json` writes it: variances, per channel weights and the fit's errors, and the
 // profiles' shape check where there is one (appearance/profile_shape_report.hpp).

@@ -28,27 +28,33 @@ std::vector<std::string> profile_shape_lines(const ProfileShapeCheck& check) {
     return lines;
 }
 
-std::string profile_precision_line(const SpectralProfiles& profiles) {
-    const auto& channels = profiles.channels;
-    if (channels.empty() || channels.front().reflectance_stderr_per_mm2.empty()) return {};
-    std::uint64_t fewest = channels.front().rays, most = 0;
+std::string profile_precision_line(const SpectralProfiles& profiles) { return profile_precision_line(std::span<const SpectralProfiles>(&profiles, 1)); }
+
+std::string profile_precision_line(std::span<const SpectralProfiles> members) {
+    if (members.empty() || members.front().channels.empty() || members.front().channels.front().reflectance_stderr_per_mm2.empty()) return {};
+    std::uint64_t fewest = members.front().channels.front().rays, most = 0;
     double largest = 0.0;
-    std::size_t missed = 0;
-    for (const auto& c : channels) {
-        fewest = std::min(fewest, c.rays);
-        most = std::max(most, c.rays);
-        largest = std::max(largest, c.within_radius_stderr);
-        missed += c.converged ? 0 : 1;
+    std::size_t missed = 0, channels = 0;
+    for (const auto& profiles : members) {
+        for (const auto& c : profiles.channels) {
+            fewest = std::min(fewest, c.rays);
+            most = std::max(most, c.rays);
+            largest = std::max(largest, c.within_radius_stderr);
+            missed += c.converged ? 0 : 1;
+            ++channels;
+        }
     }
-    const auto target = profiles.stderr_target ? fmt::format(" (target {:g}{})", *profiles.stderr_target,
-                                                             missed ? fmt::format(", NOT met at {} of {} channels: the photon budget was spent", missed, channels.size())
-                                                                    : std::string())
-                                               : std::string(" (a fixed photon count)");
+    const auto& first = members.front();
+    const auto target = first.stderr_target ? fmt::format(" (target {:g}{})", *first.stderr_target,
+                                                          missed ? fmt::format(", NOT met at {} of {} channels: the photon budget was spent", missed, channels)
+                                                                 : std::string())
+                                            : std::string(" (a fixed photon count)");
     const auto photons = fewest == most ? fmt::format("{:g}", static_cast<double>(most))
                                         : fmt::format("{:g}-{:g}", static_cast<double>(fewest), static_cast<double>(most));
-    return fmt::format("exact transport ({}, the volumetric walk): {} photons per channel; the diffuse reflectance leaving within any radius of a "
+    const auto shared = members.size() > 1 ? fmt::format(", shared by the {} members (the exit replay: one walk per wavelength)", members.size()) : std::string();
+    return fmt::format("exact transport ({}, the volumetric walk): {} photons per channel{}; the diffuse reflectance leaving within any radius of a "
                        "1-2-5 series has a standard error of at most {:.2g}{}",
-                       profiles.model, photons, largest, target);
+                       first.model, photons, shared, largest, target);
 }
 
 std::string profile_shape_text(const ProfileShapeCheck& check) {

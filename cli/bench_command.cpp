@@ -127,6 +127,15 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
                                      l.within_radius_stderr, l.converged ? "" : " (budget spent before the target)");
         }
     }
+    if (!report.profile_grids.empty()) {
+        std::cout << "\nExport profile of a melanosome x blood grid against one member (exact transport, default precision, RGB fit, all threads), side by side:\n";
+        for (const auto& g : report.profile_grids) {
+            std::cout << fmt::format("  {}: {} members {:.2f} s, one member {:.2f} s: ratio {:.2f}x; {} photons per wavelength for the whole grid, "
+                                     "R within a radius to +- {:.4f}, worst member's fit error {:.3g} %\n",
+                                     g.material, g.members, g.grid_seconds, g.one_member_seconds, g.grid_seconds / g.one_member_seconds, g.photons,
+                                     g.within_radius_stderr, 100.0 * g.worst_profile_error);
+        }
+    }
     if (!report.walk_agreement.empty()) {
         std::cout << "\nVolumetric walk against adding-doubling (R, SCI):\n";
         for (const auto& a : report.walk_agreement) {

@@ -20,6 +20,7 @@
 #include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
+#include "materials/parameter_sweep.hpp"
 
 namespace skinspec::cli {
 namespace {
@@ -41,7 +42,77 @@ struct ProfileExportOptions {
     bool overwrite = false;
     bool json = false;
     ProfileSampling sampling;
+    std::vector<std::string> vary;
 };
+
+// The JSON (-o) and the table (--table) where asked for; true when the JSON went to standard output instead of the
+// summary (no -o, or --json).
+bool write_export(const ProfileExportOptions& o, const nlohmann::ordered_json& document, const std::string& table) {
+    if (!o.output.empty()) {
+        write_text_file(o.output, document.dump(2) + "\n", o.overwrite);
+        std::cerr << "wrote " << o.output << '\n';
+    }
+    if (!o.table.empty()) {
+        write_text_file(o.table, table, o.overwrite);
+        std::cerr << "wrote " << o.table << '\n';
+    }
+    if (!o.output.empty() && !o.json) return false;
+    std::cout << document.dump(2) << '\n';
+    return true;
+}
+
+// Beyond this many members a grid's materials and recorded exits outgrow a workstation's memory: split it.
+constexpr std::size_t max_grid_members = 4096;
+
+// A grid (--vary): every member's profile (the exact transport from one walk per wavelength, the exit replay), one set
+// of variances for them all, the JSON and the table of every member's weights.
+void run_export_profile_grid(const ProfileExportOptions& o, const Material& base, const SpectralSolver& solver, const ProfileRequest& request,
+                             const ProfileExportRequest& fit_request, bool bands) {
+    std::vector<ParameterSweep> sweeps;
+    for (const auto& v : o.vary) sweeps.push_back(parse_sweep(v));
+    if (sweeps.size() > 2) throw InputError("--vary: at most two fields (they form a grid); got " + std::to_string(sweeps.size()));
+    const auto axes = sweep_axes(sweeps);
+    const SweepMembers lattice(std::make_shared<const Material>(base), nullptr, axes);
+    if (lattice.size() > max_grid_members) {
+        throw InputError("--vary: " + std::to_string(lattice.size()) + " members is outside [1, " + std::to_string(max_grid_members) + "]: split the grid");
+    }
+    // Every member built (refused as the reader refuses) before any photon is traced.
+    std::vector<Material> built;
+    built.reserve(lattice.size());
+    for (std::size_t i = 0; i < lattice.size(); ++i) built.push_back(lattice[i].material());
+    std::vector<const Material*> members;
+    for (const auto& m : built) members.push_back(&m);
+    const auto profiles = solve_profiles_stoppable(solver, members, request, "export profile");
+    if (profiles.size() < members.size() || profiles.back().partial) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": nothing written (the fit needs every member's profile)\n";
+        std::exit(InterruptGuard::exit_code());
+    }
+    if (const auto precision = profile_precision_line(profiles); !precision.empty()) std::cerr << "skinspec: note: " << precision << '\n';
+    const auto grid = fit_profile_export_grid(profiles, axes, bands, fit_request);
+    const auto document = profile_export_grid_json(grid);
+    if (write_export(o, document, profile_export_grid_table_csv(grid))) return;
+    // The summary: the shared variances, then the worst member's errors.
+    const auto& first = grid.members.front();
+    std::cout << profile_export_header(first);
+    std::cout << fmt::format("{} members ({}), one set of {} variances (mm^2):", grid.members.size(), o.vary.size() == 1 ? o.vary[0] : o.vary[0] + " x " + o.vary[1],
+                             first.fit.variances_mm2.size());
+    for (const double v : first.fit.variances_mm2) std::cout << fmt::format(" {:.5g}", v);
+    std::cout << '\n';
+    double worst_profile = 0.0, worst_total = 0.0;
+    std::size_t worst_member = 0;
+    for (std::size_t m = 0; m < grid.members.size(); ++m) {
+        const auto& e = grid.members[m];
+        for (std::size_t c = 0; c < e.names.size(); ++c) {
+            if (e.fit.relative_l2_error[c] > worst_profile) {
+                worst_profile = e.fit.relative_l2_error[c];
+                worst_member = m;
+            }
+            if (e.total_reflectance[c] != 0.0) worst_total = std::max(worst_total, std::abs(e.fit.fitted_total[c] / e.total_reflectance[c] - 1.0));
+        }
+    }
+    std::cout << fmt::format("worst member: profile error (relative L2, r dr) {:.3g} % (member {}); total R fit within {:.3g} % of the model's at every member\n",
+                             100.0 * worst_profile, worst_member, 100.0 * worst_total);
+}
 
 void run_export_profile(const ProfileExportOptions& o) {
     const std::string name = chosen_material(o.preset, o.material_file);
@@ -62,6 +133,10 @@ void run_export_profile(const ProfileExportOptions& o) {
     const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
     check_profile_export(name, bands, fit_request);
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths() : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
+    if (!o.vary.empty()) {
+        run_export_profile_grid(o, material, solver, profile_request(grid, radii, false, o.solver, o.sampling, overrides), fit_request, bands);
+        return;
+    }
 
     const auto profiles =
         solve_profiles_stoppable(solver, material, profile_request(grid, radii, false, o.solver, o.sampling, overrides), "export profile");
@@ -82,18 +157,7 @@ void run_export_profile(const ProfileExportOptions& o) {
     auto exported = fit_profile_export(profiles, bands, fit_request);
     if (profile_shape_checked(solver, material)) exported.shape = shape;
     const auto document = profile_export_json(exported);
-    if (!o.output.empty()) {
-        write_text_file(o.output, document.dump(2) + "\n", o.overwrite);
-        std::cerr << "wrote " << o.output << '\n';
-    }
-    if (!o.table.empty()) {
-        write_text_file(o.table, profile_export_table_csv(exported), o.overwrite);
-        std::cerr << "wrote " << o.table << '\n';
-    }
-    if (o.output.empty() || o.json) {
-        std::cout << document.dump(2) << '\n';
-        return;
-    }
+    if (write_export(o, document, profile_export_table_csv(exported))) return;
     const auto& fit = exported.fit;
     std::cout << profile_export_header(exported);
     std::cout << fmt::format("{:>14}", "variance mm^2");
@@ -128,6 +192,9 @@ void add_export_profile_command(CLI::App& exporter) {
     cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians, [1, 12]")->capture_default_str();
     cmd->add_option("--radii", o->radii, "FIRST:LAST:STEP in mm: where R(r) is fitted")->capture_default_str();
     add_profile_sampling_options(*cmd, o->sampling);
+    cmd->add_option("--vary", o->vary,
+                    "FIELD=FIRST:LAST:STEPS[:log], at most twice (a grid): every member's fit, one set of variances for all (the exact "
+                    "transport: one walk per wavelength for the whole grid)");
     cmd->add_option("-o,--output", o->output, "JSON file of the fit (default: the JSON on standard output)");
     cmd->add_option("--table", o->table, "CSV table of variances and weights");
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");

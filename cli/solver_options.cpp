@@ -86,14 +86,19 @@ void note_given_profile_sampling(const CLI::App& command, ProfileSampling& sampl
     sampling.given = given_options(command, {"--seed", "--max-rays", "--stderr"});
 }
 
-SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Material& material, ProfileRequest request, const std::string& label) {
+std::vector<SpectralProfiles> solve_profiles_stoppable(const SpectralSolver& solver, const std::vector<const Material*>& materials, ProfileRequest request,
+                                                       const std::string& label) {
     const InterruptGuard interrupt;
     ProgressBar bar(label);
     request.cancel = &InterruptGuard::cancel_flag();
     request.on_progress = [&bar](const Progress& p) { bar(p); };
-    auto profiles = solve_profiles(solver, material, request);
+    auto profiles = solve_profiles(solver, materials, request);
     bar.clear();
     return profiles;
+}
+
+SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Material& material, ProfileRequest request, const std::string& label) {
+    return solve_profiles_stoppable(solver, std::vector<const Material*>{&material}, std::move(request), label).front();
 }
 
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,

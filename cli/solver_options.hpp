@@ -51,6 +51,9 @@ void note_given_profile_sampling(const CLI::App& command, ProfileSampling& sampl
 // solve_profiles with a progress bar labelled `label` on a terminal, stopped by SIGINT, SIGTERM or SIGHUP (the
 // channels finished so far come back, partial; InterruptGuard says why).
 SpectralProfiles solve_profiles_stoppable(const SpectralSolver& solver, const Material& material, ProfileRequest request, const std::string& label);
+// Several materials' profiles together (solve_profiles: a replaying solver shares its paths among them), stoppable.
+std::vector<SpectralProfiles> solve_profiles_stoppable(const SpectralSolver& solver, const std::vector<const Material*>& materials, ProfileRequest request,
+                                                       const std::string& label);
 ProfileRequest profile_request(const WavelengthGrid& wavelengths, const std::vector<double>& radii_mm, bool transmittance, const SolverOptions& options,
                                const ProfileSampling& sampling, std::vector<MaterialOverride> overrides);
 

@@ -268,6 +268,22 @@ SpectralProfiles SpectralSolver::profiles(const Material&, const ProfileRequest&
     throw InputError("solver '" + std::string(name()) + "' does not compute radial profiles");
 }
 
+std::vector<SpectralProfiles> SpectralSolver::profiles_many(const std::vector<const Material*>& materials, const ProfileRequest& request) const {
+    // Progress counts the channels of the members finished before this one on.
+    std::vector<SpectralProfiles> out;
+    auto member = request;
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        if (request.on_progress) {
+            member.on_progress = [&, i](const Progress& p) {
+                request.on_progress(Progress{p.rays_done, 0, i * p.wavelengths_total + p.wavelengths_done, materials.size() * p.wavelengths_total});
+            };
+        }
+        out.push_back(profiles(*materials[i], member));
+        if (out.back().partial) break;
+    }
+    return out;
+}
+
 const std::vector<const SpectralSolver*>& solver_registry() {
     // Adding a solver: its own files and one entry here (docs/SOLVERS.md).
     static const std::vector<const SpectralSolver*> solvers{&biospec_walk_solver(), &volumetric_walk_solver(), &adding_doubling_solver(),
@@ -606,10 +622,10 @@ void solve_sweep(const SpectralSolver& solver, const SweepMembers& members, cons
     }
 }
 
-SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
-    check_request(solver, material, request);
-    auto profiles = solver.profiles(material, request);
-    // Profiles are densities (a transform's ringing may dip below 0): finite is what is required of them.
+namespace {
+
+// Profiles are densities (a transform's ringing may dip below 0): finite is what is required of them.
+void require_finite(const SpectralSolver& solver, const SpectralProfiles& profiles, const ProfileRequest& request) {
     for (const auto& c : profiles.channels) {
         const auto finite = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
         const bool ok = finite(c.reflectance_per_mm2) && finite(c.transmittance_per_mm2) && finite(c.reflectance_stderr_per_mm2) &&
@@ -620,6 +636,21 @@ SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& ma
                              " mm) are outside what the model can compute");
         }
     }
+}
+
+}  // namespace
+
+SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
+    check_request(solver, material, request);
+    auto profiles = solver.profiles(material, request);
+    require_finite(solver, profiles, request);
+    return profiles;
+}
+
+std::vector<SpectralProfiles> solve_profiles(const SpectralSolver& solver, const std::vector<const Material*>& materials, const ProfileRequest& request) {
+    for (const auto* material : materials) check_request(solver, *material, request);
+    auto profiles = solver.profiles_many(materials, request);
+    for (const auto& p : profiles) require_finite(solver, p, request);
     return profiles;
 }
 

@@ -98,6 +98,10 @@ public:
     // each material alone. What a sweep may share among processes (solve_sweep with a WorkShare).
     virtual std::vector<std::vector<std::size_t>> solve_groups(const std::vector<const Material*>& materials, const SolverRequest& request) const;
     virtual SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const;
+    // Several materials under one profile request, one result each in order (fewer after a stop: the finished ones,
+    // the first partial one last). Default: profiles() of each in turn. A solver that declares replay_fields computes
+    // each group of materials differing only in those fields from one set of paths.
+    virtual std::vector<SpectralProfiles> profiles_many(const std::vector<const Material*>& materials, const ProfileRequest& request) const;
     // For solvers that state their error by comparison with a reference (SpectralResult::stated_error), called on
     // the finished results (possibly fewer than the materials: a stop) of solve_spectrum and solve_sweep, so that a
     // sweep can measure its error at some members and interpolate between them. `material_of(i)` builds material i
@@ -220,5 +224,7 @@ std::vector<SpectralResult> solve_sweep(const SpectralSolver& solver, const Swee
 void solve_sweep(const SpectralSolver& solver, const SweepMembers& members, const SolverRequest& request, std::vector<SpectralResult>& results,
                  const WorkShare* share = nullptr);
 SpectralProfiles solve_profiles(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
+// Every material checked as solve_profiles checks it, then their profiles together (profiles_many).
+std::vector<SpectralProfiles> solve_profiles(const SpectralSolver& solver, const std::vector<const Material*>& materials, const ProfileRequest& request);
 
 }  // namespace skinspec

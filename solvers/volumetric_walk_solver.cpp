@@ -48,13 +48,37 @@ public:
     // A fixed photon count, else the precision target within the budget (rte_profiles.hpp); a band material's bands as the
     // semi-infinite media `spectrum --mode rte` walks.
     SpectralProfiles profiles(const Material& material, const ProfileRequest& request) const override {
-        const RteProfileOptions options{request.rays_per_wavelength.value_or(request.max_rays_per_wavelength),
-                                        request.rays_per_wavelength ? std::nullopt : std::optional(request.stderr_target), request.seed,
-                                        request.switches.boundaries.value_or(BoundaryMode::random), request.cancel, request.on_progress};
         if (const auto* bands = std::get_if<HomogeneousMaterial>(&material)) {
-            return solve_rte_profiles(*bands, request.radii_mm, request.transmittance, options);
+            return solve_rte_profiles(*bands, request.radii_mm, request.transmittance, profile_options(request));
         }
-        return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance, options);
+        return solve_rte_profiles(std::get<LayerStack>(material), request.wavelengths, request.radii_mm, request.transmittance, profile_options(request));
+    }
+    // Pigmentation grids: each group of materials whose volumetric paths agree from one walk per wavelength (the exit
+    // replay, rte_profiles.hpp), up to max_exit_replay_sets together.
+    std::vector<SpectralProfiles> profiles_many(const std::vector<const Material*>& materials, const ProfileRequest& request) const override {
+        if (any_bands(materials) || materials.size() == 1) return SpectralSolver::profiles_many(materials, request);
+        const auto groups = replay_groups(materials, max_exit_replay_sets, TracedPaths::volumetric);
+        std::vector<std::optional<SpectralProfiles>> by_index(materials.size());
+        SpectralRequest whole;
+        whole.on_progress = request.on_progress;
+        PartProgress progress(whole.on_progress, groups.size());
+        for (std::size_t k = 0; k < groups.size(); ++k) {
+            if (request.cancel && request.cancel->load()) break;
+            std::vector<const LayerStack*> stacks;
+            for (const auto i : groups[k]) stacks.push_back(&std::get<LayerStack>(*materials[i]));
+            auto options = profile_options(request);
+            options.on_progress = progress.part(whole, k).on_progress;
+            auto results = solve_rte_profiles(stacks, request.wavelengths, request.radii_mm, request.transmittance, options);
+            progress.finish_part();
+            for (std::size_t j = 0; j < results.size(); ++j) by_index[groups[k][j]] = std::move(results[j]);
+        }
+        std::vector<SpectralProfiles> out;
+        for (auto& p : by_index) {
+            if (!p) break;
+            out.push_back(std::move(*p));
+            if (out.back().partial) break;
+        }
+        return out;
     }
     // On a description derived from the BioSpec one (matched_volumetric.hpp) the walk solves the derived medium, which
     // has the BioSpec model's R_d at normal incidence only: its miss at the request's incidence and geometry, by
@@ -91,6 +115,15 @@ public:
 
 private:
     static constexpr std::size_t max_replay_sets = 64;
+    // The exit replay's cost per set is an exponential per exit, its memory the exits of one wavelength: a 32 x 32 grid
+    // in one walk.
+    static constexpr std::size_t max_exit_replay_sets = 1024;
+    // A fixed photon count, else the precision target within the budget.
+    static RteProfileOptions profile_options(const ProfileRequest& request) {
+        return RteProfileOptions{request.rays_per_wavelength.value_or(request.max_rays_per_wavelength),
+                                 request.rays_per_wavelength ? std::nullopt : std::optional(request.stderr_target), request.seed,
+                                 request.switches.boundaries.value_or(BoundaryMode::random), request.cancel, request.on_progress};
+    }
     static bool any_bands(const std::vector<const Material*>& materials) {
         return std::any_of(materials.begin(), materials.end(), [](const Material* m) { return std::holds_alternative<HomogeneousMaterial>(*m); });
     }

@@ -17,6 +17,17 @@ const std::vector<std::vector<double>> deon_weights{{0.233, 0.100, 0.118, 0.113,
                                                     {0.455, 0.336, 0.198, 0.007, 0.004, 0.0},
                                                     {0.649, 0.344, 0.0, 0.007, 0.0, 0.0}};
 
+// Table 14-1's profile of weights `w` at the radii.
+std::vector<double> deon_profile(const std::vector<double>& w, const std::vector<double>& radii_mm) {
+    std::vector<double> p;
+    for (const double r : radii_mm) {
+        double v = 0.0;
+        for (std::size_t i = 0; i < 6; ++i) v += w[i] * gaussian_2d(deon_variances[i], r);
+        p.push_back(v);
+    }
+    return p;
+}
+
 std::vector<double> radii(double last, double step) {
     std::vector<double> r;
     for (int i = 0; i * step <= last + 1e-12; ++i) r.push_back(i * step);
@@ -52,13 +63,7 @@ TEST_CASE("a profile that is a sum of Gaussians is fitted exactly, variances and
     request.radii_mm = radii(10.0, 0.01);
     request.gaussians = 6;
     for (const auto& w : deon_weights) {
-        std::vector<double> p;
-        for (const double r : request.radii_mm) {
-            double v = 0.0;
-            for (std::size_t i = 0; i < 6; ++i) v += w[i] * gaussian_2d(deon_variances[i], r);
-            p.push_back(v);
-        }
-        request.profiles_per_mm2.push_back(p);
+        request.profiles_per_mm2.push_back(deon_profile(w, request.radii_mm));
         double total = 0.0;
         for (const double wi : w) total += wi;
         request.total_reflectance.push_back(total);  // the whole plane's, as a renderer's albedo
@@ -73,6 +78,28 @@ TEST_CASE("a profile that is a sum of Gaussians is fitted exactly, variances and
     }
     REQUIRE(fit.variances_mm2.size() == 6);
     for (std::size_t i = 1; i < 6; ++i) CHECK(fit.variances_mm2[i] >= fit.variances_mm2[i - 1]);
+}
+
+TEST_CASE("given variances: only the weights are fitted, d'Eon's weights recovered for d'Eon's variances", "[gaussian_sum_fit]") {
+    // Table 14-1's profile with its own variances given: the non-negative least squares alone returns its weights.
+    GaussianSumRequest request;
+    request.radii_mm = radii(10.0, 0.01);
+    request.gaussians = 6;
+    request.variances_mm2 = deon_variances;
+    for (const auto& w : deon_weights) {
+        request.profiles_per_mm2.push_back(deon_profile(w, request.radii_mm));
+    }
+    const auto fit = fit_gaussian_sum(request);
+    CHECK(fit.variances_mm2 == deon_variances);
+    CHECK(fit.evaluations == 0);
+    for (std::size_t c = 0; c < 3; ++c) {
+        CHECK(fit.relative_l2_error[c] < 1e-9);
+        for (std::size_t i = 0; i < 6; ++i) CHECK(fit.weights[c][i] == Approx(deon_weights[c][i]).margin(1e-9));
+    }
+    request.variances_mm2 = {0.1, 0.05, 1.0, 2.0, 3.0, 4.0};
+    CHECK_THROWS_WITH(fit_gaussian_sum(request), Catch::Contains("given variance 0.05 mm^2 is not positive, finite and above the one before"));
+    request.variances_mm2 = {0.1, 1.0};
+    CHECK_THROWS_WITH(fit_gaussian_sum(request), Catch::Contains("2 variances given for 6 Gaussians"));
 }
 
 TEST_CASE("the total-reflectance term holds the fit's albedo to the given total", "[gaussian_sum_fit]") {

@@ -9,7 +9,7 @@ using namespace skinspec;
 namespace {
 
 // A Bernoulli(p) "ray" with p depending on the wavelength: its mean and standard error are known exactly.
-void bernoulli(std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
+void bernoulli(std::size_t w, std::uint64_t, RandomStream& random, std::uint64_t rays, RayTally& tally) {
     RayScore score(1);
     const double p = 0.1 + 0.2 * static_cast<double>(w);
     for (std::uint64_t i = 0; i < rays; ++i) {

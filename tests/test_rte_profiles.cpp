@@ -123,3 +123,61 @@ TEST_CASE("profiles default to the exact transport, band materials walked as sem
         CHECK(std::abs(c.total_reflectance - exact.diffuse_reflectance) < 4.0 * c.within_radius_stderr + exact.accuracy);
     }
 }
+
+TEST_CASE("a pigmentation grid's profiles from one walk agree with each member's own walk", "[rte_profiles][replay]") {
+    // The layers' own volumetric description: melanin and blood change absorption only, so one walk serves them all
+    // (the exit replay); each member's own walk (MCML's way, other photons) is the independent estimate.
+    const auto base = load_material("biospec-moderately", {parse_override("model.volumetric_matched_to_biospec=false")});
+    std::vector<Material> members;
+    for (const char* melanin : {"0.01", "0.2"}) {
+        for (const char* blood : {"0.002", "0.05"}) {
+            members.push_back(with_overrides(base, {parse_override(std::string("epidermis.melanosome_fraction=") + melanin),
+                                                    parse_override(std::string("papillary_dermis.blood_fraction=") + blood)}));
+        }
+    }
+    std::vector<const LayerStack*> stacks;
+    for (const auto& m : members) stacks.push_back(&std::get<LayerStack>(m));
+    const auto r = radii(41, 0.05);  // 0-2 mm
+    const auto grid = WavelengthGrid::list({450.0, 650.0});
+    const auto together = solve_rte_profiles(stacks, grid, r, false, RteProfileOptions{40'000, std::nullopt, 7});
+    REQUIRE(together.size() == members.size());
+    for (std::size_t m = 0; m < members.size(); ++m) {
+        const auto own = solve_rte_profiles(*stacks[m], grid, r, false, RteProfileOptions{40'000, std::nullopt, 9});
+        for (std::size_t c = 0; c < grid.size(); ++c) {
+            const auto& a = together[m].channels[c];
+            const auto& b = own.channels[c];
+            INFO("member " << m << " channel " << a.label);
+            CHECK(a.rays == 40'000);
+            double chi2 = 0.0;
+            std::size_t n = 0;
+            for (std::size_t i = 0; i < r.size(); ++i) {
+                const double v = std::hypot(a.reflectance_stderr_per_mm2[i], b.reflectance_stderr_per_mm2[i]);
+                if (!(v > 0.0)) continue;
+                const double z = (a.reflectance_per_mm2[i] - b.reflectance_per_mm2[i]) / v;
+                CHECK(std::abs(z) < 5.0);
+                chi2 += z * z;
+                ++n;
+            }
+            CHECK(chi2 / static_cast<double>(std::max<std::size_t>(1, n)) < 2.0);
+        }
+    }
+    // Melanin and blood take light away: the lightest member reflects the most at every wavelength.
+    for (std::size_t c = 0; c < grid.size(); ++c) {
+        for (std::size_t m = 1; m < members.size(); ++m) CHECK(together[0].channels[c].total_reflectance > together[m].channels[c].total_reflectance);
+    }
+}
+
+TEST_CASE("a grid whose members scatter differently is walked member by member", "[rte_profiles][replay]") {
+    // The description derived from the BioSpec one scales the dermis's mu_s with the absorbers (matched_volumetric.hpp):
+    // its members share no paths, and the exit replay refuses them.
+    const auto a = std::get<LayerStack>(load_material("biospec-moderately"));
+    const auto b = std::get<LayerStack>(load_material("biospec-moderately", {parse_override("epidermis.melanosome_fraction=0.3")}));
+    CHECK_THROWS_WITH(solve_rte_profiles({&a, &b}, WavelengthGrid::list({550.0}), radii(5, 0.1), false, RteProfileOptions{1000, std::nullopt, 1}),
+                      Catch::Contains("paths"));
+    const std::vector<Material> owned{a, b};
+    const std::vector<const Material*> materials{&owned[0], &owned[1]};
+    ProfileRequest request{WavelengthGrid::list({550.0}), radii(5, 0.1), false, {}, std::uint64_t{2000}};
+    const auto p = solve_profiles(find_solver("rte"), materials, request);
+    REQUIRE(p.size() == 2);
+    CHECK(p[0].channels.front().total_reflectance > p[1].channels.front().total_reflectance);
+}

@@ -201,6 +201,95 @@ TEST_CASE("absorption replay: each replayed set equals its own white run, grids 
     CHECK(replayed[1].diffuse_reflectance.value > replayed[2].diffuse_reflectance.value);
 }
 
+TEST_CASE("exit replay: every set's R and T agree with adding-doubling, its rings with its own walk", "[rte_solver][replay]") {
+    // The six published slabs (independent reference for R and T) as absorption sets of one trace: the scattering and
+    // geometry of each kept, mu_a x 1, x 0.3 and x 3 (the sets' floor is the x 0.3 one, so two sets are re-weighted).
+    for (const auto& ref : adding_doubling_slabs()) {
+        if (ref.albedo >= 1.0) continue;  // no absorption to vary
+        for (const auto boundaries : {BoundaryMode::random, BoundaryMode::split}) {
+            RteRequest request;
+            request.stack = ref.stack();
+            request.photons = 30'000;
+            request.seed = 11;
+            request.boundaries = boundaries;
+            request.grid = {0.01, 0.05 / ref.stack().layers.front().mu_s_per_cm * 10.0, 0, 40, 0};
+            request.within_radii_cm = {request.grid.dr_cm * 4.0, request.grid.dr_cm * 20.0};
+            const double mu_a = ref.stack().layers.front().mu_a_per_cm;
+            const std::vector<std::vector<double>> sets{{mu_a}, {0.3 * mu_a}, {3.0 * mu_a}};
+            const auto replayed = solve_rte_exit_sets(request, sets);
+            REQUIRE(replayed.size() == 3);
+            INFO("a " << ref.albedo << " b " << ref.optical_thickness << " g " << ref.g << " boundaries " << to_string(boundaries));
+            // Set 0 is the slab itself: adding-doubling's R and T.
+            const auto& r0 = replayed.front();
+            CHECK(std::abs(r0.diffuse_reflectance.value - ref.diffuse_reflectance) < 4.0 * r0.diffuse_reflectance.stderr + 1e-3 * ref.diffuse_reflectance);
+            CHECK(std::abs(r0.transmittance.value - ref.total_transmittance) < 4.0 * r0.transmittance.stderr + 1e-3 * ref.total_transmittance + 1e-12);
+            for (std::size_t s = 0; s < sets.size(); ++s) {
+                auto own = request;
+                own.seed = 23;  // independent photons
+                own.stack.layers.front().mu_a_per_cm = sets[s][0];
+                const auto direct = solve_rte(own);
+                const auto& a = replayed[s];
+                INFO("set " << s);
+                const auto close = [](const Estimate& x, const Estimate& y) { return std::abs(x.value - y.value) <= 4.0 * std::hypot(x.stderr, y.stderr) + 1e-12; };
+                CHECK(close(a.diffuse_reflectance, direct.diffuse_reflectance));
+                CHECK(close(a.transmittance, direct.transmittance));
+                REQUIRE(a.reflectance_within.size() == 2);
+                for (std::size_t k = 0; k < 2; ++k) CHECK(close(a.reflectance_within[k], direct.reflectance_within[k]));
+                // Rings: chi-square per ring of the two independent estimates (standard errors per photon here, batch
+                // means there) near 1, and no ring beyond 5 sigma.
+                double chi2 = 0.0;
+                std::size_t rings = 0;
+                REQUIRE(a.reflectance_r.size() == direct.reflectance_r.size());
+                for (std::size_t i = 0; i + 1 < a.reflectance_r.size(); ++i) {
+                    const double v = std::hypot(a.reflectance_r[i].stderr, direct.reflectance_r[i].stderr);
+                    if (!(v > 0.0)) continue;
+                    const double z = (a.reflectance_r[i].value - direct.reflectance_r[i].value) / v;
+                    CHECK(std::abs(z) < 5.0);
+                    chi2 += z * z;
+                    ++rings;
+                }
+                CHECK(chi2 / static_cast<double>(std::max<std::size_t>(1, rings)) < 2.0);
+            }
+            // More absorption, less light back.
+            CHECK(replayed[1].diffuse_reflectance.value > replayed[0].diffuse_reflectance.value);
+            CHECK(replayed[0].diffuse_reflectance.value > replayed[2].diffuse_reflectance.value);
+        }
+    }
+}
+
+TEST_CASE("exit replay: the set at the floor is the floor's own white walk, exit for exit", "[rte_solver][replay]") {
+    // The same paths, roulette and exits: the floor set's escapes equal those of a white run with its absorption, to the
+    // float precision of the recorded paths.
+    auto request = slab(1.0, 100.0, 0.9, 0.1, 1.4, 20'000);
+    request.stack.layers.push_back({1.37, 0.5, 60.0, 0.05, PhaseFunction::henyey_greenstein(0.8)});
+    request.grid = {0.01, 0.01, 0, 20, 0};
+    request.within_radii_cm = {0.02, 0.1};
+    request.seed = 5;
+    const auto replayed = solve_rte_exit_sets(request, {{1.0, 0.5}, {4.0, 2.0}});
+    auto own = request;
+    own.white = true;
+    const auto direct = solve_rte(own);
+    const auto& a = replayed.front();
+    CHECK(a.photons == direct.photons);
+    CHECK(a.diffuse_reflectance.value == Approx(direct.diffuse_reflectance.value).epsilon(1e-5));
+    CHECK(a.transmittance.value == Approx(direct.transmittance.value).epsilon(1e-5));
+    for (std::size_t k = 0; k < 2; ++k) CHECK(a.reflectance_within[k].value == Approx(direct.reflectance_within[k].value).epsilon(1e-5));
+    for (std::size_t i = 0; i < a.reflectance_r.size(); ++i) CHECK(a.reflectance_r[i].value == Approx(direct.reflectance_r[i].value).epsilon(1e-5));
+    // The same numbers on one thread (batches merged in order, exits replayed in batch order).
+    {
+        const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        const auto alone = solve_rte_exit_sets(request, {{1.0, 0.5}, {4.0, 2.0}});
+        for (std::size_t s = 0; s < 2; ++s) {
+            CHECK(alone[s].diffuse_reflectance.value == replayed[s].diffuse_reflectance.value);
+            CHECK(alone[s].diffuse_reflectance.stderr == replayed[s].diffuse_reflectance.stderr);
+            for (std::size_t i = 0; i < a.reflectance_r.size(); ++i) CHECK(alone[s].reflectance_r[i].value == replayed[s].reflectance_r[i].value);
+        }
+    }
+    CHECK_THROWS_WITH(solve_rte_exit_sets(request, {}), Catch::Contains("no absorption sets"));
+    request.grid.nz = 5;
+    CHECK_THROWS_WITH(solve_rte_exit_sets(request, {{1.0, 0.5}}), Catch::Contains("only escapes are tallied"));
+}
+
 TEST_CASE("a band material is walked as its semi-infinite medium: R per band agrees with adding-doubling, nothing leaves below", "[rte_solver]") {
     for (const auto* preset : {"jensen2001-skin1", "jensen2001-marble"}) {
         CAPTURE(preset);

@@ -21,7 +21,7 @@ public:
             for (std::size_t i = next_task++; i < tasks.size() && !cancelled(); i = next_task++) {
                 const auto& task = tasks[i];
                 auto random = RandomStream::for_batch(seed, task.stream_key_nm, task.batch);
-                trace(task.wavelength, random, task.rays, out.tallies[i]);
+                trace(task.wavelength, task.batch, random, task.rays, out.tallies[i]);
                 out.done[i] = 1;
                 if (on_batch) on_batch(task.rays);
             }

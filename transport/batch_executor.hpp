@@ -20,8 +20,8 @@ struct BatchTask {
     std::uint64_t rays = 0;
 };
 
-// Traces `rays` rays at wavelength index `wavelength` into `tally`.
-using BatchTracer = std::function<void(std::size_t wavelength, RandomStream& random, std::uint64_t rays, RayTally& tally)>;
+// Traces `rays` rays of batch `batch` at wavelength index `wavelength` into `tally`.
+using BatchTracer = std::function<void(std::size_t wavelength, std::uint64_t batch, RandomStream& random, std::uint64_t rays, RayTally& tally)>;
 
 struct RoundOutput {
     std::vector<RayTally> tallies;  // per task

@@ -73,6 +73,15 @@ void check_gaussian_count(std::size_t gaussians) {
 namespace {
 
 void check_request(const GaussianSumRequest& request) {
+    const auto& v = request.variances_mm2;
+    if (!v.empty() && v.size() != request.gaussians) {
+        throw InputError("Gaussian fit: " + std::to_string(v.size()) + " variances given for " + std::to_string(request.gaussians) + " Gaussians");
+    }
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!(std::isfinite(v[i]) && v[i] > 0.0) || (i > 0 && !(v[i] > v[i - 1]))) {
+            throw InputError("Gaussian fit: given variance " + format_number(v[i]) + " mm^2 is not positive, finite and above the one before");
+        }
+    }
     const auto& r = request.radii_mm;
     check_gaussian_count(request.gaussians);
     if (r.size() < 8) throw InputError("--radii: " + std::to_string(r.size()) + " radii are too few for a Gaussian fit (at least 8)");
@@ -158,31 +167,10 @@ struct Problem {
     }
 };
 
-}  // namespace
-
-GaussianSumFit fit_gaussian_sum(const GaussianSumRequest& request) {
-    check_request(request);
-    const auto& r = request.radii_mm;
-    const std::size_t n = r.size(), m = request.gaussians;
-    Problem problem{request, std::vector<double>(n, 0.0), {}};
-    for (std::size_t k = 0; k + 1 < n; ++k) {
-        const double h = r[k + 1] - r[k];
-        problem.quadrature[k] += 0.5 * h * r[k];
-        problem.quadrature[k + 1] += 0.5 * h * r[k + 1];
-    }
-    // At r = 0 the area weight vanishes; a sliver keeps the peak in the fit (the disc of radius h/4 around it).
-    problem.quadrature[0] = std::max(problem.quadrature[0], 0.03125 * (r[1] - r[0]) * (r[1] - r[0]));
-    GaussianSumFit fit;
-    for (const auto& p : request.profiles_per_mm2) {
-        double norm = 0.0, total = 0.0;
-        for (std::size_t k = 0; k < n; ++k) {
-            norm += problem.quadrature[k] * p[k] * p[k];
-            total += 2.0 * std::numbers::pi * problem.quadrature[k] * p[k];
-        }
-        problem.norms.push_back(norm);
-        fit.profile_total.push_back(total);
-    }
-
+// The variances minimising the objective: log-variances searched by BOBYQA, the weights solved at each point.
+std::vector<double> fitted_variances(Problem& problem) {
+    const auto& r = problem.request.radii_mm;
+    const std::size_t n = r.size(), m = problem.request.gaussians;
     // Variances between a quarter of the finest radial step and the square of the largest radius: narrower
     // Gaussians fall between the samples, wider ones are flat over the profile.
     double finest = r[1] - r[0];
@@ -208,7 +196,42 @@ GaussianSumFit fit_gaussian_sum(const GaussianSumRequest& request) {
         // x holds the best point found.
     }
     std::sort(x.begin(), x.end());
-    for (const double v : x) fit.variances_mm2.push_back(std::exp(v));
+    std::vector<double> variances;
+    for (const double v : x) variances.push_back(std::exp(v));
+    return variances;
+}
+
+}  // namespace
+
+GaussianSumFit fit_gaussian_sum(const GaussianSumRequest& request) {
+    check_request(request);
+    const auto& r = request.radii_mm;
+    const std::size_t n = r.size();
+    Problem problem{request, std::vector<double>(n, 0.0), {}};
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+        const double h = r[k + 1] - r[k];
+        problem.quadrature[k] += 0.5 * h * r[k];
+        problem.quadrature[k + 1] += 0.5 * h * r[k + 1];
+    }
+    // At r = 0 the area weight vanishes; a sliver keeps the peak in the fit (the disc of radius h/4 around it).
+    problem.quadrature[0] = std::max(problem.quadrature[0], 0.03125 * (r[1] - r[0]) * (r[1] - r[0]));
+    GaussianSumFit fit;
+    for (const auto& p : request.profiles_per_mm2) {
+        double norm = 0.0, total = 0.0;
+        for (std::size_t k = 0; k < n; ++k) {
+            norm += problem.quadrature[k] * p[k] * p[k];
+            total += 2.0 * std::numbers::pi * problem.quadrature[k] * p[k];
+        }
+        problem.norms.push_back(norm);
+        fit.profile_total.push_back(total);
+    }
+
+    if (request.variances_mm2.empty()) {
+        fit.variances_mm2 = fitted_variances(problem);
+        fit.evaluations = problem.evaluations;
+    } else {
+        fit.variances_mm2 = request.variances_mm2;
+    }
     auto solved = problem.solve(fit.variances_mm2);
     fit.weights = std::move(std::get<0>(solved));
     fit.relative_l2_error = std::move(std::get<1>(solved));
@@ -217,7 +240,6 @@ GaussianSumFit fit_gaussian_sum(const GaussianSumRequest& request) {
         for (const double wi : w) total += wi;
         fit.fitted_total.push_back(total);
     }
-    fit.evaluations = problem.evaluations;
     return fit;
 }
 

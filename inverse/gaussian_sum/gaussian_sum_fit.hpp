@@ -24,6 +24,9 @@ struct GaussianSumRequest {
     std::vector<std::vector<double>> profiles_per_mm2;  // per channel, one value per radius, finite
     std::size_t gaussians = 6;                          // [1, 12]
     std::vector<double> total_reflectance;              // T_c per channel (> 0), or empty: the profile alone
+    // Given (`gaussians` of them, > 0, increasing): kept, and only the weights are fitted (the non-negative least
+    // squares alone): profiles that share another fit's variances, as the members of a pigmentation grid do.
+    std::vector<double> variances_mm2;
 };
 
 struct GaussianSumFit {

@@ -105,9 +105,16 @@ nlohmann::ordered_json bench_report_json(const BenchReport& report, const BenchR
                        {"ratio", l.exact_seconds / l.diffusion_seconds}, {"photons", l.photons}, {"within_radius_stderr", l.within_radius_stderr},
                        {"converged", l.converged}});
     }
+    Json grids = Json::array();
+    for (const auto& g : report.profile_grids) {
+        grids.push_back({{"material", g.material}, {"members", g.members}, {"one_member_seconds", g.one_member_seconds}, {"grid_seconds", g.grid_seconds},
+                         {"ratio", g.grid_seconds / g.one_member_seconds}, {"photons", g.photons}, {"within_radius_stderr", g.within_radius_stderr},
+                         {"worst_profile_relative_l2_error", g.worst_profile_error}});
+    }
     return {{"skinspec_version", version}, {"quick", o.quick}, {"seed", o.seed}, {"tolerance_percent", o.tolerance_percent}, {"partial", report.partial},
             {"cases", cases}, {"multipole_pair_sweep", pairs}, {"thread_scaling", scaling}, {"time_per_colour", colours},
-            {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}, {"profiles_against_the_walk", profiles}, {"lit_swatches", lit}};
+            {"skin_in_every_mode", skin}, {"walk_against_adding_doubling", agreement}, {"profiles_against_the_walk", profiles}, {"lit_swatches", lit},
+            {"profile_grids", grids}};
 }
 
 }  // namespace skinspec

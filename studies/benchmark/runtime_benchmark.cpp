@@ -18,6 +18,8 @@
 #include "formats/adding_doubling_reference.hpp"
 #include "transport/rte/rte_model.hpp"
 #include "appearance/lit_swatch.hpp"
+#include "appearance/profile_export.hpp"
+#include "materials/parameter_sweep.hpp"
 #include "appearance/swatch_chart.hpp"
 #include "spectral/ciede2000.hpp"
 #include "spectral/colorimetry.hpp"
@@ -483,6 +485,49 @@ void colour_timings(Benchmark& bench) {
 
 }  // namespace
 
+// `export profile` of one member against a 16 x 16 melanosome x blood grid of it (issue 61 item 3), one after the other:
+// the exact transport's profiles at the default precision over the RGB fit's wavelengths and the Gaussian fits. On
+// the preset's own volumetric description (melanin and blood absorb only: one walk serves the grid, the exit replay);
+// the description derived from the BioSpec one scales the dermis's scattering with them, so its members share no paths.
+void profile_grid_timings(Benchmark& bench) {
+    const auto base = load_material("biospec-moderately", {parse_override("model.volumetric_matched_to_biospec=false")});
+    const auto axes = sweep_axes({parse_sweep("epidermis.melanosome_fraction=0.01:0.42:16:log"), parse_sweep("papillary_dermis.blood_fraction=0.002:0.05:16:log")});
+    std::vector<Material> built;
+    for (const auto& values : sweep_grid(axes)) {
+        built.push_back(with_overrides(base, {parse_override(axes[0].field + "=" + fmt::format("{:.17g}", values[0])),
+                                              parse_override(axes[1].field + "=" + fmt::format("{:.17g}", values[1]))}));
+    }
+    std::vector<const Material*> members;
+    for (const auto& m : built) members.push_back(&m);
+    ProfileRequest request;
+    request.wavelengths = rgb_profile_wavelengths();
+    for (int i = 0; i <= 1000; ++i) request.radii_mm.push_back(0.01 * i);
+    request.cancel = bench.options().cancel;
+    const ProfileExportRequest fit;
+    const auto& solver = default_profile_solver();
+    ProfileGridTiming row{"biospec-moderately (own volumetric description)", members.size()};
+    bench.stage("biospec-moderately: export profile of one member");
+    auto start = Clock::now();
+    const auto one = solve_profiles(solver, *members[members.size() / 2], request);
+    bench.check_cancel();
+    fit_profile_export(one, false, fit);
+    row.one_member_seconds = seconds_since(start);
+    bench.stage(fmt::format("biospec-moderately: export profile of a 16 x 16 grid ({} members)", members.size()));
+    start = Clock::now();
+    const auto all = solve_profiles(solver, members, request);
+    bench.check_cancel();
+    const auto grid = fit_profile_export_grid(all, axes, false, fit);
+    row.grid_seconds = seconds_since(start);
+    for (const auto& c : all.front().channels) row.photons = std::max(row.photons, c.rays);
+    for (const auto& m : grid.members) {
+        for (const double e : m.fit.relative_l2_error) row.worst_profile_error = std::max(row.worst_profile_error, e);
+    }
+    for (const auto& p : all) {
+        for (const auto& c : p.channels) row.within_radius_stderr = std::max(row.within_radius_stderr, c.within_radius_stderr);
+    }
+    bench.report().profile_grids.push_back(row);
+}
+
 BenchReport run_benchmark(const BenchOptions& options) {
     Benchmark bench(options);
     try {
@@ -496,6 +541,7 @@ BenchReport run_benchmark(const BenchOptions& options) {
         skin_modes(bench);
         profile_agreement(bench);
         lit_swatch_timings(bench);
+        profile_grid_timings(bench);
     } catch (const Stopped&) {
         bench.report().partial = true;
     }

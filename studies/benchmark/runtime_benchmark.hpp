@@ -134,6 +134,16 @@ struct LitSwatchTiming {
     bool converged = true;
 };
 
+struct ProfileGridTiming {
+    std::string material;
+    std::size_t members = 0;
+    double one_member_seconds = 0.0;  // profiles (default precision, 380-780 nm / 10 nm, 0-10 mm) and the Gaussian fit
+    double grid_seconds = 0.0;        // every member's, one set of variances
+    std::uint64_t photons = 0;        // the grid's walk, most per wavelength
+    double within_radius_stderr = 0.0;  // the largest over members and wavelengths
+    double worst_profile_error = 0.0;   // the fit's relative L2 error, worst member and channel
+};
+
 struct BenchOptions {
     bool quick = false;                        // under a minute: fewer budgets, seeds and a shorter reference
     std::uint64_t seed = 1;                    // runs use seed, seed + 1, ...
@@ -153,6 +163,7 @@ struct BenchReport {
     std::vector<WalkAgreement> walk_agreement;
     std::vector<ProfileAgreement> profile_agreement;
     std::vector<LitSwatchTiming> lit_swatches;
+    std::vector<ProfileGridTiming> profile_grids;
     bool partial = false;  // stopped by the cancel flag: what was finished is kept
 };
 

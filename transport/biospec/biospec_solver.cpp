@@ -181,7 +181,7 @@ std::vector<SpectralResult> solve_biospec_sets(const std::vector<const LayerStac
         }
     };
     const auto outcome = run_batches(request, channels.count * sets, targets,
-                                     [&](std::size_t w, RandomStream& random, std::uint64_t rays, RayTally& tally) {
+                                     [&](std::size_t w, std::uint64_t, RandomStream& random, std::uint64_t rays, RayTally& tally) {
                                          if (reweighed) record(w, random, rays, tally);
                                          else setups.at(w).trace(random, rays, tally);
                                      },

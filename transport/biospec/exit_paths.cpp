@@ -96,6 +96,37 @@ void ReweighImpl(const float* const* paths, const float* mu, std::size_t layers,
     }
 }
 
+// Each exit's weight exp(-sum_k mu_k L_k) over the `layers` entries of `paths` and `mu`, into `out` (n of them); the
+// last vector through zero-padded copies, as ReweighImpl.
+void WeighEachImpl(const float* const* paths, const float* mu, std::size_t layers, std::size_t n, float* out) {
+    const hn::ScalableTag<float> df;
+    const std::size_t lanes = hn::Lanes(df);
+    const auto cap = hn::Set(df, max_optical_depth);
+    const auto tail = hwy::AllocateAligned<float>(std::max<std::size_t>(1, layers) * lanes);
+    const auto last = hwy::AllocateAligned<float>(lanes);
+    for (std::size_t i = 0; i < n; i += lanes) {
+        const std::size_t here = std::min(lanes, n - i);
+        auto tau = hn::Zero(df);
+        for (std::size_t k = 0; k < layers; ++k) {
+            const float* p = paths[k] + i;
+            if (here < lanes) {
+                float* padded = tail.get() + k * lanes;
+                std::fill_n(padded, lanes, 0.0f);
+                std::copy_n(p, here, padded);
+                p = padded;
+            }
+            tau = hn::MulAdd(hn::Set(df, mu[k]), hn::LoadU(df, p), tau);
+        }
+        const auto w = ExpOfNegativeDepth(df, hn::Min(tau, cap));
+        if (here == lanes) {
+            hn::StoreU(w, df, out + i);
+        } else {
+            hn::Store(w, df, last.get());
+            std::copy_n(last.get(), here, out + i);
+        }
+    }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace skinspec
 HWY_AFTER_NAMESPACE();
@@ -104,6 +135,7 @@ HWY_AFTER_NAMESPACE();
 namespace skinspec {
 
 HWY_EXPORT(ReweighImpl);
+HWY_EXPORT(WeighEachImpl);
 
 void ExitPaths::append(const ExitPaths& other) {
     rays += other.rays;
@@ -135,23 +167,32 @@ void ExitPaths::thin(const std::vector<double>& floor_per_cm, std::uint64_t seed
 
 namespace {
 
+// The optical depth's terms for mu_a * scale (less the thinning floor): the layers whose effective absorption is not 0
+// (a layer at the floor adds nothing), their coefficients and paths.
+std::pair<std::vector<float>, std::vector<const float*>> depth_terms(const ExitPaths& paths, const std::vector<double>& mu_a, const std::vector<double>& scale) {
+    std::vector<float> mu;
+    std::vector<const float*> depth_paths;
+    for (std::size_t k = 0; k < paths.layers(); ++k) {
+        const double floor = paths.thinned_at_per_cm.empty() ? 0.0 : paths.thinned_at_per_cm[k];
+        const auto effective = static_cast<float>(mu_a[k] * (scale.empty() ? 1.0 : scale[k]) - floor);
+        if (effective != 0.0f) {
+            mu.push_back(effective);
+            depth_paths.push_back(paths.layer_path_cm[k].data());
+        }
+    }
+    return {mu, depth_paths};
+}
+
 // The kernel's sums for `paths` at mu_a * scale (less the thinning floor), with the gradient's sums for the layers
 // flagged in `gradient_layers` (empty: all) when `gradient` is given (its entries for the others 0).
 ExitPaths::WeightSums reweigh(const ExitPaths& paths, const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient,
                               const std::vector<bool>& gradient_layers) {
     const std::size_t layers = paths.layers();
     if (gradient) gradient->assign(layers, 0.0);
-    // The depth's terms: the layers whose effective absorption is not 0 (a layer at the thinning floor adds nothing).
-    std::vector<float> mu;
-    std::vector<const float*> depth_paths, gradient_paths;
+    const auto [mu, depth_paths] = depth_terms(paths, mu_a, scale);
+    std::vector<const float*> gradient_paths;
     std::vector<std::size_t> gradient_of;
     for (std::size_t k = 0; k < layers; ++k) {
-        const double floor = paths.thinned_at_per_cm.empty() ? 0.0 : paths.thinned_at_per_cm[k];
-        const auto effective = static_cast<float>(mu_a[k] * scale[k] - floor);
-        if (effective != 0.0f) {
-            mu.push_back(effective);
-            depth_paths.push_back(paths.layer_path_cm[k].data());
-        }
         if (gradient && (gradient_layers.empty() || gradient_layers[k])) {
             gradient_paths.push_back(paths.layer_path_cm[k].data());
             gradient_of.push_back(k);
@@ -169,6 +210,12 @@ ExitPaths::WeightSums reweigh(const ExitPaths& paths, const std::vector<double>&
 
 ExitPaths::WeightSums ExitPaths::weight_sums(const std::vector<double>& mu_a, const std::vector<double>& scale) const {
     return reweigh(*this, mu_a, scale, nullptr, {});
+}
+
+void ExitPaths::weights(const std::vector<double>& mu_a, std::vector<float>& out) const {
+    const auto [mu, depth_paths] = depth_terms(*this, mu_a, {});
+    out.resize(exits());
+    HWY_DYNAMIC_DISPATCH(WeighEachImpl)(depth_paths.data(), mu.data(), depth_paths.size(), exits(), out.data());
 }
 
 Estimate ExitPaths::reflectance(const std::vector<double>& mu_a, const std::vector<double>& scale, std::vector<double>* gradient,

@@ -1,8 +1,9 @@
 #pragma once
 // The recorded exits of one wavelength of the BioSpec walk's path recording (transport/biospec/biospec_walk.hpp):
 // per ray that left the top into the measurement geometry (first-surface reflections apart), its path length in
-// each layer. R for any absorption is then the mean over the traced rays of exp(-sum_k mu_a,k L_k) (white Monte
-// Carlo, Alerstam et al. 2008, J. Biomed. Opt. 13:060504), a smooth function of mu_a.
+// each layer; the volumetric walk's exit replay records its exits the same way (rte_solver.cpp). R for any
+// absorption is then the mean over the traced rays of exp(-sum_k mu_a,k L_k) (white Monte Carlo, Alerstam et al.
+// 2008, J. Biomed. Opt. 13:060504), a smooth function of mu_a.
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct ExitPaths {
         double sum = 0.0, sum_of_squares = 0.0;
     };
     WeightSums weight_sums(const std::vector<double>& mu_a_per_cm, const std::vector<double>& path_scale) const;
+    // Each exit's weight exp(-sum_k (mu_a,k - m_k) L_k) (m_k as above) into `out`, one per exit, in float (relative
+    // error ~1e-6): for tallies that need the exits one by one (the volumetric walk's radial rings, rte_solver.cpp).
+    void weights(const std::vector<double>& mu_a_per_cm, std::vector<float>& out) const;
     // R for the absorption coefficients mu_a [1/cm] per layer (scale_k multiplies layer k's paths: a thickness
     // ratio for layers whose paths scale with thickness), and its standard error over the rays. Single precision
     // per exit (relative error ~1e-6, far below the Monte Carlo error), sums in double.

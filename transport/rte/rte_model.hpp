@@ -94,6 +94,15 @@ RteResult solve_rte(const RteRequest& request);
 // A stderr target is met by every set.
 std::vector<RteResult> solve_rte_sets(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets);
 
+// Exit replay, for radial profiles of many absorption sets at the cost of one walk: one white trace at the floor
+// absorption (per layer the least of the sets; its analog absorption ends the long paths no set would weigh), each
+// exit's path length per layer recorded, and each set's exit weighed by exp(-sum_k (mu_a,k - floor_k) L_k) (white
+// Monte Carlo re-weighting, Alerstam et al. 2008). The walk's cost does not grow with the sets; each set costs a
+// vectorised exponential per exit. Escapes only: specular, diffuse R, T, R_r, T_r (per-photon standard errors) and the
+// within-radius channels per set, the absorption and angle grids refused (nz = na = 0), the absorbed fractions not
+// computed. A stderr target is met by every set.
+std::vector<RteResult> solve_rte_exit_sets(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets);
+
 // A material's spectra with the volumetric walk, in the shared result type and schema (model "rte"):
 // R = specular + diffuse, R_specular, T, A per layer; requires volumetric scattering in every layer.
 SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest& request, BoundaryMode boundaries = BoundaryMode::random);

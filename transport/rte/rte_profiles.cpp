@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "materials/path_key.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
 
@@ -55,9 +56,29 @@ struct ProfileChannel {
     double stream_key = 0.0;
 };
 
-// The walk channel by channel on the medium `medium(channel)`.
-SpectralProfiles walk_profiles(const std::string& material, const std::vector<ProfileChannel>& channels, const std::function<RteStack(std::size_t)>& medium,
-                               std::span<const double> radii_mm, bool transmittance, const RteProfileOptions& options) {
+// One channel's profile from the walk's result (n centred rings).
+ChannelProfile channel_profile(const ProfileChannel& channel, const RteResult& result, std::size_t n, bool transmittance, const RteProfileOptions& options) {
+    ChannelProfile c;
+    c.label = channel.label;
+    c.wavelength_nm = channel.wavelength_nm;
+    centred_rings(result.reflectance_r, n, c.reflectance_per_mm2, c.reflectance_stderr_per_mm2);
+    if (transmittance) centred_rings(result.transmittance_r, n, c.transmittance_per_mm2, c.transmittance_stderr_per_mm2);
+    c.total_reflectance = result.diffuse_reflectance.value;
+    c.total_transmittance = result.transmittance.value;
+    c.specular_reflectance = result.specular_reflectance.value;
+    c.rays = result.photons;
+    for (const auto* within : {&result.reflectance_within, &result.transmittance_within}) {
+        for (const auto& e : *within) c.within_radius_stderr = std::max(c.within_radius_stderr, e.stderr);
+    }
+    c.converged = !options.stderr_target || c.within_radius_stderr <= *options.stderr_target;
+    return c;
+}
+
+// The walk channel by channel, material m's medium `medium(channel, m)`: one material MCML's way, several by the exit
+// replay (solve_rte_exit_sets: the first one's paths, every material's absorption).
+std::vector<SpectralProfiles> walk_profiles(const std::vector<std::string>& materials, const std::vector<ProfileChannel>& channels,
+                                            const std::function<RteStack(std::size_t, std::size_t)>& medium, std::span<const double> radii_mm,
+                                            bool transmittance, const RteProfileOptions& options) {
     if (radii_mm.size() < 2) throw InputError("radial profiles of the volumetric walk need at least two radii (0 and a step)");
     const double step_mm = radii_mm[1] - radii_mm[0];
     for (std::size_t i = 0; i < radii_mm.size(); ++i) {
@@ -66,18 +87,20 @@ SpectralProfiles walk_profiles(const std::string& material, const std::vector<Pr
                              format_number(radii_mm[i]) + " mm is not " + std::to_string(i) + " x " + format_number(step_mm) + " mm)");
         }
     }
-    SpectralProfiles out;
-    out.material = material;
-    out.model = "rte";
-    out.stderr_target = options.stderr_target;
-    out.radii_mm.assign(radii_mm.begin(), radii_mm.end());
+    std::vector<SpectralProfiles> out(materials.size());
+    for (std::size_t m = 0; m < materials.size(); ++m) {
+        out[m].material = materials[m];
+        out[m].model = "rte";
+        out[m].stderr_target = options.stderr_target;
+        out[m].radii_mm.assign(radii_mm.begin(), radii_mm.end());
+    }
     const std::size_t n = radii_mm.size();
     std::vector<double> within_cm;
     for (const double r : within_radii_mm(radii_mm)) within_cm.push_back(r / 10.0);
     std::uint64_t rays_before = 0;
     for (std::size_t index = 0; index < channels.size(); ++index) {
         RteRequest request;
-        request.stack = medium(index);
+        request.stack = medium(index, 0);
         request.photons = options.photons_per_wavelength;
         request.stderr_target = options.stderr_target;
         request.within_radii_cm = within_cm;
@@ -95,38 +118,45 @@ SpectralProfiles walk_profiles(const std::string& material, const std::vector<Pr
                 options.on_progress(Progress{rays_before + p.rays_done, expected, index, total});
             };
         }
-        const auto result = solve_rte(request);
-        rays_before += result.photons;
-        if (result.partial) {
-            out.partial = true;
+        std::vector<RteResult> results;
+        if (materials.size() == 1) {
+            results.push_back(solve_rte(request));
+        } else {
+            std::vector<std::vector<double>> mu_a_sets;
+            for (std::size_t m = 0; m < materials.size(); ++m) {
+                auto& set = mu_a_sets.emplace_back();
+                for (const auto& layer : medium(index, m).layers) set.push_back(layer.mu_a_per_cm);
+            }
+            results = solve_rte_exit_sets(request, mu_a_sets);
+        }
+        rays_before += results.front().photons;
+        if (results.front().partial) {
+            for (auto& o : out) o.partial = true;
             break;
         }
-        ChannelProfile c;
-        c.label = channels[index].label;
-        c.wavelength_nm = channels[index].wavelength_nm;
-        centred_rings(result.reflectance_r, n, c.reflectance_per_mm2, c.reflectance_stderr_per_mm2);
-        if (transmittance) centred_rings(result.transmittance_r, n, c.transmittance_per_mm2, c.transmittance_stderr_per_mm2);
-        c.total_reflectance = result.diffuse_reflectance.value;
-        c.total_transmittance = result.transmittance.value;
-        c.specular_reflectance = result.specular_reflectance.value;
-        c.rays = result.photons;
-        for (const auto* within : {&result.reflectance_within, &result.transmittance_within}) {
-            for (const auto& e : *within) c.within_radius_stderr = std::max(c.within_radius_stderr, e.stderr);
-        }
-        c.converged = !options.stderr_target || c.within_radius_stderr <= *options.stderr_target;
-        out.channels.push_back(std::move(c));
+        for (std::size_t m = 0; m < materials.size(); ++m) out[m].channels.push_back(channel_profile(channels[index], results[m], n, transmittance, options));
     }
     return out;
 }
 
 }  // namespace
 
-SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGrid& wavelengths, std::span<const double> radii_mm, bool transmittance,
-                                    const RteProfileOptions& options) {
+
+std::vector<SpectralProfiles> solve_rte_profiles(const std::vector<const LayerStack*>& stacks, const WavelengthGrid& wavelengths,
+                                                 std::span<const double> radii_mm, bool transmittance, const RteProfileOptions& options) {
+    if (stacks.empty()) throw InputError("radial profiles of the volumetric walk: no materials");
+    require_shared_paths(stacks, TracedPaths::volumetric);
     std::vector<ProfileChannel> channels;
     for (const double nm : wavelengths.nm()) channels.push_back({fmt::format("{:g} nm", nm), nm, nm});
-    return walk_profiles(stack.name, channels, [&](std::size_t c) { return rte_stack_from(stack, channels[c].wavelength_nm); }, radii_mm,
+    std::vector<std::string> names;
+    for (const auto* stack : stacks) names.push_back(stack->name);
+    return walk_profiles(names, channels, [&](std::size_t c, std::size_t m) { return rte_stack_from(*stacks[m], channels[c].wavelength_nm); }, radii_mm,
                          transmittance, options);
+}
+
+SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGrid& wavelengths, std::span<const double> radii_mm, bool transmittance,
+                                    const RteProfileOptions& options) {
+    return solve_rte_profiles(std::vector<const LayerStack*>{&stack}, wavelengths, radii_mm, transmittance, options).front();
 }
 
 SpectralProfiles solve_rte_profiles(const HomogeneousMaterial& material, std::span<const double> radii_mm, bool transmittance,
@@ -134,7 +164,9 @@ SpectralProfiles solve_rte_profiles(const HomogeneousMaterial& material, std::sp
     // Streams keyed by the band's number, as solve_rte_bands keys them.
     std::vector<ProfileChannel> channels;
     for (std::size_t b = 0; b < material.bands.size(); ++b) channels.push_back({material.bands[b], 0.0, static_cast<double>(b + 1)});
-    return walk_profiles(material.name, channels, [&](std::size_t c) { return rte_band_slab(material, c); }, radii_mm, transmittance, options);
+    return walk_profiles({material.name}, channels, [&](std::size_t c, std::size_t) { return rte_band_slab(material, c); }, radii_mm, transmittance,
+                         options)
+        .front();
 }
 
 }  // namespace skinspec

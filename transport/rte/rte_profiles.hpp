@@ -35,6 +35,11 @@ std::vector<double> within_radii_mm(std::span<const double> radii_mm);
 // layer without volumetric scattering. Totals are the walk's whole-plane diffuse R and T.
 SpectralProfiles solve_rte_profiles(const LayerStack& stack, const WavelengthGrid& wavelengths, std::span<const double> radii_mm, bool transmittance,
                                     const RteProfileOptions& options);
+// Materials that differ only in absorption (their volumetric paths agree: require_shared_paths), one profile each, from
+// one walk per wavelength by the exit replay (solve_rte_exit_sets): a grid of pigmentations at about one member's
+// cost. One material alone is walked MCML's way (as above). The stderr target is met by every material.
+std::vector<SpectralProfiles> solve_rte_profiles(const std::vector<const LayerStack*>& stacks, const WavelengthGrid& wavelengths,
+                                                 std::span<const double> radii_mm, bool transmittance, const RteProfileOptions& options);
 // A band material (Jensen et al. 2001's tables) per band, walked as the semi-infinite medium it stands for
 // (rte_band_slab, as `spectrum --mode rte` walks it).
 SpectralProfiles solve_rte_profiles(const HomogeneousMaterial& material, std::span<const double> radii_mm, bool transmittance,

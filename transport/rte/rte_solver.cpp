@@ -10,11 +10,16 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <numbers>
 #include <span>
 
+#include <tbb/parallel_for.h>
+
 #include "materials/path_key.hpp"
+#include "transport/biospec/exit_paths.hpp"
 #include "transport/direction.hpp"
 #include "transport/fresnel.hpp"
 #include "transport/rte/rte_model.hpp"
@@ -53,6 +58,52 @@ struct Channels {
     std::size_t truncated;  // 1 for a photon stopped at the step limit (per absorption set in white mode)
 };
 
+// The exits of one batch of the exit replay (solve_rte_exit_sets), a photon's exits consecutive: per exit its path in
+// each layer, its weight at the floor's absorption (roulette boosts and the fractions split boundaries kept included),
+// its radius, side and photon.
+struct BatchExits {
+    ExitPaths paths;
+    std::vector<double> weight;
+    std::vector<float> r_cm;
+    std::vector<std::uint32_t> photon;
+    std::vector<unsigned char> top;
+    std::vector<std::uint32_t> ring;  // side * rings + ring of R_r / T_r (rings_of)
+    std::uint64_t photons = 0;        // launched
+    double specular = 0.0;            // each photon's first-surface reflection
+    void add(std::span<const double> path_cm, double w, double r, std::uint32_t p, bool leaves_top) {
+        for (std::size_t k = 0; k < path_cm.size(); ++k) paths.layer_path_cm[k].push_back(static_cast<float>(path_cm[k]));
+        weight.push_back(w);
+        r_cm.push_back(static_cast<float>(r));
+        photon.push_back(p);
+        top.push_back(leaves_top ? 1 : 0);
+    }
+    std::size_t size() const { return weight.size(); }
+    // Exits reordered so that each photon's are consecutive (split boundaries let a photon leave several times, packet
+    // lanes interleave photons), in photon order, each photon's in the order they happened.
+    void group_by_photon() {
+        std::vector<std::size_t> order(size());
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return photon[a] < photon[b]; });
+        const auto permute = [&](auto& v) {
+            auto copy = v;
+            for (std::size_t i = 0; i < order.size(); ++i) v[i] = copy[order[i]];
+        };
+        for (auto& l : paths.layer_path_cm) permute(l);
+        permute(weight);
+        permute(r_cm);
+        permute(photon);
+        permute(top);
+    }
+    // Each exit's ring of width dr_cm (the last, nr - 1, also collecting everything beyond, as MCML's), R's rings first.
+    void rings_of(double dr_cm, std::size_t nr) {
+        ring.resize(size());
+        for (std::size_t e = 0; e < size(); ++e) {
+            const auto i = std::min(static_cast<std::size_t>(static_cast<double>(r_cm[e]) / dr_cm), nr - 1);
+            ring[e] = static_cast<std::uint32_t>((top[e] ? 0 : nr) + i);
+        }
+    }
+};
+
 // The walk-side state of a packet's lanes, in double precision: each photon's key, weight (MCML's way) or its
 // absorption sets' optical depths, roulette boosts, limits and the log of the weight kept at split boundaries
 // (white), the energy it has deposited in each layer (per set), and its per-photon score of the other channels.
@@ -60,7 +111,7 @@ struct Lanes {
     static constexpr std::size_t count = RtePacket::lanes;
     Lanes(std::size_t sets, std::size_t layers, std::size_t channels)
         : sets(sets), layers(layers), channels(channels), tau(sets * count), boost_log(sets * count), limit(sets * count),
-          deposited(count * sets * layers), scores(count, RayScore(channels)) {}
+          deposited(count * sets * layers), path_cm(count * layers), scores(count, RayScore(channels)) {}
     std::size_t sets, layers, channels;
     RtePacket packet;
     std::uint64_t key[count] = {};
@@ -69,17 +120,24 @@ struct Lanes {
     std::size_t alive[count] = {};
     std::vector<double> tau, boost_log, limit;  // [set * count + lane]
     std::vector<double> deposited;              // [(lane * sets + set) * layers + layer]
+    std::vector<double> path_cm;                // exit replay: the photon's path so far in each layer, [lane * layers + layer]
+    std::uint32_t photon[count] = {};           // exit replay: the photon's index in its batch
     std::vector<RayScore> scores;
     RayTally* tally = nullptr;  // the batch's tally while a walk runs
+    BatchExits* exits = nullptr;  // the exit replay's record while a walk runs
 };
 
 constexpr double dead_limit = std::numeric_limits<double>::infinity();  // the limit of a set that lost the roulette
 
+
 class Walk {
 public:
     // `mu_a_sets` (white mode): per set, mu_a per layer in 1/cm; empty: the stack's own absorption, MCML's way.
-    Walk(const RteRequest& r, const Channels& c, const std::vector<std::vector<double>>& mu_a_sets)
-        : request_(r), stack_(r.stack), ch_(c), sets_(std::max<std::size_t>(1, mu_a_sets.size())), white_(!mu_a_sets.empty()) {
+    // `exit_sets` > 0 (the exit replay, with one set: the floor): the exits are recorded instead of tallied, the tally
+    // holds that many sets (the batch's exits are replayed into it by the caller).
+    Walk(const RteRequest& r, const Channels& c, const std::vector<std::vector<double>>& mu_a_sets, std::size_t exit_sets = 0)
+        : request_(r), stack_(r.stack), ch_(c), sets_(std::max<std::size_t>(1, mu_a_sets.size())), white_(!mu_a_sets.empty()),
+          recording_(exit_sets > 0), tally_sets_(exit_sets > 0 ? exit_sets : sets_) {
         const std::size_t layers = stack_.layers.size();
         for (std::size_t k = 0; k < layers; ++k) {
             const auto& l = stack_.layers[k];
@@ -92,29 +150,33 @@ public:
         specular_ = fresnel_reflectance(incident.z, stack_.above_refractive_index, stack_.layers.front().refractive_index);
         entry_ = refract(incident, stack_.above_refractive_index, stack_.layers.front().refractive_index).value_or(incident);
         if (ch_.nz > 0) inverse_dz_ = 1.0 / r.grid.dz_cm;
-        if (ch_.nr > 0) inverse_dr_ = 1.0 / r.grid.dr_cm;
+        if (r.grid.nr > 0) inverse_dr_ = 1.0 / r.grid.dr_cm;
         last_z_ = static_cast<std::int64_t>(ch_.nz) - 1;
-        last_r_ = static_cast<std::int64_t>(ch_.nr) - 1;
+        last_r_ = static_cast<std::int64_t>(r.grid.nr) - 1;
         build_model();
     }
 
-    void trace(RandomStream& random, std::uint64_t photons, RayTally& tally) const {
+    // With the exit replay the batch's exits go to `exits` (grouped by photon), nothing of them to `tally`.
+    void trace(RandomStream& random, std::uint64_t photons, RayTally& tally, BatchExits* exits = nullptr) const {
         // The lanes' buffers are this thread's, kept from batch to batch; every lane is empty between two walks.
         thread_local std::unique_ptr<Lanes> scratch;
-        const std::size_t channels = ch_.count * sets_;
+        const std::size_t channels = ch_.count * tally_sets_;
         const std::size_t layers = stack_.layers.size();
         if (!scratch || scratch->sets != sets_ || scratch->layers != layers || scratch->channels != channels) {
             scratch = std::make_unique<Lanes>(sets_, layers, channels);
         }
         Lanes& lanes = *scratch;
         lanes.tally = &tally;
-        for (std::size_t set = 0; set < sets_; ++set) tally.use_batch_means(set * ch_.count + ch_.a_z, ch_.truncated - ch_.a_z);
+        lanes.exits = exits;
+        if (exits) exits->paths.resize_layers(layers);
+        for (std::size_t set = 0; set < tally_sets_; ++set) tally.use_batch_means(set * ch_.count + ch_.a_z, ch_.truncated - ch_.a_z);
         std::uint64_t started = 0, truncated = 0;
         std::size_t active = 0;
         // A lane whose photon ended takes the next one (photons that end at the surface are tallied on the way).
         const auto refill = [&](std::size_t lane) {
             while (started < photons) {
                 ++started;
+                lanes.photon[lane] = static_cast<std::uint32_t>(started - 1);
                 if (launch(lane, random.bits64(), lanes, tally)) return true;
             }
             lanes.packet.active[lane] = 0;
@@ -136,6 +198,11 @@ public:
             throw;
         }
         tally.add_truncated(truncated);
+        if (exits) {
+            exits->group_by_photon();
+            exits->photons = photons;
+            exits->specular = specular_;
+        }
     }
 
 private:
@@ -184,7 +251,7 @@ private:
         m.reflector_reflectance = static_cast<float>(stack_.bottom_reflectance);
         m.split = request_.boundaries == BoundaryMode::split;
         m.flag_every_segment = white_;
-        m.radius = ch_.nr > 0;
+        m.radius = request_.grid.nr > 0 || ch_.nw > 0;
         m.max_steps = static_cast<std::uint32_t>(request_.max_steps_per_photon);
         m.pad();
     }
@@ -200,6 +267,7 @@ private:
     // A deposit of lane `lane`'s photon in `layer` at radius r_cm and depth z (cm): per photon into its layer's sum, into the grids by
     // batch means. `set` offsets the channels of one absorption set (white mode); 0 otherwise.
     void absorb(Lanes& lanes, std::size_t lane, std::size_t layer, double r_cm, double z, double w, std::size_t set = 0) const {
+        if (recording_) return;  // the exit replay tallies escapes only
         lanes.deposited[(lane * sets_ + set) * lanes.layers + layer] += w;
         if (ch_.nz > 0) {
             const std::size_t o = set * ch_.count;
@@ -245,7 +313,9 @@ private:
     // False when nothing enters (the photon is tallied).
     bool launch(std::size_t lane, std::uint64_t key, Lanes& lanes, RayTally& tally) const {
         auto& s = lanes.scores[lane];
-        for (std::size_t set = 0; set < sets_; ++set) s.add(set * ch_.count + ch_.specular, specular_);
+        if (!recording_) {  // the exit replay adds the batch's specular reflection to every set at once
+            for (std::size_t set = 0; set < sets_; ++set) s.add(set * ch_.count + ch_.specular, specular_);
+        }
         if (1.0 - specular_ <= 0.0) {
             tally.add_ray(s);
             return false;
@@ -254,6 +324,7 @@ private:
         lanes.weight[lane] = 1.0 - specular_;
         lanes.log_common[lane] = std::log(1.0 - specular_);
         lanes.alive[lane] = sets_;
+        if (recording_) std::fill_n(lanes.path_cm.begin() + static_cast<std::ptrdiff_t>(lane * lanes.layers), lanes.layers, 0.0);
         for (std::size_t set = 0; set < sets_; ++set) {
             lanes.tau[set * Lanes::count + lane] = 0.0;
             lanes.boost_log[set * Lanes::count + lane] = 0.0;
@@ -313,15 +384,20 @@ private:
         const auto k = static_cast<std::size_t>(p.segment_layer[lane]);
         const double r = p.r_cm[lane], z = p.z[lane];
         const double segment = p.segment_cm[lane];
+        if (recording_) lanes.path_cm[lane * lanes.layers + k] += segment;
         const auto at = [&](std::size_t set) { return set * Lanes::count + lane; };
         const auto alive = [&](std::size_t set) { return lanes.limit[at(set)] != dead_limit; };
         const auto weight = [&](std::size_t set) { return std::exp(lanes.log_common[lane] + lanes.boost_log[at(set)] - lanes.tau[at(set)]); };
         const double* mu_a = &mu_a_per_cm_[k * sets_];
         for (std::size_t set = 0; set < sets_; ++set) {
             if (!alive(set) || mu_a[set] <= 0.0) continue;
-            const double before = weight(set);
-            lanes.tau[at(set)] += mu_a[set] * segment;
-            absorb(lanes, lane, k, r, z, before - weight(set), set);
+            if (recording_) {
+                lanes.tau[at(set)] += mu_a[set] * segment;  // the exit replay tallies no absorption: no weights to take
+            } else {
+                const double before = weight(set);
+                lanes.tau[at(set)] += mu_a[set] * segment;
+                absorb(lanes, lane, k, r, z, before - weight(set), set);
+            }
             if (lanes.tau[at(set)] - lanes.boost_log[at(set)] - lanes.log_common[lane] <= lanes.limit[at(set)]) continue;
             const double w = weight(set);
             if (RandomStream::keyed_uniform(lanes.key[lane], p.steps[lane]) < roulette_survival) {
@@ -337,7 +413,14 @@ private:
         if (bits & (rte_left_top | rte_left_bottom)) {
             const double kept = p.kept[lane];
             for (std::size_t set = 0; set < sets_; ++set) {
-                if (alive(set)) escape(lanes, lane, (bits & rte_left_top) != 0, r, p.exit_cos[lane], weight(set) * (1.0 - kept), set);
+                if (!alive(set)) continue;
+                const double w = weight(set) * (1.0 - kept);
+                if (!recording_) {
+                    escape(lanes, lane, (bits & rte_left_top) != 0, r, p.exit_cos[lane], w, set);
+                } else if (w > 0.0) {
+                    lanes.exits->add(std::span<const double>(&lanes.path_cm[lane * lanes.layers], lanes.layers), w, r, lanes.photon[lane],
+                                     (bits & rte_left_top) != 0);
+                }
             }
             if (!(kept > 0.0)) return true;
             lanes.log_common[lane] += std::log(kept);
@@ -346,7 +429,10 @@ private:
             for (std::size_t set = 0; set < sets_; ++set) {
                 if (!alive(set)) continue;
                 absorb(lanes, lane, k, r, z, weight(set), set);
-                lanes.scores[lane].add(set * ch_.count + ch_.truncated, 1.0);
+                if (!recording_) lanes.scores[lane].add(set * ch_.count + ch_.truncated, 1.0);
+            }
+            if (recording_) {
+                for (std::size_t set = 0; set < tally_sets_; ++set) lanes.scores[lane].add(set * ch_.count + ch_.truncated, 1.0);
             }
             return true;
         }
@@ -358,6 +444,8 @@ private:
     const Channels& ch_;
     std::size_t sets_;
     bool white_;
+    bool recording_;          // the exit replay
+    std::size_t tally_sets_;  // the sets the tally holds: sets_, or the exit replay's
     std::vector<double> mu_a_per_cm_;        // white mode: [layer * sets + set]
     std::vector<double> absorbed_fraction_;  // MCML's way: mu_a / mu_t per layer
     Direction entry_;
@@ -366,6 +454,132 @@ private:
     std::int64_t last_z_ = 0, last_r_ = 0;        // the last grid bins
     RtePacketModel model_;
 };
+
+// Photon by photon over a batch's exits (BatchExits: a photon's consecutive): single(e) for a photon that left once,
+// group(first, last) for one that left several times (split boundaries).
+template <class Single, class Group>
+void by_photon(const BatchExits& exits, Single&& single, Group&& group) {
+    const std::size_t n = exits.size();
+    for (std::size_t e = 0; e < n;) {
+        std::size_t end = e + 1;
+        while (end < n && exits.photon[end] == exits.photon[e]) ++end;
+        if (end == e + 1) {
+            single(e);
+        } else {
+            group(e, end);
+        }
+        e = end;
+    }
+}
+
+// Set `set`'s value of each exit of a batch: its weight at the floor times exp(-sum_k (mu_a,k - floor_k) L_k).
+void exit_values(const BatchExits& exits, const std::vector<double>& mu_a_per_cm, std::vector<float>& scratch, std::vector<double>& values) {
+    exits.paths.weights(mu_a_per_cm, scratch);
+    values.resize(exits.size());
+    for (std::size_t e = 0; e < exits.size(); ++e) values[e] = exits.weight[e] * static_cast<double>(scratch[e]);
+}
+
+// The exit replay's per-photon channels of one batch for every set: R, T and the within-radius channels, as sums and
+// sums of squares of each photon's value. A photon that left once is worth its exit's value in each channel that holds
+// its exit, so its squares are summed per radius band between two within radii and accumulated outwards.
+void replay_exit_channels(const BatchExits& exits, const std::vector<std::vector<double>>& mu_a_sets, const std::vector<double>& within_cm,
+                          const Channels& ch, RayTally& tally) {
+    const std::size_t nw = within_cm.size();
+    std::vector<std::size_t> band(exits.size());
+    for (std::size_t e = 0; e < exits.size(); ++e) {
+        band[e] = static_cast<std::size_t>(std::lower_bound(within_cm.begin(), within_cm.end(), static_cast<double>(exits.r_cm[e])) - within_cm.begin());
+    }
+    std::vector<float> scratch;
+    std::vector<double> v;
+    for (std::size_t set = 0; set < mu_a_sets.size(); ++set) {
+        exit_values(exits, mu_a_sets[set], scratch, v);
+        double side_sum[2] = {}, side_sq[2] = {};
+        std::vector<double> band_sum(2 * (nw + 1)), band_sq(2 * (nw + 1)), within_sum(2 * nw), within_sq(2 * nw), value(2 * nw);
+        by_photon(
+            exits,
+            [&](std::size_t e) {
+                const std::size_t side = exits.top[e] ? 0 : 1;
+                side_sum[side] += v[e];
+                side_sq[side] += v[e] * v[e];
+                band_sum[side * (nw + 1) + band[e]] += v[e];
+                band_sq[side * (nw + 1) + band[e]] += v[e] * v[e];
+            },
+            [&](std::size_t first, std::size_t last) {
+                double side_value[2] = {};
+                std::fill(value.begin(), value.end(), 0.0);
+                for (std::size_t e = first; e < last; ++e) {
+                    const std::size_t side = exits.top[e] ? 0 : 1;
+                    side_value[side] += v[e];
+                    for (std::size_t k = band[e]; k < nw; ++k) value[side * nw + k] += v[e];
+                }
+                for (std::size_t side = 0; side < 2; ++side) {
+                    side_sum[side] += side_value[side];
+                    side_sq[side] += side_value[side] * side_value[side];
+                }
+                for (std::size_t i = 0; i < 2 * nw; ++i) {
+                    within_sum[i] += value[i];
+                    within_sq[i] += value[i] * value[i];
+                }
+            });
+        const std::size_t o = set * ch.count;
+        const auto n = static_cast<double>(exits.photons);
+        tally.add_exits(o + ch.specular, n * exits.specular, n * exits.specular * exits.specular);
+        tally.add_exits(o + ch.reflectance, side_sum[0], side_sq[0]);
+        tally.add_exits(o + ch.transmittance, side_sum[1], side_sq[1]);
+        for (std::size_t side = 0; side < 2; ++side) {
+            double sum = 0.0, sq = 0.0;
+            for (std::size_t k = 0; k < nw; ++k) {
+                sum += band_sum[side * (nw + 1) + k];
+                sq += band_sq[side * (nw + 1) + k];
+                tally.add_exits(o + (side == 0 ? ch.r_within : ch.t_within) + k, sum + within_sum[side * nw + k], sq + within_sq[side * nw + k]);
+            }
+        }
+    }
+}
+
+// The exit replay's rings for set `mu_a_per_cm` over every batch in order: R(r) and T(r) per ring of width dr (the last
+// also collecting everything beyond, as MCML's), each per-photon mean and standard error in MCML's units (1/cm^2).
+void replay_exit_rings(const std::vector<const BatchExits*>& batches, const std::vector<double>& mu_a_per_cm, const RteGrid& grid, std::uint64_t photons,
+                       std::vector<Estimate>& reflectance_r, std::vector<Estimate>& transmittance_r) {
+    const auto nr = static_cast<std::size_t>(grid.nr);
+    std::vector<double> sum(2 * nr), sq(2 * nr);
+    std::vector<float> scratch;
+    std::vector<double> v;
+    std::vector<std::pair<std::size_t, double>> photon_rings;  // a photon's (side * nr + ring, value) of a group
+    for (const auto* exits : batches) {
+        exit_values(*exits, mu_a_per_cm, scratch, v);
+        by_photon(
+            *exits,
+            [&](std::size_t e) {
+                const std::size_t i = exits->ring[e];
+                sum[i] += v[e];
+                sq[i] += v[e] * v[e];
+            },
+            [&](std::size_t first, std::size_t last) {
+                photon_rings.clear();
+                for (std::size_t e = first; e < last; ++e) {
+                    const std::size_t i = exits->ring[e];
+                    const auto at = std::find_if(photon_rings.begin(), photon_rings.end(), [&](const auto& pr) { return pr.first == i; });
+                    if (at == photon_rings.end()) {
+                        photon_rings.emplace_back(i, v[e]);
+                    } else {
+                        at->second += v[e];
+                    }
+                }
+                for (const auto& [i, value] : photon_rings) {
+                    sum[i] += value;
+                    sq[i] += value * value;
+                }
+            });
+    }
+    const double n = static_cast<double>(photons);
+    for (std::size_t i = 0; i < 2 * nr; ++i) {
+        const double mean = sum[i] / n;
+        const double variance = photons > 1 ? std::max(0.0, sq[i] / n - mean * mean) / (n - 1.0) : 0.0;
+        const double area = 2.0 * pi * (static_cast<double>(i % nr) + 0.5) * grid.dr_cm * grid.dr_cm;  // MCML's ring area
+        (i < nr ? reflectance_r : transmittance_r).push_back({mean / area, std::sqrt(variance) / area});
+    }
+}
 
 std::vector<Estimate> scaled(const RayTally& t, std::size_t first, std::size_t n, const std::function<double(std::size_t)>& scale) {
     std::vector<Estimate> out;
@@ -381,7 +595,8 @@ std::vector<Estimate> scaled(const RayTally& t, std::size_t first, std::size_t n
 namespace {
 
 // Runs the walk (MCML's way without `mu_a_sets`, white with them) and returns one result per set.
-std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets) {
+// `exit_replay` (solve_rte_exit_sets): one white trace at the sets' floor, its exits recorded and replayed per set.
+std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets, bool exit_replay = false) {
     validate(request.stack);
     check_incidence_deg(request.incidence_deg);
     if (request.photons < 1) throw InputError("photon count 0 is outside [1, inf)");
@@ -404,9 +619,21 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
             throw InputError("within radii: " + format_number(within[k]) + " cm is not positive and above the one before");
         }
     }
-    const Channels channels(request.stack.layers.size(), g, within.size());
-    const Walk walk(request, channels, mu_a_sets);
+    if (exit_replay && (g.nz > 0 || g.na > 0)) throw InputError("exit replay: only escapes are tallied (no absorption or angle grids)");
+    // The exit replay's floor: per layer the least absorption of the sets; its tally holds no grids (rings are replayed
+    // from the recorded exits after the walk).
+    std::vector<double> floor;
+    if (exit_replay) {
+        floor = mu_a_sets.front();
+        for (const auto& set : mu_a_sets) {
+            for (std::size_t k = 0; k < floor.size(); ++k) floor[k] = std::min(floor[k], set[k]);
+        }
+    }
+    const Channels channels(request.stack.layers.size(), exit_replay ? RteGrid{g.dz_cm, g.dr_cm, 0, 0, 0} : g, within.size());
     const std::size_t sets = std::max<std::size_t>(1, mu_a_sets.size());
+    const Walk walk = exit_replay ? Walk(request, channels, {floor}, sets) : Walk(request, channels, mu_a_sets);
+    std::mutex recorded_mutex;
+    std::map<std::uint64_t, BatchExits> recorded;  // the exit replay's batches by index
 
     SpectralRequest driver;
     driver.wavelengths = WavelengthGrid::list({request.stream_key});
@@ -415,16 +642,29 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
     driver.seed = request.seed;
     // The grids' standard errors are batch means: at least 64 batches when the budget allows (batches of 64 to 4096).
     // With a target the rays are not known ahead: batches of 1024 give ~60 at the ~6e4 photons a 0.002 target takes.
-    if (g.nz > 0 || g.nr > 0 || g.na > 0) {
+    if (g.nz > 0 || g.nr > 0 || g.na > 0) {  // the exit replay's rings as the grid's, for photon counts alike
         driver.rays_per_batch = std::clamp<std::uint64_t>(request.stderr_target ? 1024 : request.photons / 64, 64, driver.rays_per_batch);
     }
     driver.on_progress = request.on_progress;
     driver.cancel = request.cancel;
     std::vector<std::size_t> targets{channels.reflectance, channels.transmittance};
     for (std::size_t k = 0; k < within.size(); ++k) targets.insert(targets.end(), {channels.r_within + k, channels.t_within + k});
-    const auto outcome = run_batches(driver, channels.count * sets, targets,
-                                     [&](std::size_t, RandomStream& random, std::uint64_t n, RayTally& tally) { walk.trace(random, n, tally); },
-                                     sets);
+    const auto trace = [&](std::size_t, std::uint64_t batch, RandomStream& random, std::uint64_t n, RayTally& tally) {
+        if (!exit_replay) {
+            walk.trace(random, n, tally);
+            return;
+        }
+        BatchExits exits;
+        walk.trace(random, n, tally, &exits);
+        exits.paths.thinned_at_per_cm = floor;
+        if (g.nr > 0) exits.rings_of(g.dr_cm, static_cast<std::size_t>(g.nr));
+        replay_exit_channels(exits, mu_a_sets, within, channels, tally);
+        const std::scoped_lock lock(recorded_mutex);
+        recorded.emplace(batch, std::move(exits));
+    };
+    const auto outcome = run_batches(driver, channels.count * sets, targets, trace, sets);
+    std::vector<const BatchExits*> batches;
+    for (const auto& [batch, exits] : recorded) batches.push_back(&exits);
 
     std::vector<RteResult> results;
     const auto& t = outcome.tallies.front();
@@ -463,6 +703,12 @@ std::vector<RteResult> run_walk(const RteRequest& request, const std::vector<std
         }
         results.push_back(std::move(r));
     }
+    // The exit replay's rings, set by set on the threads (each set's sums in batch order: the same for any thread count).
+    if (exit_replay && g.nr > 0 && !outcome.cancelled && t.rays() > 0) {
+        tbb::parallel_for(std::size_t{0}, sets, [&](std::size_t set) {
+            replay_exit_rings(batches, mu_a_sets[set], g, results[set].photons, results[set].reflectance_r, results[set].transmittance_r);
+        });
+    }
     return results;
 }
 
@@ -482,6 +728,11 @@ RteResult solve_rte(const RteRequest& request) {
 std::vector<RteResult> solve_rte_sets(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets) {
     if (mu_a_sets.empty()) throw InputError("absorption replay: no absorption sets");
     return run_walk(request, mu_a_sets);
+}
+
+std::vector<RteResult> solve_rte_exit_sets(const RteRequest& request, const std::vector<std::vector<double>>& mu_a_sets) {
+    if (mu_a_sets.empty()) throw InputError("exit replay: no absorption sets");
+    return run_walk(request, mu_a_sets, true);
 }
 
 SpectralResult solve_rte_spectrum(const LayerStack& stack, const SpectralRequest& request, BoundaryMode boundaries) {
