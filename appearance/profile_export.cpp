@@ -6,6 +6,7 @@
 
 #include "appearance/profile_shape_report.hpp"
 #include "skinspec/version.hpp"
+#include "solvers/spectral_solver.hpp"
 #include "spectral/color_management.hpp"
 #include "spectral/input_error.hpp"
 #include "spectral/text_fields.hpp"
@@ -81,6 +82,18 @@ ProfileExport fit_profile_export(const SpectralProfiles& profiles, bool bands, c
     auto out = export_channels(profiles, bands, request, profiles_per_mm2);
     out.fit = fit_gaussian_sum(GaussianSumRequest{out.radii_mm, profiles_per_mm2, request.gaussians, out.total_reflectance, {}});
     return out;
+}
+
+std::vector<Material> profile_grid_members(const Material& base, const std::vector<SweepAxis>& axes) {
+    if (axes.empty() || axes.size() > 2) throw InputError("vary: one or two fields (they form a grid); got " + std::to_string(axes.size()));
+    const SweepMembers lattice(std::make_shared<const Material>(base), nullptr, axes);
+    if (lattice.size() > max_profile_grid_members) {
+        throw InputError("vary: " + std::to_string(lattice.size()) + " members is outside [1, " + std::to_string(max_profile_grid_members) + "]: split the grid");
+    }
+    std::vector<Material> members;
+    members.reserve(lattice.size());
+    for (std::size_t i = 0; i < lattice.size(); ++i) members.push_back(lattice[i].material());
+    return members;
 }
 
 std::vector<std::size_t> grid_corners_and_middle(const std::vector<std::size_t>& axis_sizes) {

@@ -58,6 +58,11 @@ struct ProfileExportGrid {
     std::vector<ProfileExport> members;
     std::vector<std::size_t> variances_fitted_to;  // member indices
 };
+// Beyond this many members a grid's materials and recorded exits outgrow a workstation's memory: split it.
+inline constexpr std::size_t max_profile_grid_members = 4096;
+// Every member of the grid `axes` (one or two) over `base`, in sweep_grid order, each built (refused as the reader
+// refuses) before anything is solved. InputError for no axis, more than two or more than max_profile_grid_members.
+std::vector<Material> profile_grid_members(const Material& base, const std::vector<SweepAxis>& axes);
 // The members at the corners and the middle of a grid with these axis sizes (indices, increasing, no repeats).
 std::vector<std::size_t> grid_corners_and_middle(const std::vector<std::size_t>& axis_sizes);
 // InputError as fit_profile_export, and for a member count other than the product of the axis sizes.

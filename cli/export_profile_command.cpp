@@ -61,9 +61,6 @@ bool write_export(const ProfileExportOptions& o, const nlohmann::ordered_json& d
     return true;
 }
 
-// Beyond this many members a grid's materials and recorded exits outgrow a workstation's memory: split it.
-constexpr std::size_t max_grid_members = 4096;
-
 // A grid (--vary): every member's profile (the exact transport from one walk per wavelength, the exit replay), one set
 // of variances for them all, the JSON and the table of every member's weights.
 void run_export_profile_grid(const ProfileExportOptions& o, const Material& base, const SpectralSolver& solver, const ProfileRequest& request,
@@ -72,14 +69,7 @@ void run_export_profile_grid(const ProfileExportOptions& o, const Material& base
     for (const auto& v : o.vary) sweeps.push_back(parse_sweep(v));
     if (sweeps.size() > 2) throw InputError("--vary: at most two fields (they form a grid); got " + std::to_string(sweeps.size()));
     const auto axes = sweep_axes(sweeps);
-    const SweepMembers lattice(std::make_shared<const Material>(base), nullptr, axes);
-    if (lattice.size() > max_grid_members) {
-        throw InputError("--vary: " + std::to_string(lattice.size()) + " members is outside [1, " + std::to_string(max_grid_members) + "]: split the grid");
-    }
-    // Every member built (refused as the reader refuses) before any photon is traced.
-    std::vector<Material> built;
-    built.reserve(lattice.size());
-    for (std::size_t i = 0; i < lattice.size(); ++i) built.push_back(lattice[i].material());
+    const auto built = profile_grid_members(base, axes);
     std::vector<const Material*> members;
     for (const auto& m : built) members.push_back(&m);
     const auto profiles = solve_profiles_stoppable(solver, members, request, "export profile");

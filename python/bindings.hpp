@@ -79,6 +79,11 @@ ProfileRequest profile_request_argument(const WavelengthGrid& wavelengths, const
 const SpectralSolver& profile_solver_argument(const py::object& mode);
 // solve_profiles under run_interruptible (Ctrl-C stops it).
 SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request);
+// Several materials' profiles together (solve_profiles), interruptible.
+std::vector<SpectralProfiles> solve_profiles_interruptible(const SpectralSolver& solver, const std::vector<const Material*>& materials,
+                                                           const ProfileRequest& request);
+// `vary`: None (no axes) or a dict {field: values} (each a non-empty sequence of finite numbers), in order.
+std::vector<SweepAxis> vary_axes(const py::object& vary);
 // stated_profile_shape (solvers/profile_shape_check.hpp: a diffusion profile's shape against the volumetric walk) under
 // run_interruptible; as a dict (profile_shape_json), None where nothing is checked (a walk's profile, band materials).
 ProfileShapeCheck stated_profile_shape_interruptible(const SpectralSolver& solver, const Material& material, const WavelengthGrid& wavelengths,

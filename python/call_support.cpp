@@ -104,15 +104,33 @@ void apply_profile_sampling(const ProfileSamplingArguments& sampling, ProfileReq
 }
 
 SpectralProfiles solve_profiles_interruptible(const SpectralSolver& solver, const Material& material, const ProfileRequest& request) {
-    SpectralProfiles p;
+    return solve_profiles_interruptible(solver, std::vector<const Material*>{&material}, request).front();
+}
+
+std::vector<SpectralProfiles> solve_profiles_interruptible(const SpectralSolver& solver, const std::vector<const Material*>& materials,
+                                                           const ProfileRequest& request) {
+    std::vector<SpectralProfiles> p;
     run_interruptible(
         [&](const CancelFlag& cancel, const std::function<void(const Progress&)>&) {
             auto r = request;
             r.cancel = &cancel;
-            p = solve_profiles(solver, material, r);
+            p = solve_profiles(solver, materials, r);
         },
         py::none());
     return p;
+}
+
+std::vector<SweepAxis> vary_axes(const py::object& vary) {
+    std::vector<SweepAxis> axes;
+    if (vary.is_none()) return axes;
+    if (!py::isinstance<py::dict>(vary)) throw InputError("vary: expected a dict {field: values}");
+    for (const auto& [field, values] : vary.cast<py::dict>()) {
+        const auto key = py::str(field).cast<std::string>();
+        auto v = finite_vector(values, "vary['" + key + "']");
+        if (v.empty()) throw InputError("vary['" + key + "']: no values");
+        axes.push_back({key, std::move(v)});
+    }
+    return axes;
 }
 
 ProfileShapeCheck stated_profile_shape_interruptible(const SpectralSolver& solver, const Material& material, const WavelengthGrid& wavelengths,

@@ -9,6 +9,7 @@
 
 #include "appearance/lut_export.hpp"
 #include "appearance/profile_export.hpp"
+#include "appearance/profile_shape_report.hpp"
 #include "formats/scene_export.hpp"
 #include "python/bindings.hpp"
 #include "spectral/atomic_file.hpp"
@@ -54,7 +55,8 @@ py::object export_scene_files(SceneRenderer renderer, const py::object& material
 py::object export_profile(const py::object& material, const py::object& output, const py::object& table, const std::string& per,
                           const py::object& wavelengths, const std::string& space, const std::string& illuminant, const std::string& observer,
                           std::size_t gaussians, const py::object& radii_mm, const py::object& mode, const py::object& rays,
-                          const py::object& stderr_target, const py::object& max_rays, const py::object& seed, bool overwrite, const py::kwargs& switches) {
+                          const py::object& stderr_target, const py::object& max_rays, const py::object& seed, const py::object& vary, bool overwrite,
+                          const py::kwargs& switches) {
     const auto skin = material_argument(material, "material");
     ProfileExportRequest fit_request;
     fit_request.per = parse_profile_channels(per, "per");
@@ -74,7 +76,23 @@ py::object export_profile(const py::object& material, const py::object& output, 
     const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths()
                                                               : (wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths));
     const auto radii = radii_mm.is_none() ? py::object(to_array(parse_radii_mm("0:10:0.01", "radii_mm"), {1001})) : radii_mm;
-    const auto profiles = solve_profiles_interruptible(solver, skin.material, profile_request_argument(grid, radii, false, {rays, stderr_target, max_rays, seed}, switches, skin.overrides));
+    const auto request = profile_request_argument(grid, radii, false, {rays, stderr_target, max_rays, seed}, switches, skin.overrides);
+    if (!vary.is_none()) {
+        // A grid: every member's fit, one set of variances (as `export profile --vary`).
+        const auto axes = vary_axes(vary);
+        const auto built = profile_grid_members(skin.material, axes);
+        std::vector<const Material*> members;
+        for (const auto& m : built) members.push_back(&m);
+        const auto all = solve_profiles_interruptible(solver, members, request);
+        const auto fitted = fit_profile_export_grid(all, axes, bands, fit_request);
+        const auto document = profile_export_grid_json(fitted);
+        if (!json_file.empty()) write_text_file(json_file, document.dump(2) + "\n", overwrite);
+        if (!table_file.empty()) write_text_file(table_file, profile_export_grid_table_csv(fitted), overwrite);
+        py::dict out = json_object(document);
+        out["precision"] = profile_precision_line(all);
+        return out;
+    }
+    const auto profiles = solve_profiles_interruptible(solver, skin.material, request);
     auto exported = fit_profile_export(profiles, bands, fit_request);
     if (profile_shape_checked(solver, skin.material)) exported.shape = stated_profile_shape_interruptible(solver, skin.material, grid, solver_switches(switches));
     const auto document = profile_export_json(exported);
@@ -150,13 +168,15 @@ void bind_exports(py::module_& m) {
     radius in the linear `space` under `illuminant` and `observer`, from 380-780 nm every 10) or "wavelength" (one per
     `wavelengths`, default 450, 550, 650 nm); gaussians: [1, 12]; radii_mm: where R(r) is fitted (default 0-10 mm by
     0.01); mode: a solver that computes profiles (default None: rte, the exact transport); rays, stderr, max_rays, seed and solver switches as
-    skinspec.profiles takes them; overwrite: replace existing files. Returns the JSON the command writes
-    (variances_mm2 and per channel its weights and the fit's errors) and the solver's warnings.)doc",
+    skinspec.profiles takes them; vary: a dict {field: values} of one or two fields (a grid, as `export profile --vary`:
+    every member's fit, one set of variances for all, the exact transport from one walk per wavelength where the members
+    differ only in absorption); overwrite: replace existing files. Returns the JSON the command writes (variances_mm2
+    and per channel its weights and the fit's errors; with vary, per member) and the solver's warnings.)doc",
           py::arg("material"), py::kw_only(), py::arg("output") = py::none(), py::arg("table") = py::none(), py::arg("per") = "rgb",
           py::arg("wavelengths") = py::none(), py::arg("space") = "ACEScg", py::arg("illuminant") = "D65", py::arg("observer") = "2",
           py::arg("gaussians") = ProfileExportRequest{}.gaussians, py::arg("radii_mm") = py::none(), py::arg("mode") = py::none(),
           py::arg("rays") = py::none(), py::arg("stderr") = py::none(), py::arg("max_rays") = py::none(), py::arg("seed") = py::none(),
-          py::arg("overwrite") = false);
+          py::arg("vary") = py::none(), py::arg("overwrite") = false);
     // Both renderers: one function each, named and described by the renderer (pybind11 keeps the pointers: static).
     static const std::array<std::string, 2> names{"export_pbrt", "export_mitsuba"};
     static const std::array<std::string, 2> docs{

@@ -216,16 +216,7 @@ py::object spectrum(const py::object& material, const py::object& wavelengths, c
     } else if (solver.capabilities().uncertainty) {
         spectral.stderr_target = 0.002;
     }
-    std::vector<SweepAxis> axes;
-    if (!vary.is_none()) {
-        if (!py::isinstance<py::dict>(vary)) throw InputError("vary: expected a dict {field: values}");
-        for (const auto& [field, values] : vary.cast<py::dict>()) {
-            const auto key = py::str(field).cast<std::string>();
-            auto v = finite_vector(values, "vary['" + key + "']");
-            if (v.empty()) throw InputError("vary['" + key + "']: no values");
-            axes.push_back({key, std::move(v)});
-        }
-    }
+    const auto axes = vary_axes(vary);
     const auto layer_list = layers.is_none() ? std::vector<std::string>{} : name_list(layers, "layers");
     const auto with_options = with_overrides(base.material, extra);
     const auto members = sweep_members(solver, request, axes, layer_list, with_options);

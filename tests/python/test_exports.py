@@ -73,6 +73,26 @@ def test_export_profile_equals_the_command_and_keeps_total_reflectance(tmp_path)
         skinspec.export_profile("biospec-lightly", gaussians=13)
 
 
+def test_export_profile_of_a_grid_equals_the_command(tmp_path):
+    own = "model.volumetric_matched_to_biospec=false"
+    material = skinspec.Material("biospec-moderately")
+    material["model.volumetric_matched_to_biospec"] = False
+    args = dict(per="wavelength", wavelengths=[550], radii_mm=np.arange(0, 101) * 0.05, gaussians=3, rays=5000)
+    ours = skinspec.export_profile(material, output=tmp_path / "py.json", table=tmp_path / "py.csv",
+                                   vary={"epidermis.melanosome_fraction": [0.01, 0.2], "papillary_dermis.blood_fraction": [0.002, 0.05]}, **args)
+    run("export", "profile", "--set", own, "--vary", "epidermis.melanosome_fraction=0.01:0.2:2", "--vary", "papillary_dermis.blood_fraction=0.002:0.05:2",
+        "--per", "wavelength", "--wavelengths", "550", "--radii", "0:5:0.05", "--gaussians", "3", "--rays", "5000",
+        "-o", str(tmp_path / "cli.json"), "--table", str(tmp_path / "cli.csv"))
+    assert json.load(open(tmp_path / "py.json")) == json.load(open(tmp_path / "cli.json"))
+    assert open(tmp_path / "py.csv").read() == open(tmp_path / "cli.csv").read()
+    assert len(ours["members"]) == 4 and "shared by the 4 members" in ours["precision"]
+    # More melanin, less light back: the fit's total follows the member.
+    totals = [m["fit"][0]["total_reflectance_fit"] for m in ours["members"]]
+    assert totals[0] > totals[1] and totals[2] > totals[3]
+    with pytest.raises(skinspec.InputError, match="vary: expected a dict"):
+        skinspec.export_profile(material, vary=["epidermis.melanosome_fraction"], **args)
+
+
 def test_export_lut_equals_the_command(tmp_path):
     axes = dict(melanin="0.01:0.42:3:log", blood="0.002:0.05:2:log")
     ours = skinspec.export_lut("biospec-moderately", tmp_path / "py.exr", mode="adding-doubling", spectra=tmp_path / "py.csv", **axes)
