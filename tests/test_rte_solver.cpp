@@ -201,6 +201,45 @@ TEST_CASE("absorption replay: each replayed set equals its own white run, grids 
     CHECK(replayed[1].diffuse_reflectance.value > replayed[2].diffuse_reflectance.value);
 }
 
+TEST_CASE("glass | absorber | glass with three indices: R and T of the incoherent multilayer in closed form", "[rte_solver]") {
+    // No scattering: at normal incidence every photon stays on the axis, bouncing between the four interfaces. The
+    // stack's R and T are the incoherent multiple-reflection sums (e.g. Born & Wolf; Heavens, Optical Properties of Thin
+    // Solid Films, Sec. 4.8): two elements A then B combine as T = T_A T_B / (1 - R'_A R_B), R = R_A + T_A^2 R_B / (1 -
+    // R'_A R_B), R' = R'_B + T_B^2 R'_A / (1 - R'_A R_B); an interface i|j reflects ((n_i - n_j) / (n_i + n_j))^2 both
+    // ways, a layer transmits exp(-mu_a d). Every index differs, so a walk that took a neighbour's index at an internal
+    // interface (above for below) misses these by far more than its standard errors.
+    struct Element {
+        double front, back, through;
+    };
+    const auto then = [](const Element& a, const Element& b) {
+        const double d = 1.0 - a.back * b.front;
+        return Element{a.front + a.through * a.through * b.front / d, b.back + b.through * b.through * a.back / d, a.through * b.through / d};
+    };
+    const auto interface = [](double ni, double nj) {
+        const double r = (ni - nj) / (ni + nj);
+        return Element{r * r, r * r, 1.0 - r * r};
+    };
+    const double n1 = 1.52, n2 = 1.33, n3 = 1.75, mu_a = 8.0, d = 0.05;  // absorber: exp(-0.4)
+    RteRequest request;
+    request.stack.layers.push_back({n1, 0.0, 0.0, 0.1, PhaseFunction::henyey_greenstein(0.0)});
+    request.stack.layers.push_back({n2, mu_a, 0.0, d, PhaseFunction::henyey_greenstein(0.0)});
+    request.stack.layers.push_back({n3, 0.0, 0.0, 0.2, PhaseFunction::henyey_greenstein(0.0)});
+    request.photons = 100'000;
+    request.seed = 17;
+    Element stack = interface(1.0, n1);
+    stack = then(stack, interface(n1, n2));
+    stack = then(stack, Element{0.0, 0.0, std::exp(-mu_a * d)});
+    stack = then(stack, interface(n2, n3));
+    stack = then(stack, interface(n3, 1.0));
+    const auto r = solve_rte(request);
+    const double walk_r = r.specular_reflectance.value + r.diffuse_reflectance.value;
+    INFO("R walk " << walk_r << " +- " << r.diffuse_reflectance.stderr << " closed form " << stack.front << "; T walk " << r.transmittance.value << " +- "
+                   << r.transmittance.stderr << " closed form " << stack.through);
+    CHECK(std::abs(walk_r - stack.front) < 4.0 * r.diffuse_reflectance.stderr + 1e-12);
+    CHECK(std::abs(r.transmittance.value - stack.through) < 4.0 * r.transmittance.stderr + 1e-12);
+    CHECK(energy(r) == Approx(1.0).margin(1e-9));
+}
+
 TEST_CASE("exit replay: every set's R and T agree with adding-doubling, its rings with its own walk", "[rte_solver][replay]") {
     // The six published slabs (independent reference for R and T) as absorption sets of one trace: the scattering and
     // geometry of each kept, mu_a x 1, x 0.3 and x 3 (the sets' floor is the x 0.3 one, so two sets are re-weighted).
