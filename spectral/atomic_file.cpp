@@ -1,11 +1,13 @@
 #include "spectral/atomic_file.hpp"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <mutex>
 #include <string>
 #include <system_error>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "spectral/input_error.hpp"
@@ -73,14 +75,71 @@ std::optional<bool> OutputClaims::may_replace(const std::filesystem::path& file)
     return it == current_claims->claimed_.end() ? std::nullopt : std::optional(it->second);
 }
 
+namespace {
+
+// The process's file-creation mask (read once: setting it back at once is the only way to read it).
+mode_t creation_mask() {
+    static const mode_t mask = [] {
+        const mode_t m = ::umask(0);
+        ::umask(m);
+        return m;
+    }();
+    return mask;
+}
+
+// A temporary sibling of `file` created exclusively under an unpredictable name (mkstemps: O_CREAT | O_EXCL, six
+// random characters), so that nothing planted beforehand (a symbolic link at a name another run would use) is
+// written through; its permissions as a new file's (0666 less the umask), and its identity to check before publishing.
+struct Temporary {
+    std::filesystem::path path;
+    dev_t device = 0;
+    ino_t inode = 0;
+};
+
+Temporary create_temporary(const std::filesystem::path& file) {
+    const std::string extension = file.extension().string();
+    std::string name = (file.parent_path() / (file.stem().string() + ".partial-XXXXXX" + extension)).string();
+    const int fd = ::mkstemps(name.data(), static_cast<int>(extension.size()));
+    if (fd < 0) throw InputError(file.string() + ": cannot be written (no temporary beside it: " + std::strerror(errno) + ")");
+    struct stat created {};
+    const bool ok = ::fchmod(fd, 0666 & ~creation_mask()) == 0 && ::fstat(fd, &created) == 0;
+    ::close(fd);
+    if (!ok) {
+        ::unlink(name.c_str());
+        throw InputError(file.string() + ": cannot be written (its temporary: " + std::strerror(errno) + ")");
+    }
+    return {name, created.st_dev, created.st_ino};
+}
+
+// Whether the temporary is still the regular file created for it (not replaced by a link or anything else meanwhile).
+bool still_ours(const Temporary& t) {
+    struct stat now {};
+    return ::lstat(t.path.c_str(), &now) == 0 && S_ISREG(now.st_mode) && now.st_dev == t.device && now.st_ino == t.inode;
+}
+
+}  // namespace
+
 void write_atomically(const std::filesystem::path& file, const std::function<void(const std::filesystem::path& temporary)>& write, bool overwrite) {
-    const auto temporary = file.parent_path() / (file.stem().string() + ".partial-" + std::to_string(::getpid()) + file.extension().string());
+    const auto temporary = create_temporary(file);
     try {
-        write(temporary);
-        publish(temporary, file, OutputClaims::may_replace(file).value_or(overwrite));
+        write(temporary.path);
+        if (!still_ours(temporary)) {
+            throw InputError(file.string() + ": its temporary " + temporary.path.string() +
+                             " was replaced while it was written (not a regular file of this run any more); nothing published");
+        }
+        publish(temporary.path, file, OutputClaims::may_replace(file).value_or(overwrite));
+        // What was published must be that file: a swap between the look and the rename is undone (the name removed,
+        // which removes a link, never what it points to).
+        if (!still_ours(Temporary{file, temporary.device, temporary.inode})) {
+            ::unlink(file.c_str());
+            throw InputError(file.string() + ": its temporary was replaced while it was published; nothing published");
+        }
     } catch (...) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
+        // Only what this run created is removed (a planted replacement is left, and named above).
+        if (still_ours(temporary)) {
+            std::error_code ignored;
+            std::filesystem::remove(temporary.path, ignored);
+        }
         throw;
     }
 }

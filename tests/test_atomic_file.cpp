@@ -4,6 +4,11 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "spectral/atomic_file.hpp"
 #include "spectral/input_error.hpp"
@@ -71,5 +76,48 @@ TEST_CASE("outputs replace only regular files, and only when claimed with overwr
     CHECK(std::none_of(fs::directory_iterator(dir), fs::directory_iterator(), [](const fs::directory_entry& e) {
         return e.path().filename().string().find(".partial-") != std::string::npos;
     }));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a temporary is created exclusively under an unpredictable name, and a replaced one is never published", "[atomic_file]") {
+    const auto dir = fs::temp_directory_path() / ("skinspec_atomic_link_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const auto victim = dir / "victim.txt";
+    std::ofstream(victim) << "precious\n";
+    // The name a run used to write to (stem.partial-PID.ext), planted as a link to another file: never written through.
+    const auto out = dir / "out.json";
+    fs::create_symlink(victim, dir / ("out.partial-" + std::to_string(::getpid()) + ".json"));
+    std::vector<fs::path> names;
+    write_atomically(out, [&](const fs::path& temporary) {
+        names.push_back(temporary);
+        std::ofstream(temporary) << "{}\n";
+    });
+    CHECK(fs::is_regular_file(fs::symlink_status(out)));
+    // Two runs' temporaries differ (six random characters), with a new file's permissions (not mkstemp's 0600).
+    const auto second = dir / "second.json";
+    write_atomically(second, [&](const fs::path& temporary) { names.push_back(temporary); std::ofstream(temporary) << "{}\n"; });
+    REQUIRE(names.size() == 2);
+    CHECK(names[0].filename().string().rfind("out.partial-", 0) == 0);
+    CHECK(names[0].extension() == ".json");
+    CHECK(names[0].stem().string() != "out.partial-" + std::to_string(::getpid()));
+    CHECK((fs::status(second).permissions() & fs::perms::owner_read) != fs::perms::none);
+    const auto mask = ::umask(0);
+    ::umask(mask);
+    CHECK((fs::status(second).permissions() & fs::perms::group_read) == ((mask & S_IRGRP) ? fs::perms::none : fs::perms::group_read));
+    // A temporary replaced by a link while it is written (another process in the folder): refused, nothing published,
+    // the link's target untouched, the planted link left where it is.
+    const auto third = dir / "third.json";
+    CHECK_THROWS_WITH(write_atomically(third,
+                                       [&](const fs::path& temporary) {
+                                           std::ofstream(temporary) << "{}\n";
+                                           fs::remove(temporary);
+                                           fs::create_symlink(victim, temporary);
+                                       }),
+                      Catch::Contains("was replaced while it was written"));
+    CHECK_FALSE(fs::exists(fs::symlink_status(third)));
+    std::string kept;
+    std::getline(std::ifstream(victim), kept);
+    CHECK(kept == "precious");
     fs::remove_all(dir);
 }
