@@ -39,14 +39,7 @@ void run_export_mcml(const McmlExportOptions& o) {
     request.wavelengths_nm.assign(grid.nm().begin(), grid.nm().end());
     request.output_stem = std::filesystem::path(o.output).stem().string();
     const auto exported = mcml_export(*stack, request);
-    std::vector<std::string> comments{fmt::format("skinspec export mcml: {}, its volumetric description at {} nm (one run each)", name, o.wavelengths),
-                                      "MCML holds HG layers and a Fresnel bottom only; substituted:"};
-    for (const auto& s : exported.substitutions) comments.push_back("  " + s);
-    comments.push_back("diffuse R by adding-doubling, this file's stack against the material's own description:");
-    for (std::size_t i = 0; i < exported.runs.size(); ++i) {
-        comments.push_back(fmt::format("  {:g} nm: {:.5f} against {:.5f} ({:+.5f})", grid.nm()[i], exported.exported_reflectance[i], exported.own_reflectance[i],
-                                       exported.exported_reflectance[i] - exported.own_reflectance[i]));
-    }
+    const auto comments = mcml_export_comments(exported, name, request.wavelengths_nm);
     write_text_file(o.output, mci_text(exported.runs, comments), o.overwrite);
     for (const auto& c : comments) std::cout << c << '\n';
     std::cout << fmt::format("wrote {}: {} runs of {} photons, rings of {:g} mm to {:g} mm; run it with MCML 1.2 (`mcml {}`) or `skinspec mcml {}` "

@@ -36,6 +36,20 @@ std::string hg_substitution(RteLayer& layer) {
 
 }  // namespace
 
+std::vector<std::string> mcml_export_comments(const McmlExport& exported, const std::string& material, const std::vector<double>& wavelengths_nm) {
+    std::string list;
+    for (const double nm : wavelengths_nm) list += (list.empty() ? "" : ",") + fmt::format("{:g}", nm);
+    std::vector<std::string> comments{fmt::format("skinspec export mcml: {}, its volumetric description at {} nm (one run each)", material, list),
+                                      "MCML holds HG layers and a Fresnel bottom only; substituted:"};
+    for (const auto& s : exported.substitutions) comments.push_back("  " + s);
+    comments.push_back("diffuse R by adding-doubling, this file's stack against the material's own description:");
+    for (std::size_t i = 0; i < exported.runs.size(); ++i) {
+        comments.push_back(fmt::format("  {:g} nm: {:.5f} against {:.5f} ({:+.5f})", wavelengths_nm[i], exported.exported_reflectance[i],
+                                       exported.own_reflectance[i], exported.exported_reflectance[i] - exported.own_reflectance[i]));
+    }
+    return comments;
+}
+
 McmlExport mcml_export(const LayerStack& stack, const McmlExportRequest& request) {
     if (request.wavelengths_nm.empty()) throw InputError("export mcml: no wavelengths");
     for (const double nm : request.wavelengths_nm) check_range(nm, 250.0, 2500.0, "wavelength [nm]");

@@ -40,4 +40,8 @@ struct McmlExport {
 // (0, 1000] mm, more than 100000 rings) or a layer without volumetric scattering.
 McmlExport mcml_export(const LayerStack& stack, const McmlExportRequest& request);
 
+// The comment lines the .mci opens with (and the command prints): the material and wavelengths, what was substituted,
+// and adding-doubling's diffuse R of the file's stack against the material's own description per wavelength.
+std::vector<std::string> mcml_export_comments(const McmlExport& exported, const std::string& material, const std::vector<double>& wavelengths_nm);
+
 }  // namespace skinspec

@@ -10,6 +10,8 @@
 #include "appearance/lut_export.hpp"
 #include "appearance/profile_export.hpp"
 #include "appearance/profile_shape_report.hpp"
+#include "formats/mcml_export.hpp"
+#include "formats/mcml_files.hpp"
 #include "formats/scene_export.hpp"
 #include "python/bindings.hpp"
 #include "spectral/atomic_file.hpp"
@@ -143,7 +145,48 @@ const std::string scene_doc = std::string(R"doc(
 
 }  // namespace
 
+py::dict export_mcml(const py::object& material, const py::object& output, const py::object& wavelengths, const py::object& photons, double ring_mm,
+                     double reach_mm, double depth_bin_mm, bool overwrite) {
+    const auto skin = material_argument(material, "material");
+    const auto* stack = std::get_if<LayerStack>(&skin.material);
+    if (!stack) throw InputError("material is given per band (no layers); export_mcml writes the layers of a layered material");
+    const auto file = path_argument(output, "output");
+    check_output_path(file, overwrite, {".mci"});
+    McmlExportRequest request;
+    if (!wavelengths.is_none()) {
+        const auto grid = wavelength_argument(wavelengths);
+        request.wavelengths_nm.assign(grid.nm().begin(), grid.nm().end());
+    }
+    if (!photons.is_none()) request.photons = whole_number(photons, 1, 1e15, "photons");
+    request.ring_mm = ring_mm;
+    request.reach_mm = reach_mm;
+    request.depth_bin_mm = depth_bin_mm;
+    request.output_stem = file.stem().string();
+    const auto exported = mcml_export(*stack, request);
+    const auto comments = mcml_export_comments(exported, material_name(skin.material), request.wavelengths_nm);
+    write_text_file(file, mci_text(exported.runs, comments), overwrite);
+    py::dict out;
+    out["file"] = file.string();
+    out["wavelengths_nm"] = request.wavelengths_nm;
+    out["photons"] = request.photons;
+    out["substitutions"] = exported.substitutions;
+    out["exported_reflectance"] = exported.exported_reflectance;
+    out["own_reflectance"] = exported.own_reflectance;
+    out["comments"] = comments;
+    return out;
+}
+
 void bind_exports(py::module_& m) {
+    m.def("export_mcml", &export_mcml, R"doc(The layers' volumetric description as an MCML input file, as `skinspec export mcml` writes it.
+
+    material: a skinspec.Material, preset name or .toml path (layered); output: the .mci file; wavelengths: one run each
+    (default 450, 550, 650 nm); photons per run (default 1e7); ring_mm, reach_mm: MCML's radial rings (dr) and how far
+    they reach; depth_bin_mm: MCML's dz; overwrite: replace an existing file. Returns the file, what MCML could not hold
+    and was substituted, and adding-doubling's diffuse R of the file's stack against the material's own description per
+    wavelength (what the substitutions change).)doc",
+          py::arg("material"), py::arg("output"), py::kw_only(), py::arg("wavelengths") = py::none(), py::arg("photons") = py::none(),
+          py::arg("ring_mm") = McmlExportRequest{}.ring_mm, py::arg("reach_mm") = McmlExportRequest{}.reach_mm,
+          py::arg("depth_bin_mm") = McmlExportRequest{}.depth_bin_mm, py::arg("overwrite") = false);
     m.def("export_lut", &export_lut, R"doc(A melanosome x blood look-up texture of diffuse skin albedo, as `skinspec export lut` writes it.
 
     material: a preset name or .toml path; output: the linear OpenEXR texture (one texel per melanin column and blood

@@ -93,6 +93,22 @@ def test_export_profile_of_a_grid_equals_the_command(tmp_path):
         skinspec.export_profile(material, vary=["epidermis.melanosome_fraction"], **args)
 
 
+def test_export_mcml_equals_the_command(tmp_path):
+    ours = skinspec.export_mcml("biospec-moderately", tmp_path / "py.mci", photons=1000)
+    run("export", "mcml", "--preset", "biospec-moderately", "--photons", "1000", "-o", str(tmp_path / "cli.mci"))
+    # The same file but for the output names each run writes (STEM_NNNnm.mco), which follow the file's own name.
+    assert open(tmp_path / "py.mci").read().replace("py_", "cli_") == open(tmp_path / "cli.mci").read()
+    assert ours["wavelengths_nm"] == [450.0, 550.0, 650.0] and ours["photons"] == 1000
+    assert any("HG of its mean cosine" in s for s in ours["substitutions"])
+    # What leaving the reflector out changes, by adding-doubling: the red, which reaches the reflector, loses the most.
+    change = [e - o for e, o in zip(ours["exported_reflectance"], ours["own_reflectance"])]
+    assert change[2] < change[0] and change[2] < 0
+    with pytest.raises(skinspec.InputError, match="exists already"):
+        skinspec.export_mcml("biospec-moderately", tmp_path / "py.mci")
+    with pytest.raises(skinspec.InputError, match="given per band"):
+        skinspec.export_mcml("jensen2001-skin1", tmp_path / "bands.mci")
+
+
 def test_export_lut_equals_the_command(tmp_path):
     axes = dict(melanin="0.01:0.42:3:log", blood="0.002:0.05:2:log")
     ours = skinspec.export_lut("biospec-moderately", tmp_path / "py.exr", mode="adding-doubling", spectra=tmp_path / "py.csv", **axes)
