@@ -165,7 +165,7 @@ void run_fit_image(const FitImageOptions& o) {
         edited_metadata.push_back({"skinspec:content", "the image re-rendered after the edits " + fmt::format("{}", fmt::join(o.edits, ", ")) +
                                                            " (fitted pixels only)"});
         if (multispectral) {
-            write_data_image(o.edited, DataImage{width, height, static_cast<int>(request.bands->names.size()), std::move(edited), true, request.bands->names},
+            write_data_image(o.edited, DataImage{width, height, static_cast<int>(request.bands->names.size()), std::move(edited), true, request.bands->names, {}},
                              edited_metadata);
         } else if (o.edited.ends_with(".exr")) {
             write_linear_image(o.edited, LinearImage{width, height, std::move(edited)}, request.space, false, edited_metadata, cm);

@@ -81,7 +81,7 @@ void write_outputs(const FitOptions& o, const std::vector<std::string>& names, c
     if (geometry) {
         const auto exr = dir / "resynthesised.exr";
         check_output_path(exr, o.overwrite, {".exr"});
-        DataImage image{geometry->width, geometry->height, static_cast<int>(reports.size()), {}, true, names};
+        DataImage image{geometry->width, geometry->height, static_cast<int>(reports.size()), {}, true, names, {}};
         for (std::size_t p = 0; p < static_cast<std::size_t>(geometry->width) * geometry->height; ++p) {
             for (const auto& r : reports) image.values.push_back(static_cast<float>(r.synthesised[p]));
         }
@@ -94,7 +94,7 @@ void write_synthetic_inputs(const FitOptions& o, const PlanarScene& s) {
     namespace fs = std::filesystem;
     fs::create_directories(o.output_dir);
     const double area = s.pitch_mm * s.pitch_mm;
-    DataImage irradiance{s.width, s.height, 1, {}, true, {"Y"}}, exitance = irradiance;
+    DataImage irradiance{s.width, s.height, 1, {}, true, {"Y"}, {}}, exitance = irradiance;
     for (std::size_t p = 0; p < s.incident.size(); ++p) {
         irradiance.values.push_back(static_cast<float>(s.incident[p] / area));
         exitance.values.push_back(static_cast<float>(s.observed[p]));

@@ -25,7 +25,7 @@ struct Bytes {
 };
 
 skinspec::DataImage image(Bytes& bytes, int width, int height, int channels) {
-    skinspec::DataImage result{width, height, channels, {}, true, {}};
+    skinspec::DataImage result{width, height, channels, {}, true, {}, {}};
     for (int c = 0; c < channels; ++c) result.channel_names.push_back(std::string(1, "RGBA"[c]));
     for (int i = 0; i < width * height * channels; ++i) result.values.push_back(bytes.next<float>());
     return result;

@@ -37,7 +37,7 @@ PixelRect patch_rect(const ChartLayout& layout, std::size_t index) {
 }
 
 DataImage rgb_image(int width, int height, const std::array<float, 3>& fill) {
-    DataImage image{width, height, 3, std::vector<float>(static_cast<std::size_t>(width) * height * 3), true, {}};
+    DataImage image{width, height, 3, std::vector<float>(static_cast<std::size_t>(width) * height * 3), true, {}, {}};
     for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p) std::copy(fill.begin(), fill.end(), &image.values[p * 3]);
     return image;
 }
@@ -189,7 +189,7 @@ void write_linear_chart(const std::filesystem::path& file, const ChartLayout& la
 
 void write_linear_image(const std::filesystem::path& file, const LinearImage& image, std::string_view working_space, bool half_float,
                         const ImageMetadata& metadata, const ColorManagement& cm) {
-    write_scene_linear(DataImage{image.width, image.height, 3, image.rgb, true, {}}, file, working_space, half_float, metadata, cm);
+    write_scene_linear(DataImage{image.width, image.height, 3, image.rgb, true, {}, {}}, file, working_space, half_float, metadata, cm);
 }
 
 void write_display_image(const std::filesystem::path& file, const LinearImage& image, std::string_view working_space, std::string_view display,
@@ -197,7 +197,7 @@ void write_display_image(const std::filesystem::path& file, const LinearImage& i
     auto pixels = image.rgb;
     cm.display_view_pixels(pixels, cm.canonical_space(working_space, "--space"), display, view);
     for (auto& p : pixels) p = std::clamp(p, 0.0f, 1.0f);  // display-referred: the display cannot show more
-    write_display_referred(DataImage{image.width, image.height, 3, std::move(pixels), false, {}}, file, display, metadata);
+    write_display_referred(DataImage{image.width, image.height, 3, std::move(pixels), false, {}, {}}, file, display, metadata);
 }
 
 void write_display_chart(const std::filesystem::path& file, const ChartLayout& layout, const std::vector<RGB>& patches,
