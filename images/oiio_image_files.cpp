@@ -40,7 +40,7 @@ std::string read(const std::string& file, double max_bytes, DataImage& out) {
     }
     out = DataImage{spec.width, spec.height, spec.nchannels,
                     std::vector<float>(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels),
-                    spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF, spec.channelnames};
+                    spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF, spec.channelnames, {}};
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.values.data())) {
         return "cannot be read as an image (" + in->geterror() + ")";
     }
