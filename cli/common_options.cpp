@@ -1,5 +1,6 @@
 #include "cli/common_options.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -29,8 +30,24 @@ void check_option_values(CLI::App& app) {
     // An empty text is no file name, colour space or list ("--output ''" ran and wrote nothing).
     static const CLI::Validator not_empty([](std::string& text) { return text.empty() ? std::string("an empty value is not allowed") : std::string(); }, "",
                                           "NONEMPTY");
+    // Whole numbers are decimal, as a person writes them: spaces around dropped, leading zeros too (CLI11 reads 010 as
+    // octal 8 and refuses 08), 0x / 0o / 0b prefixes refused; 1e3 written as a real is 1000.
     static const CLI::Validator whole(
         [](std::string& text) {
+            const auto first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
+            text = first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+            const std::size_t sign = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+            if (text.size() > sign + 1 && text[sign] == '0') {
+                const char base = static_cast<char>(std::tolower(static_cast<unsigned char>(text[sign + 1])));
+                if (base == 'x' || base == 'o' || base == 'b') return "'" + text + "' is not a decimal whole number";
+                const auto digits = text.find_first_not_of('0', sign);
+                if (digits != std::string::npos && std::isdigit(static_cast<unsigned char>(text[digits])) &&
+                    text.find_first_not_of("0123456789", sign) == std::string::npos) {
+                    text = text.substr(0, sign) + text.substr(digits);
+                } else if (digits == std::string::npos) {
+                    text = text.substr(0, sign) + "0";
+                }
+            }
             char* end = nullptr;
             const double number = std::strtod(text.c_str(), &end);
             const bool written_as_real = end != text.c_str() && *end == '\0' && text.find_first_of(".eE") != std::string::npos;

@@ -97,6 +97,17 @@ bool unknown_command(const CLI::App& app, int argc, char** argv, bool print) {
     return true;
 }
 
+// What the command printed must have reached standard output: a full disk or a closed pipe is a failure (said on
+// standard error).
+bool standard_output_written() {
+    errno = 0;
+    std::cout.flush();
+    if (std::cout && std::fflush(stdout) == 0 && !std::ferror(stdout)) return true;
+    const int cause = errno;
+    std::cerr << "skinspec: error: writing to standard output failed" << (cause ? std::string(": ") + std::strerror(cause) : std::string()) << '\n';
+    return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,7 +147,8 @@ int main(int argc, char** argv) {
         }
         return code;
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        const int code = app.exit(e);  // --help and --version print and exit 0: what they printed must have arrived
+        return code == 0 && !standard_output_written() ? skinspec::cli::error_exit(1) : code;
     } catch (const skinspec::InputError& e) {
         if (root) std::cerr << "skinspec: error: " << e.what() << '\n';
         return skinspec::cli::error_exit(2);
@@ -147,13 +159,5 @@ int main(int argc, char** argv) {
         std::cerr << "skinspec: internal error: " << e.what() << '\n';
         return skinspec::cli::error_exit(1);
     }
-    // What the command printed must have reached standard output: a full disk or a closed pipe is a failure.
-    errno = 0;
-    std::cout.flush();
-    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
-        const int cause = errno;
-        std::cerr << "skinspec: error: writing to standard output failed" << (cause ? std::string(": ") + std::strerror(cause) : std::string()) << '\n';
-        return skinspec::cli::error_exit(1);
-    }
-    return 0;
+    return standard_output_written() ? 0 : skinspec::cli::error_exit(1);
 }

@@ -32,6 +32,8 @@ skinspec_cli_test("spectrum colour carries its uncertainty" 0 "\"Lab_uncertainty
 skinspec_cli_test("color reads a stderr column" 0 "\\+- +[0-9.]+ +[0-9.]+ +[0-9.]+ +\\(standard uncertainty; CIEDE2000" color spectrum_with_stderr.csv)
 skinspec_cli_test("adding-doubling through a 1e307 cm epidermis ends (it spun forever)" 0 "1 wavelengths \\(adding-doubling model, deterministic\\)" spectrum --set epidermis.thickness_cm=1e307 --mode adding-doubling --wavelengths 550 --preset biospec-lightly)
 skinspec_cli_test("a whole number written as 1e3" 0 "1 wavelengths, 1000 rays" spectrum --preset biospec-lightly --rays 1e3 --wavelengths 550)
+# Whole numbers are decimal: 0100 is a hundred (CLI11 read it as octal 64), 08 is eight (refused as octal before).
+skinspec_cli_test("a whole number with leading zeros is decimal" 0 "1 wavelengths, 100 rays" spectrum --preset biospec-lightly --rays 0100 --seed 08 --wavelengths 550)
 skinspec_cli_test("spectrum without R shows each material's requested quantities (side by side showed R)" 0 "biospec-lightly:\nwavelength_nm +T\n +550 +0\.0[0-9]+\n\nbiospec-heavily:\nwavelength_nm +T\n" spectrum --mode adding-doubling --quantities T --reflector off --wavelengths 550 --preset biospec-lightly --preset biospec-heavily)
 skinspec_cli_test("spectrum dipole refuses a bottom" 2 "--reflector sets bottom.boundary = exit, but solver 'dipole' treats the skin as one semi-infinite medium" spectrum --mode dipole --reflector off)
 skinspec_cli_test("spectrum dipole refuses T" 2 "solver 'dipole' does not compute T" spectrum --mode dipole --quantities R,T)

@@ -159,6 +159,8 @@ skinspec_malformed_input("export profile bad per" 2 "--per: 'band' is not what t
 skinspec_malformed_input("export profile zero gaussians" 2 "--gaussians 0 is outside \\[1, 12\\]" "${out}/p2.json" export profile --gaussians 0 -o ${out}/p2.json)
 skinspec_malformed_input("export profile from a walk without profiles" 2 "solver 'biospec' does not compute radial profiles" "${out}/p3.json" export profile --mode biospec -o ${out}/p3.json)
 skinspec_malformed_input("export profile few radii" 2 "3 radii are too few" "${out}/p4.json" export profile --radii 0:1:0.5 -o ${out}/p4.json)
+skinspec_malformed_input("a hexadecimal count" 105 "--gaussians: '0x10' is not a decimal whole number" "${out}/p6.json" export profile --gaussians 0x10 -o ${out}/p6.json)
+skinspec_malformed_input("a negative count with a space before it" 105 "--gaussians: '-1' is negative \\(a count or size, >= 0\\)" "${out}/p7.json" export profile --gaussians " -1" -o ${out}/p7.json)
 skinspec_malformed_input("export profile three grid axes" 2 "--vary: at most two fields \\(they form a grid\\); got 3" "${out}/p5.json" export profile --vary epidermis.melanosome_fraction=0.01:0.2:2 --vary papillary_dermis.blood_fraction=0.002:0.05:2 --vary epidermis.thickness_cm=0.005:0.01:2 -o ${out}/p5.json)
 skinspec_malformed_input("export pbrt measured phase" 2 "pbrt-v4 media take Henyey-Greenstein only" "${out}/s1.pbrt;${out}/s1_spectra" export pbrt --phase own -o ${out}/s1.pbrt)
 skinspec_malformed_input("export pbrt rgb needs three" 2 "--rgb: give exactly three wavelengths" "${out}/s2.pbrt" export pbrt --rgb 650,550 -o ${out}/s2.pbrt)
