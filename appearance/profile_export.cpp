@@ -45,6 +45,14 @@ ProfileChannels parse_profile_channels(const std::string& text, std::string_view
 
 WavelengthGrid rgb_profile_wavelengths() { return WavelengthGrid::range(380.0, 780.0, 10.0); }
 
+WavelengthGrid profile_export_wavelengths(const ProfileExportRequest& request, const std::optional<WavelengthGrid>& given, std::string_view option) {
+    if (request.per == ProfileChannels::wavelength) return given.value_or(WavelengthGrid::list({450.0, 550.0, 650.0}));
+    if (given) {
+        throw InputError(std::string(option) + ": an RGB fit (per rgb) integrates R(r) over 380-780 nm every 10 nm; wavelengths are for per wavelength");
+    }
+    return rgb_profile_wavelengths();
+}
+
 void check_profile_export(const std::string& material, bool bands, const ProfileExportRequest& request) {
     if (bands && request.per == ProfileChannels::wavelength) {
         throw InputError("--per wavelength: material '" + material + "' is given per band; it has no wavelengths");

@@ -43,6 +43,9 @@ struct ProfileExport {
 
 // The wavelengths an RGB fit needs: CIE 015:2018 Sec. 7.1's 380-780 nm, every 10 nm.
 WavelengthGrid rgb_profile_wavelengths();
+// The wavelengths to solve: an RGB fit's own (InputError when wavelengths are `given` too: they would change nothing),
+// else those given or 450, 550, 650 nm. `option` names them in the message.
+WavelengthGrid profile_export_wavelengths(const ProfileExportRequest& request, const std::optional<WavelengthGrid>& given, std::string_view option);
 // InputError, before any solve, for a band material fitted per wavelength or a Gaussian count outside [1, 12].
 void check_profile_export(const std::string& material, bool bands, const ProfileExportRequest& request);
 // `profiles`: per wavelength (an RGB fit integrates them against the observer) or per band (`bands`). InputError as

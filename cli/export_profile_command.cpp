@@ -31,7 +31,7 @@ struct ProfileExportOptions {
     std::vector<std::string> overrides;
     SolverOptions solver;
     std::string channels = "rgb";  // --per
-    std::string wavelengths = "450,550,650";
+    std::string wavelengths;  // --wavelengths as given (empty: not given)
     std::string space = "ACEScg";
     std::string illuminant = "D65";
     std::string observer = "2";
@@ -122,7 +122,8 @@ void run_export_profile(const ProfileExportOptions& o) {
     const auto& solver = chosen_profile_solver(o.solver);
     const bool bands = std::holds_alternative<HomogeneousMaterial>(material);
     check_profile_export(name, bands, fit_request);
-    const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths() : WavelengthGrid::parse(o.wavelengths, "--wavelengths");
+    const auto grid = profile_export_wavelengths(
+        fit_request, o.wavelengths.empty() ? std::nullopt : std::optional(WavelengthGrid::parse(o.wavelengths, "--wavelengths")), "--wavelengths");
     if (!o.vary.empty()) {
         run_export_profile_grid(o, material, solver, profile_request(grid, radii, false, o.solver, o.sampling, overrides), fit_request, bands);
         return;
@@ -175,7 +176,7 @@ void add_export_profile_command(CLI::App& exporter) {
     add_solver_options(*cmd, o->solver, profile_solver_default);
     cmd->add_option("--per", o->channels, "rgb: one fit per colour band (the profile's colour in linear --space); wavelength: one per --wavelengths")
         ->capture_default_str();
-    cmd->add_option("--wavelengths", o->wavelengths, "With --per wavelength: wavelengths (nm)")->capture_default_str();
+    cmd->add_option("--wavelengths", o->wavelengths, "With --per wavelength: wavelengths (nm), default 450,550,650");
     cmd->add_option("--space", o->space, "With --per rgb: the linear RGB space of the bands (an OCIO colour space)")->capture_default_str();
     cmd->add_option("--illuminant", o->illuminant, "With --per rgb: D65, D50, A or E")->capture_default_str();
     cmd->add_option("--observer", o->observer, "With --per rgb: 2 or 10")->capture_default_str();

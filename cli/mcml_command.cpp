@@ -28,6 +28,7 @@ struct McmlOptions {
     std::string file;
     std::uint64_t photons = 0;
     std::uint64_t seed = 1;
+    bool seed_given = false;
     unsigned threads = 0;
     std::string boundaries;  // "" = random
     std::string solver = "rte";
@@ -57,9 +58,9 @@ void run_mcml(const McmlOptions& o) {
     }
     const bool deterministic = o.solver == "adding-doubling";
     if (!deterministic && o.solver != "rte") throw InputError("--solver: '" + o.solver + "' is not allowed (allowed: rte, adding-doubling)");
-    if (deterministic && (o.photons > 0 || !o.boundaries.empty())) {
-        throw InputError(std::string("--solver adding-doubling is deterministic: it takes no ") + (o.photons > 0 ? "--photons" : "--boundaries") +
-                         " (the volumetric walk does)");
+    if (deterministic && (o.photons > 0 || !o.boundaries.empty() || o.seed_given)) {
+        throw InputError(std::string("--solver adding-doubling is deterministic: it takes no ") +
+                         (o.photons > 0 ? "--photons" : !o.boundaries.empty() ? "--boundaries" : "--seed") + " (the volumetric walk does)");
     }
     for (const auto& run : runs) {
         if (run.output_format != 'A') throw InputError(o.file + ": output '" + run.output_file + "' asks for binary format B (only A is written)");
@@ -147,7 +148,10 @@ void add_mcml_command(CLI::App& app) {
     cmd->add_option("--output", o->json_output, "Also write the results with standard errors as JSON to this file");
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing .mco / JSON files");
     cmd->add_flag("--json", o->json, "Print the JSON on standard output");
-    cmd->callback([o] { run_mcml(*o); });
+    cmd->callback([o, cmd] {
+        o->seed_given = cmd->count("--seed") > 0;
+        run_mcml(*o);
+    });
 }
 
 }  // namespace skinspec::cli

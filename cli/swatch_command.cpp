@@ -248,7 +248,7 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_flag("--half", o->half, "Write the EXR in half float (default float)");
     cmd->add_option("--display", o->display, "OCIO display for PNG/TIFF")->capture_default_str();
     cmd->add_option("--view", o->view, "OCIO view for PNG/TIFF")->capture_default_str();
-    cmd->add_option("--patch-size", o->patch_px, "Patch size in pixels")->capture_default_str();
+    auto* patch_size = cmd->add_option("--patch-size", o->patch_px, "Patch size in pixels (the chart's; not with --lit)")->capture_default_str();
     add_seed_option(*cmd, o->seed, "Random seed");
     add_ray_count_option(*cmd, "--max-rays", o->max_rays, "Ray budget per wavelength and patch (with --lit: per wavelength)")->capture_default_str();
     cmd->add_option("--stderr", o->stderr_target,
@@ -259,16 +259,18 @@ void add_swatch_command(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1u, 1024u));
     add_overwrite_flag(*cmd, o->overwrite, "Replace existing output files");
     cmd->add_flag("--json", o->json, "Print the patches as JSON");
-    cmd->add_option("--lit", o->lit,
-                    "Render one patch under structured light from radial profiles (default the exact transport): spot, edge, or pattern FILE (an image "
-                    "whose luminance is the irradiance)")
-        ->expected(1, 2);
+    auto* lit = cmd->add_option("--lit", o->lit,
+                                "Render one patch under structured light from radial profiles (default the exact transport): spot, edge, or pattern FILE "
+                                "(an image whose luminance is the irradiance)")
+                    ->expected(1, 2);
+    patch_size->excludes(lit);
     add_solver_options(*cmd, o->solver, std::string("biospec; with --lit ") + profile_solver_default);
     add_geometry_option(*cmd, o->solver);
-    cmd->add_option("--wavelengths", o->wavelengths, "With --lit: wavelengths (nm) for layered materials")->capture_default_str();
-    cmd->add_option("--field", o->field_mm, "With --lit: width of the patch in mm")->capture_default_str();
-    cmd->add_option("--pixels", o->pixels, "With --lit: image width in pixels, [8, 4096]")->capture_default_str();
-    cmd->add_option("--spot-radius", o->spot_radius_mm, "With --lit spot: radius of the lit disc in mm")->capture_default_str();
+    // The lit patch's own options: given without --lit (the chart) they would change nothing, so CLI11 refuses them.
+    cmd->add_option("--wavelengths", o->wavelengths, "With --lit: wavelengths (nm) for layered materials")->capture_default_str()->needs(lit);
+    cmd->add_option("--field", o->field_mm, "With --lit: width of the patch in mm")->capture_default_str()->needs(lit);
+    cmd->add_option("--pixels", o->pixels, "With --lit: image width in pixels, [8, 4096]")->capture_default_str()->needs(lit);
+    cmd->add_option("--spot-radius", o->spot_radius_mm, "With --lit spot: radius of the lit disc in mm")->capture_default_str()->needs(lit);
     cmd->callback([o, cmd] {
         o->sampling_given = given_options(*cmd, {"--seed", "--max-rays", "--stderr"});
         o->delta_e_given = !given_options(*cmd, {"--delta-e"}).empty();

@@ -75,8 +75,7 @@ py::object export_profile(const py::object& material, const py::object& output, 
     if (!table_file.empty()) check_output_path(table_file, overwrite, {".csv"});
     const bool bands = std::holds_alternative<HomogeneousMaterial>(skin.material);
     check_profile_export(material_name(skin.material), bands, fit_request);
-    const auto grid = fit_request.per == ProfileChannels::rgb ? rgb_profile_wavelengths()
-                                                              : (wavelengths.is_none() ? WavelengthGrid::list({450.0, 550.0, 650.0}) : wavelength_argument(wavelengths));
+    const auto grid = profile_export_wavelengths(fit_request, wavelengths.is_none() ? std::nullopt : std::optional(wavelength_argument(wavelengths)), "wavelengths");
     const auto radii = radii_mm.is_none() ? py::object(to_array(parse_radii_mm("0:10:0.01", "radii_mm"), {1001})) : radii_mm;
     const auto request = profile_request_argument(grid, radii, false, {rays, stderr_target, max_rays, seed}, switches, skin.overrides);
     if (!vary.is_none()) {

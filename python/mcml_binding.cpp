@@ -28,9 +28,12 @@ py::list mcml(const std::string& file, const py::object& photons, const py::obje
     auto runs = read_mci(file);
     const bool deterministic = solver == "adding-doubling";
     if (!deterministic && solver != "rte") throw InputError("solver: '" + solver + "' is not allowed (allowed: rte, adding-doubling)");
-    if (deterministic && !photons.is_none()) throw InputError("solver adding-doubling is deterministic: it takes no photons (the volumetric walk does)");
+    if (deterministic && (!photons.is_none() || !seed.is_none())) {
+        throw InputError(std::string("solver adding-doubling is deterministic: it takes no ") + (!photons.is_none() ? "photons" : "seed") +
+                         " (the volumetric walk does)");
+    }
     const auto mode = parse_boundary_mode(boundaries, "boundaries");
-    const auto chosen_seed = whole_number(seed, 0, 9.223372036854775808e18, "seed");
+    const auto chosen_seed = seed.is_none() ? std::uint64_t{1} : whole_number(seed, 0, 9.223372036854775808e18, "seed");
     if (!photons.is_none()) {
         const auto n = whole_number(photons, 1, 1e12, "photons");
         for (auto& run : runs) run.photons = n;
@@ -74,7 +77,7 @@ void bind_mcml(py::module_& m) {
     run: R, R_specular, R_diffuse, T, A (each with _stderr), A_layers and MCML's arrays in its units as numpy arrays
     (A_z_per_cm, R_r_per_cm2, T_r_per_cm2, R_a_per_sr, T_a_per_sr; A_rz_per_cm3 shaped (nr, nz), R_ra/T_ra_per_cm2_sr
     shaped (nr, na)), the input's grid and the photons traced.)doc",
-          py::arg("file"), py::kw_only(), py::arg("photons") = py::none(), py::arg("seed") = 1, py::arg("boundaries") = "random",
+          py::arg("file"), py::kw_only(), py::arg("photons") = py::none(), py::arg("seed") = py::none(), py::arg("boundaries") = "random",
           py::arg("solver") = "rte", py::arg("threads") = py::none(), py::arg("progress") = py::none());
 }
 

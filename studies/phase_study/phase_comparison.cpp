@@ -56,7 +56,7 @@ ThinLayerHg thin_layer_hg(const std::string& source, const std::string& what) {
                 source == "rms" ? "g fitted by RMS (Eq. 9), linear 436-546 nm, clamped" : "g of van Gemert et al. 1989, linear 436-546 nm, clamped"};
     }
     const auto value = parse_double(source);
-    if (!value || *value < -1.0 || *value > 1.0) {
+    if (!value || !(*value >= -1.0 && *value <= 1.0)) {  // NaN is outside too
         throw InputError(what + " '" + source + "' is not allowed (allowed: rms, van-gemert, or a number in [-1, 1])");
     }
     const double g = *value;

@@ -159,6 +159,12 @@ skinspec_malformed_input("export profile bad per" 2 "--per: 'band' is not what t
 skinspec_malformed_input("export profile zero gaussians" 2 "--gaussians 0 is outside \\[1, 12\\]" "${out}/p2.json" export profile --gaussians 0 -o ${out}/p2.json)
 skinspec_malformed_input("export profile from a walk without profiles" 2 "solver 'biospec' does not compute radial profiles" "${out}/p3.json" export profile --mode biospec -o ${out}/p3.json)
 skinspec_malformed_input("export profile few radii" 2 "3 radii are too few" "${out}/p4.json" export profile --radii 0:1:0.5 -o ${out}/p4.json)
+# Options that would change nothing are refused (issue 64): each was accepted and ignored.
+skinspec_malformed_input("mcml adding-doubling with a seed" 2 "--solver adding-doubling is deterministic: it takes no --seed" - mcml ${PROJECT_SOURCE_DIR}/data/mcml/sample.mci --solver adding-doubling --seed 99 --output-dir ${out})
+skinspec_malformed_input("swatch chart with lit-only pixels" 107 "--pixels requires --lit" "${out}/chart_pixels.png" swatch --pixels 64 -o ${out}/chart_pixels.png)
+skinspec_malformed_input("swatch lit with the chart's patch size" 108 "--patch-size excludes --lit" "${out}/lit_patch.png" swatch --lit spot --patch-size 5 -o ${out}/lit_patch.png)
+skinspec_malformed_input("export profile rgb with wavelengths" 2 "--wavelengths: an RGB fit \\(per rgb\\) integrates R\\(r\\) over 380-780 nm" "${out}/p8.json" export profile --per rgb --wavelengths 500 -o ${out}/p8.json)
+skinspec_malformed_input("compare-phase hg source nan" 2 "--hg-source 'nan' is not allowed \\(allowed: rms, van-gemert, or a number in \\[-1, 1\\]\\)" - compare-phase --hg-source nan --wavelengths 550)
 skinspec_malformed_input("a hexadecimal count" 105 "--gaussians: '0x10' is not a decimal whole number" "${out}/p6.json" export profile --gaussians 0x10 -o ${out}/p6.json)
 skinspec_malformed_input("a negative count with a space before it" 105 "--gaussians: '-1' is negative \\(a count or size, >= 0\\)" "${out}/p7.json" export profile --gaussians " -1" -o ${out}/p7.json)
 skinspec_malformed_input("export profile three grid axes" 2 "--vary: at most two fields \\(they form a grid\\); got 3" "${out}/p5.json" export profile --vary epidermis.melanosome_fraction=0.01:0.2:2 --vary papillary_dermis.blood_fraction=0.002:0.05:2 --vary epidermis.thickness_cm=0.005:0.01:2 -o ${out}/p5.json)

@@ -29,6 +29,8 @@ def test_mcml_adding_doubling_and_refusals():
     assert run["R"] + run["T"] + run["A"] == pytest.approx(1.0, abs=1e-9)
     with pytest.raises(skinspec.InputError, match="solver adding-doubling is deterministic: it takes no photons"):
         skinspec.mcml(SAMPLE, solver="adding-doubling", photons=100)
+    with pytest.raises(skinspec.InputError, match="solver adding-doubling is deterministic: it takes no seed"):
+        skinspec.mcml(SAMPLE, solver="adding-doubling", seed=99)
     with pytest.raises(skinspec.InputError, match="solver: 'mc' is not allowed"):
         skinspec.mcml(SAMPLE, solver="mc")
     with pytest.raises(skinspec.InputError, match="no_such.mci: .mci file not found"):
