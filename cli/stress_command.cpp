@@ -48,6 +48,11 @@ int run_stress(const StressCommandOptions& o) {
     for (const auto& [solver, s] : per_solver) std::cout << fmt::format("  {:<21} {:>4} cases, {} failed, {} met a documented limit\n", solver, s[0], s[1], s[2]);
     std::cout << fmt::format("  {} cases, {} failed; slowest case {:.2f} s (bound {:g} s){}\n", report.outcomes.size(), report.failures(), slowest, o.max_seconds,
                              report.partial ? "; stopped early" : "");
+    // A stop is no pass: the cases not run were not checked (the shell's code for the signal, as every command).
+    if (report.partial) {
+        std::cerr << "skinspec: " << InterruptGuard::reason() << ": " << report.outcomes.size() << " cases checked before the stop\n";
+        return InterruptGuard::exit_code();
+    }
     return report.failures() == 0 ? 0 : 1;
 }
 

@@ -74,5 +74,6 @@ run "bench" INT bench.json '"partial": true' bench --quick --output bench.json
 run "adding-doubling 256 channels" TERM ad.json '"partial": true' spectrum --mode adding-doubling --channels 256 --wavelengths 500:560:10 --output ad.json
 run "profile" TERM profile.csv 'partial true' profile --mode rte --rays 30000000 --radii 0:5:0.05 --output profile.csv
 run "export profile" INT - - export profile --mode rte --rays 30000000 --per wavelength --radii 0:5:0.05 -o profile.json
+run "stress --full" TERM - - stress --full
 rm -rf "$work"
 [ "$failures" -eq 0 ]
