@@ -1,5 +1,8 @@
 #include "spectral/input_file.hpp"
 
+#include <cerrno>
+#include <cstring>
+
 #include <string>
 #include <system_error>
 
@@ -31,7 +34,14 @@ std::ifstream open_input_file(const std::filesystem::path& file, std::string_vie
                          std::to_string(max_bytes >> 20) + " MiB)");
     }
     std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot open the " + std::string(what) + " for reading");
+    if (!in) throw InputError(name + ": cannot open the " + std::string(what) + " for reading (" + std::strerror(errno) + ")");
+    // A UTF-8 byte-order mark (what some editors and spreadsheets write first) is no part of the text: skipped.
+    char mark[3] = {};
+    in.read(mark, 3);
+    if (!(in.gcount() == 3 && mark[0] == '\xEF' && mark[1] == '\xBB' && mark[2] == '\xBF')) {
+        in.clear();
+        in.seekg(0);
+    }
     return in;
 }
 

@@ -16,6 +16,7 @@ std::string file_kind(std::filesystem::file_type type);
 inline constexpr std::uintmax_t max_input_file_bytes = std::uintmax_t{256} << 20;
 
 // InputError "FILE: WHAT not found" / "is a FIFO, not a WHAT" / "is N bytes, more than ... (allowed at most 256 MiB)".
+// The stream starts after a UTF-8 byte-order mark when the file begins with one (every reader accepts it).
 std::ifstream open_input_file(const std::filesystem::path& file, std::string_view what, std::uintmax_t max_bytes = max_input_file_bytes);
 
 }  // namespace skinspec
