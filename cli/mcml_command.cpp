@@ -16,6 +16,7 @@
 #include "formats/mcml_files.hpp"
 #include "skinspec/version.hpp"
 #include "spectral/atomic_file.hpp"
+#include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 #include "transport/adding_doubling/adding_doubling.hpp"
 
@@ -64,15 +65,11 @@ void run_mcml(const McmlOptions& o) {
     }
     for (const auto& run : runs) {
         if (run.output_format != 'A') throw InputError(o.file + ": output '" + run.output_file + "' asks for binary format B (only A is written)");
-        if (std::filesystem::exists(run.output_file) && !o.overwrite) {
-            throw InputError(run.output_file + ": exists already (use --overwrite to replace it)");
-        }
-        OutputClaims::claim(run.output_file, o.overwrite);  // two runs naming one .mco are refused
+        // Its folder writable, its name short enough, not a folder, claimed (two runs naming one .mco are refused): before any run.
+        const std::string extension = std::filesystem::path(run.output_file).extension().string();
+        check_output_path(run.output_file, o.overwrite, {extension});
     }
-    if (!o.json_output.empty()) OutputClaims::claim(o.json_output, o.overwrite);
-    if (!o.json_output.empty() && std::filesystem::exists(o.json_output) && !o.overwrite) {
-        throw InputError(o.json_output + ": exists already (use --overwrite to replace it)");
-    }
+    if (!o.json_output.empty()) check_output_path(o.json_output, o.overwrite, {".json"});
     std::optional<tbb::global_control> threads;
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     const InterruptGuard interrupt;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -99,6 +100,7 @@ struct Temporary {
 Temporary create_temporary(const std::filesystem::path& file) {
     const std::string extension = file.extension().string();
     std::string name = (file.parent_path() / (file.stem().string() + ".partial-XXXXXX" + extension)).string();
+    static_assert(std::string_view(".partial-XXXXXX").size() == temporary_name_extra);
     const int fd = ::mkstemps(name.data(), static_cast<int>(extension.size()));
     if (fd < 0) throw InputError(file.string() + ": cannot be written (no temporary beside it: " + std::strerror(errno) + ")");
     struct stat created {};

@@ -35,6 +35,10 @@ private:
     std::map<std::filesystem::path, bool> claimed_;
 };
 
+// What a temporary's name adds to its target's (".partial-" and six random characters before the extension): an
+// output's name must leave room for it within the folder's longest name.
+inline constexpr std::size_t temporary_name_extra = 15;
+
 // Calls write(temporary), then publishes it as `file` (replacing an existing regular file only when claimed with
 // overwrite, or, unclaimed, when `overwrite`); removes the temporary (and rethrows) on failure.
 void write_atomically(const std::filesystem::path& file, const std::function<void(const std::filesystem::path& temporary)>& write,

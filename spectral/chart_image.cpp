@@ -1,7 +1,9 @@
 #include "spectral/chart_image.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -149,8 +151,20 @@ void check_output_path(const std::filesystem::path& file, bool overwrite, const 
     const auto folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
     if (std::filesystem::exists(folder) && !std::filesystem::is_directory(folder)) throw InputError(file.string() + ": " + folder.string() + " is not a folder");
     if (!std::filesystem::is_directory(folder)) throw InputError(file.string() + ": folder " + folder.string() + " does not exist");
-    if (access(folder.c_str(), W_OK) != 0) throw InputError(file.string() + ": folder " + folder.string() + " is not writable");
-    if (std::filesystem::exists(file) && !overwrite) throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
+    if (access(folder.c_str(), W_OK) != 0) {
+        throw InputError(file.string() + ": folder " + folder.string() + " is not writable (" + std::strerror(errno) + ")");
+    }
+    // The name and its temporary's (atomic_file.hpp) must fit the folder's file system, checked before any work.
+    const long longest = pathconf(folder.c_str(), _PC_NAME_MAX);
+    const std::size_t name = file.filename().string().size();
+    if (longest > 0 && name + temporary_name_extra > static_cast<std::size_t>(longest)) {
+        throw InputError(file.string() + ": the file name is " + std::to_string(name) + " characters, more than this folder takes for an output (at most " +
+                         std::to_string(static_cast<std::size_t>(longest) - temporary_name_extra) + ")");
+    }
+    std::error_code error;
+    const auto status = std::filesystem::symlink_status(file, error);
+    if (std::filesystem::is_directory(status)) throw InputError(file.string() + ": is a folder; an output is written to a file");
+    if (std::filesystem::exists(status) && !overwrite) throw InputError(file.string() + ": exists already (use --overwrite to replace it)");
     OutputClaims::claim(file, overwrite);
 }
 

@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "spectral/atomic_file.hpp"
 #include "spectral/chart_image.hpp"
 #include "spectral/input_error.hpp"
 
@@ -13,7 +14,7 @@ using namespace skinspec;
 
 namespace {
 
-std::filesystem::path temp(const char* name) { return std::filesystem::temp_directory_path() / name; }
+std::filesystem::path temp(const std::string& name) { return std::filesystem::temp_directory_path() / name; }
 
 std::array<float, 3> pixel(const OIIO::ImageBuf& buf, int x, int y) {
     std::array<float, 3> p{};
@@ -74,6 +75,19 @@ TEST_CASE("output paths are checked before anything is written", "[chart_image]"
     CHECK_THROWS_WITH(check_output_path(temp("x.jpg"), false, {".png", ".exr"}), Catch::Contains("'.jpg' is not supported"));
     CHECK_THROWS_WITH(space_chromaticities("CIE-XYZ-D65"), Catch::Contains("has no RGB primaries"));
     if (geteuid() != 0) CHECK_THROWS_WITH(check_output_path("/proc/x.png", false, {".png"}), Catch::Contains("not writable"));
+    // Refused before any work (they failed after it: "cannot be written", an internal "File name too long", a folder
+    // taken for an existing file): a name without room for its temporary's, and a folder.
+    const long longest = pathconf(std::filesystem::temp_directory_path().c_str(), _PC_NAME_MAX);
+    REQUIRE(longest > 20);
+    const auto long_name = temp(std::string(static_cast<std::size_t>(longest) - 10, 'a') + ".png");
+    CHECK_THROWS_WITH(check_output_path(long_name, false, {".png"}), Catch::Contains("more than this folder takes for an output (at most " +
+                                                                                  std::to_string(longest - static_cast<long>(temporary_name_extra)) + ")"));
+    const auto just_fits = temp(std::string(static_cast<std::size_t>(longest) - temporary_name_extra - 4, 'b') + ".png");
+    CHECK_NOTHROW(check_output_path(just_fits, false, {".png"}));
+    const auto folder = temp("skinspec_folder_output.png");
+    std::filesystem::create_directories(folder);
+    CHECK_THROWS_WITH(check_output_path(folder, true, {".png"}), Catch::Contains("is a folder; an output is written to a file"));
+    std::filesystem::remove(folder);
 }
 
 TEST_CASE("a data image rewritten with another size reads back at its new size (fuzz finding)", "[chart_image]") {
