@@ -7,6 +7,7 @@
 
 #include "spectral/input_error.hpp"
 #include "spectral/named_choice.hpp"
+#include "spectral/text_fields.hpp"
 
 namespace skinspec {
 
@@ -149,7 +150,14 @@ double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const M
     if (background_fraction > 0.0) {
         mu_a += background_fraction * compartment_absorption_per_cm(Compartment::background, layer, wavelength_nm, model);
     }
-    return mu_a + compartment_absorption_per_cm(Compartment::whole_layer, layer, wavelength_nm, model);
+    mu_a += compartment_absorption_per_cm(Compartment::whole_layer, layer, wavelength_nm, model);
+    // Each input is finite and in range, yet their product can overflow (a concentration near 1e308): no solver can use
+    // that, and each would say so in its own words (or print inf).
+    if (!std::isfinite(mu_a)) {
+        throw InputError("layer '" + layer.name + "': its absorbers give mu_a = " + format_number(mu_a) + " /cm at " + format_number(wavelength_nm) +
+                         " nm (a concentration or fraction set on it is too large for a finite absorption)");
+    }
+    return mu_a;
 }
 
 double vessel_packaging_factor(double mu_blood_per_cm, double vessel_radius_um) {

@@ -179,7 +179,8 @@ skinspec_malformed_input("export lut 0-45 from multipole" 2 "solver 'multipole' 
 skinspec_malformed_input("fit preset and material" 2 "give --preset or --material, not both" "${out}/fit_both.csv" fit-spectrum fit_two.csv --preset biospec-lightly --material ../../data/materials/biospec-heavily.toml --output ${out}/fit_both.csv)
 # Reliability (issue 32): a result that is not finite, or outside its physical range, is never written and never
 # exits 0; nan and inf are not numbers any option takes.
-skinspec_malformed_input("melanin that overflows the walk" 2 "layer 'epidermis': its absorbers give mu_a = inf /cm at 550 nm, which the walk cannot compute" "${out}/nan.json" spectrum --preset biospec-moderately --set epidermis.eumelanin_mg_per_ml=1e308 --wavelengths 550 --rays 2000 --output ${out}/nan.json)
+skinspec_malformed_input("melanin that overflows the walk" 2 "layer 'epidermis': its absorbers give mu_a = inf /cm at 550 nm \\(a concentration or fraction set on it is too large" "${out}/nan.json" spectrum --preset biospec-moderately --set epidermis.eumelanin_mg_per_ml=1e308 --wavelengths 550 --rays 2000 --output ${out}/nan.json)
+skinspec_malformed_input("materials show of an overflowing melanin" 2 "layer 'epidermis': its absorbers give mu_a = inf /cm at 550 nm" - materials show biospec-lightly --set epidermis.eumelanin_mg_per_ml=1e308 --wavelengths 550)
 skinspec_malformed_input("haemoglobin that overflows the multipole" 2 "solver 'multipole' computed R = -?nan at 550 nm" - spectrum --mode multipole --set papillary_dermis.hemoglobin_g_per_l=1e180 --wavelengths 550)
 skinspec_malformed_input("radii a profile cannot compute" 2 "solver 'matched-multipole' computed a non-finite profile at 450 nm .*largest 1e\\+300 mm" "${out}/huge_radii.csv" profile --mode matched-multipole --radii 0:1e300:1e299 --output ${out}/huge_radii.csv)
 skinspec_malformed_input("a swatch of non-finite patches" 2 "layer 'epidermis': its absorbers give mu_a = inf /cm" "${out}/nan_swatch.png" swatch --set epidermis.eumelanin_mg_per_ml=1e308 -o ${out}/nan_swatch.png)
@@ -201,7 +202,7 @@ skinspec_malformed_input("a file as a folder" 2 "/dev/full/o.json: /dev/full is 
 skinspec_malformed_input("an unknown view" 2 "--view: 'Bogus' is not a view of display 'sRGB' \\(allowed: Standard, Raw\\)" "${out}/view.png" swatch --view Bogus -o ${out}/view.png)
 skinspec_malformed_input("every weight zero" 2 "--weight: every measured wavelength of the window has weight 0" - fit-spectrum fit_two.csv --weight 400:700=0)
 skinspec_malformed_input("an output folder that cannot be made" 2 "--output-dir /proc/nope: cannot be made" - phase-study --output-dir /proc/nope)
-skinspec_malformed_input("an overflowing mu_a names its layer" 2 "layer 'papillary_dermis' of 'biospec-lightly': mu_a at 550 nm = inf 1/cm" - spectrum --mode rte --preset biospec-lightly --set papillary_dermis.hemoglobin_g_per_l=1e306 --wavelengths 550 --rays 1000)
+skinspec_malformed_input("an overflowing mu_a names its layer" 2 "layer 'papillary_dermis': its absorbers give mu_a = inf /cm at 550 nm" - spectrum --mode rte --preset biospec-lightly --set papillary_dermis.hemoglobin_g_per_l=1e306 --wavelengths 550 --rays 1000)
 skinspec_malformed_input("g = 1 where mu_s = mu_s' / (1 - g)" 2 "key 'papillary_dermis.volumetric_g' = 1 is outside \\[-1, 1\\) with volumetric_scattering = from_reduced_scattering" - spectrum --mode rte --preset biospec-lightly --set papillary_dermis.volumetric_g=1 --wavelengths 550 --rays 100)
 # New user's path (issue 33): a Monte Carlo setting given to a deterministic solver is refused, like --rays.
 skinspec_malformed_input("a seed for a deterministic solver" 2 "--seed: solver 'dipole' is deterministic and takes no Monte Carlo setting" - spectrum --mode dipole --seed 5)

@@ -152,12 +152,7 @@ std::vector<double> BiospecWavelength::sets_absorption_per_cm(const std::vector<
     std::vector<double> mu_a(sets.size() * layers);
     for (std::size_t s = 0; s < sets.size(); ++s) {
         for (std::size_t k = 0; k < layers; ++k) {
-            const double value = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
-            if (!std::isfinite(value)) {
-                throw InputError("layer '" + sets[s]->layers[k].name + "': its absorbers give mu_a = " + format_number(value) + " /cm at " +
-                                 format_number(wavelength_nm) + " nm, which the walk cannot compute (a finite value is needed)");
-            }
-            mu_a[s * layers + k] = value;
+            mu_a[s * layers + k] = absorption_per_cm(sets[s]->layers[k], wavelength_nm, sets[s]->model);
         }
     }
     return mu_a;

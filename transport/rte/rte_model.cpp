@@ -29,12 +29,11 @@ RteStack rte_stack_from(const LayerStack& stack, double wavelength_nm) {
             throw InputError("layer '" + stack.layers[k].name + "' of '" + stack.name +
                              "' has no volumetric scattering (set volumetric_mu_s_per_cm_at_500nm and volumetric_g)");
         }
-        // Chromophore concentrations far beyond tissue's overflow mu_a (validate() below would name only "layer 3").
-        for (const auto& [what, value] : {std::pair{"mu_a", o.mu_a_per_cm}, std::pair{"mu_s", *o.mu_s_per_cm}}) {
-            if (!std::isfinite(value)) {
-                throw InputError("layer '" + stack.layers[k].name + "' of '" + stack.name + "': " + what + " at " + format_number(wavelength_nm) +
-                                 " nm = " + format_number(value) + " 1/cm, from its fields' values: beyond what the model can compute");
-            }
+        // Scattering fields far beyond tissue's overflow mu_s (validate() below would name only "layer 3"); an overflowing
+        // mu_a is refused where it is computed (absorption_per_cm).
+        if (!std::isfinite(*o.mu_s_per_cm)) {
+            throw InputError("layer '" + stack.layers[k].name + "' of '" + stack.name + "': mu_s at " + format_number(wavelength_nm) +
+                             " nm = " + format_number(*o.mu_s_per_cm) + " 1/cm, from its fields' values: beyond what the model can compute");
         }
         PhaseFunction phase = PhaseFunction::henyey_greenstein(*o.g);
         if (*o.phase == PhaseFunctionKind::isotropic) phase = PhaseFunction::isotropic();
