@@ -1,5 +1,6 @@
 #include "cli/spectrum_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -146,7 +147,11 @@ void run_spectrum(const SpectrumOptions& o) {
         else write_text_file(o.output, [&](std::ostream& out) { write_csv(out, spectra); }, true);
         std::cerr << "wrote " << o.output << '\n';
     }
-    if (!o.plot.empty() && !spectra.empty()) {
+    // A stop before the first wavelength leaves nothing to plot: no plot, and the stop's exit code (not an input error).
+    const bool stopped_empty = InterruptGuard::interrupted() && std::none_of(spectra.results.begin(), spectra.results.end(), [](const SpectralResult& r) {
+                                   return !r.wavelengths.empty();
+                               });
+    if (!o.plot.empty() && !spectra.empty() && !stopped_empty) {
         write_plot(o.plot, spectra);
         std::cerr << "wrote " << o.plot << '\n';
     }
