@@ -163,8 +163,8 @@ void print_report(const BenchReport& report, const BenchCommandOptions& o) {
 
 std::string to_csv(const BenchReport& report) {
     std::string csv = fmt::format("# skinspec {} bench: one row per solver and budget; seconds per run (wall, 2 threads); error relative, RMS over the runs\n"
-                                  "case,quantity,reference,reference_stderr,solver,rays,runs,seconds,value,value_stderr,relative_error\n",
-                                  version);
+                                  "{}case,quantity,reference,reference_stderr,solver,rays,runs,seconds,value,value_stderr,relative_error\n",
+                                  version, report.partial ? "# partial: true (stopped; the rows below finished, the others were not run)\n" : "");
     for (const auto& p : report.points) {
         const auto& c = report.cases[p.case_index];
         csv += fmt::format("\"{}\",{},{:.9g},{:.3g},{},{},{},{:.6g},{:.9g},{:.3g},{:.6g}\n", c.name, c.quantity, c.reference.value, c.reference.stderr,

@@ -71,6 +71,7 @@ run "export lut" INT lut.exr - export lut --delta-e 0.05 -o lut.exr
 run "fit-spectrum" TERM fit.json '"partial": true' fit-spectrum "$inputs/fit_two.csv" --rays 400000 --starts 32 --output fit.json
 run "mcml" HUP stopped.mco 'INTERRUPTED' mcml long.mci --photons 1000000000
 run "bench" INT bench.json '"partial": true' bench --quick --output bench.json
+run "bench csv" TERM bench.csv '# partial: true' bench --quick --output bench.csv
 run "adding-doubling 256 channels" TERM ad.json '"partial": true' spectrum --mode adding-doubling --channels 256 --wavelengths 500:560:10 --output ad.json --plot ad.svg
 run "profile" TERM profile.csv 'partial true' profile --mode rte --rays 30000000 --radii 0:5:0.05 --output profile.csv
 run "export profile" INT - - export profile --mode rte --rays 30000000 --per wavelength --radii 0:5:0.05 -o profile.json
