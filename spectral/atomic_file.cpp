@@ -90,33 +90,28 @@ mode_t creation_mask() {
 
 // A temporary sibling of `file` created exclusively under an unpredictable name (mkstemps: O_CREAT | O_EXCL, six
 // random characters), so that nothing planted beforehand (a symbolic link at a name another run would use) is
-// written through; its permissions as a new file's (0666 less the umask), and its identity to check before publishing.
-struct Temporary {
-    std::filesystem::path path;
-    dev_t device = 0;
-    ino_t inode = 0;
-};
-
-Temporary create_temporary(const std::filesystem::path& file) {
+// written through; its permissions as a new file's (0666 less the umask).
+std::filesystem::path create_temporary(const std::filesystem::path& file) {
     const std::string extension = file.extension().string();
     std::string name = (file.parent_path() / (file.stem().string() + ".partial-XXXXXX" + extension)).string();
     static_assert(std::string_view(".partial-XXXXXX").size() == temporary_name_extra);
     const int fd = ::mkstemps(name.data(), static_cast<int>(extension.size()));
     if (fd < 0) throw InputError(file.string() + ": cannot be written (no temporary beside it: " + std::strerror(errno) + ")");
-    struct stat created {};
-    const bool ok = ::fchmod(fd, 0666 & ~creation_mask()) == 0 && ::fstat(fd, &created) == 0;
+    const bool ok = ::fchmod(fd, 0666 & ~creation_mask()) == 0;
     ::close(fd);
     if (!ok) {
         ::unlink(name.c_str());
         throw InputError(file.string() + ": cannot be written (its temporary: " + std::strerror(errno) + ")");
     }
-    return {name, created.st_dev, created.st_ino};
+    return name;
 }
 
-// Whether the temporary is still the regular file created for it (not replaced by a link or anything else meanwhile).
-bool still_ours(const Temporary& t) {
+// Whether `path` is a regular file of this user: what a writer leaves at the temporary's name (some, as OpenEXR's,
+// write a new file there rather than into the one created) and what may be published; not a symbolic link or
+// anything else put there meanwhile.
+bool own_regular_file(const std::filesystem::path& path) {
     struct stat now {};
-    return ::lstat(t.path.c_str(), &now) == 0 && S_ISREG(now.st_mode) && now.st_dev == t.device && now.st_ino == t.inode;
+    return ::lstat(path.c_str(), &now) == 0 && S_ISREG(now.st_mode) && now.st_uid == ::geteuid();
 }
 
 }  // namespace
@@ -124,23 +119,23 @@ bool still_ours(const Temporary& t) {
 void write_atomically(const std::filesystem::path& file, const std::function<void(const std::filesystem::path& temporary)>& write, bool overwrite) {
     const auto temporary = create_temporary(file);
     try {
-        write(temporary.path);
-        if (!still_ours(temporary)) {
-            throw InputError(file.string() + ": its temporary " + temporary.path.string() +
-                             " was replaced while it was written (not a regular file of this run any more); nothing published");
+        write(temporary);
+        if (!own_regular_file(temporary)) {
+            throw InputError(file.string() + ": its temporary " + temporary.string() +
+                             " was replaced while it was written (not a regular file of this user any more); nothing published");
         }
-        publish(temporary.path, file, OutputClaims::may_replace(file).value_or(overwrite));
+        publish(temporary, file, OutputClaims::may_replace(file).value_or(overwrite));
         // What was published must be that file: a swap between the look and the rename is undone (the name removed,
         // which removes a link, never what it points to).
-        if (!still_ours(Temporary{file, temporary.device, temporary.inode})) {
+        if (!own_regular_file(file)) {
             ::unlink(file.c_str());
             throw InputError(file.string() + ": its temporary was replaced while it was published; nothing published");
         }
     } catch (...) {
-        // Only what this run created is removed (a planted replacement is left, and named above).
-        if (still_ours(temporary)) {
+        // Only a file of this run's is removed (a planted replacement is left, and named above).
+        if (own_regular_file(temporary)) {
             std::error_code ignored;
-            std::filesystem::remove(temporary.path, ignored);
+            std::filesystem::remove(temporary, ignored);
         }
         throw;
     }

@@ -116,6 +116,13 @@ TEST_CASE("a temporary is created exclusively under an unpredictable name, and a
                                        }),
                       Catch::Contains("was replaced while it was written"));
     CHECK_FALSE(fs::exists(fs::symlink_status(third)));
+    // A writer that writes a new file at the temporary's name (as OpenEXR does) publishes it.
+    const auto fourth = dir / "fourth.exr";
+    write_atomically(fourth, [&](const fs::path& temporary) {
+        fs::remove(temporary);
+        std::ofstream(temporary) << "new file\n";
+    });
+    CHECK(fs::is_regular_file(fs::symlink_status(fourth)));
     std::string kept;
     std::getline(std::ifstream(victim), kept);
     CHECK(kept == "precious");
