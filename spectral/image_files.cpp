@@ -6,6 +6,7 @@
 #include <dlfcn.h>
 
 #include "spectral/input_error.hpp"
+#include "spectral/input_file.hpp"
 #include "spectral/memory_budget.hpp"
 
 namespace skinspec {
@@ -58,7 +59,10 @@ const ImageModuleFunctions& module() { return *loading().get(); }
 void load_image_module_in_background() { loading(); }
 
 DataImage read_data_image(const std::filesystem::path& file) {
-    if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": image not found");
+    std::error_code error;
+    const auto status = std::filesystem::status(file, error);
+    if (!std::filesystem::exists(status)) throw InputError(file.string() + ": image not found");
+    if (!std::filesystem::is_regular_file(status)) throw InputError(file.string() + ": is " + file_kind(status.type()) + ", not an image");
     DataImage out;
     if (const auto error = module().read(file.string(), available_memory_bytes(), out); !error.empty()) throw InputError(file.string() + ": " + error);
     return out;

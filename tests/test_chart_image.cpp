@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <fstream>
+
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imagebuf.h>
@@ -87,6 +89,14 @@ TEST_CASE("output paths are checked before anything is written", "[chart_image]"
     const auto folder = temp("skinspec_folder_output.png");
     std::filesystem::create_directories(folder);
     CHECK_THROWS_WITH(check_output_path(folder, true, {".png"}), Catch::Contains("is a folder; an output is written to a file"));
+    // An input that is no regular file says what it is (it said "image not found").
+    CHECK_THROWS_WITH(read_data_image(folder), Catch::Contains("is a folder, not an image"));
+    const auto fifo = temp("skinspec_fifo_input.exr");
+    std::filesystem::remove(fifo);
+    REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+    CHECK_THROWS_WITH(read_data_image(fifo), Catch::Contains("is a FIFO, not an image"));
+    std::filesystem::remove(fifo);
+    CHECK_THROWS_WITH(read_data_image(temp("skinspec_no_such_image.exr")), Catch::Contains("image not found"));
     std::filesystem::remove(folder);
 }
 
