@@ -19,9 +19,16 @@ std::string ParameterSweep::text() const {
 
 std::vector<double> ParameterSweep::values() const {
     std::vector<double> v(steps);
+    // The ratio or the span of a range near the doubles' limits overflows (1e-300:1e300 gave inf): then the same
+    // interpolation in logarithms, or weighted ends.
+    const double ratio = last / first, span = last - first;
     for (std::size_t i = 0; i < steps; ++i) {
         const double t = steps == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(steps - 1);
-        v[i] = log ? first * std::pow(last / first, t) : first + (last - first) * t;
+        if (log) {
+            v[i] = std::isfinite(ratio) ? first * std::pow(ratio, t) : std::exp(std::log(first) + t * (std::log(last) - std::log(first)));
+        } else {
+            v[i] = std::isfinite(span) ? first + span * t : first * (1.0 - t) + last * t;
+        }
     }
     return v;
 }
