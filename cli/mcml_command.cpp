@@ -74,7 +74,7 @@ void run_mcml(const McmlOptions& o) {
     if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     const InterruptGuard interrupt;
     Json all = Json::array();
-    for (std::size_t i = 0; i < runs.size(); ++i) {
+    for (std::size_t i = 0; i < runs.size() && !InterruptGuard::interrupted(); ++i) {
         auto run = runs[i];
         if (o.photons > 0) run.photons = o.photons;
         auto request = mcml_request(run, o.seed, o.boundaries == "split" ? BoundaryMode::split : BoundaryMode::random);
@@ -83,7 +83,10 @@ void run_mcml(const McmlOptions& o) {
         request.on_progress = [&bar](const Progress& p) { bar(p); };
         const auto start = std::chrono::steady_clock::now();
         if (deterministic) {
-            const auto ad = solve_adding_doubling(run.stack, {});
+            AdOptions options;
+            options.cancel = &InterruptGuard::cancel_flag();
+            const auto ad = solve_adding_doubling(run.stack, {}, options);
+            if (ad.cancelled) break;  // the runs finished are written; this one is not
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const auto totals = rte_totals(ad);
             const double absorbed = totals.absorbed.value;

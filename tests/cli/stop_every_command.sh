@@ -11,6 +11,8 @@ limit_ms="${3:-1000}"
 work="$(mktemp -d)"
 cd "$work" || exit 1
 sed 's|existing_output.csv|stopped.mco|' "$inputs/overwrite_check.mci" > long.mci
+# 20000 runs of a slab for adding-doubling (each a few ms: the stop must come between runs, not after all of them).
+{ printf '1.0\n20000\n'; for i in $(seq 1 20000); do printf 'ad%05d.mco A\n1000\n0.01 0.01\n10 10 5\n1\n1.0\n1.37 0.1 100 0.9 1.0\n1.0\n' "$i"; done; } > many.mci
 failures=0
 # The command started, sent SIGNAL after 2 s; sets rc and ms (from the signal to the end).
 stop_after_2s() {
@@ -70,6 +72,7 @@ run "swatch --lit" HUP - - swatch --lit spot --pixels 1024 --wavelengths 400:700
 run "export lut" INT lut.exr - export lut --delta-e 0.05 -o lut.exr
 run "fit-spectrum" TERM fit.json '"partial": true' fit-spectrum "$inputs/fit_two.csv" --rays 400000 --starts 32 --output fit.json
 run "mcml" HUP stopped.mco 'INTERRUPTED' mcml long.mci --photons 1000000000
+run "mcml adding-doubling" TERM - - mcml many.mci --solver adding-doubling
 run "bench" INT bench.json '"partial": true' bench --quick --output bench.json
 run "bench csv" TERM bench.csv '# partial: true' bench --quick --output bench.csv
 run "adding-doubling 256 channels" TERM ad.json '"partial": true' spectrum --mode adding-doubling --channels 256 --wavelengths 500:560:10 --output ad.json --plot ad.svg
