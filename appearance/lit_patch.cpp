@@ -223,7 +223,16 @@ LitPatch render_lit_patch(const Material& material, const WavelengthGrid& wavele
         if (profile.total_reflectance > 0.0) {
             out.largest_kernel_correction = std::max(out.largest_kernel_correction, std::abs(correction) / profile.total_reflectance);
         }
+        // The convolution (one FFT round trip, ~0.1-0.3 s at 1024 px) cannot stop inside: a stop is checked around it.
+        if (stopped()) {
+            out.partial = true;
+            break;
+        }
         const auto exitance = convolver.convolve(kernel);
+        if (stopped()) {
+            out.partial = true;
+            break;
+        }
         std::vector<float> image(static_cast<std::size_t>(view.width_px) * view.height_px);
         // sci: the first-surface reflection where the light falls, as a sphere counts it.
         const double specular = geometry == MeasurementGeometry::sci ? profile.specular_reflectance : 0.0;
