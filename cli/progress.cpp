@@ -40,6 +40,9 @@ constexpr double long_run_seconds = 60.0;
 }  // namespace
 
 std::string duration_text(double seconds) {
+    constexpr double day = 86400.0, year = 365.25 * day;
+    if (seconds >= 2.0 * year) return fmt::format("{:.3g} years", seconds / year);  // a budget no run will spend: say so plainly
+    if (seconds >= 2.0 * day) return fmt::format("{:.0f} days", seconds / day);
     if (seconds >= 3600.0) return fmt::format("{} h {} min", static_cast<long>(seconds / 3600.0), static_cast<long>(seconds / 60.0) % 60);
     if (seconds >= 60.0) return fmt::format("{} min {} s", static_cast<long>(seconds / 60.0), static_cast<long>(seconds) % 60);
     return fmt::format("{:.0f} s", seconds);

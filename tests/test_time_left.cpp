@@ -59,3 +59,17 @@ TEST_CASE("a walk's progress through run_batches gives an estimate near the trut
     REQUIRE(left.has_value());
     CHECK(*left == Approx(5.0).epsilon(0.1));
 }
+
+TEST_CASE("a budget so large that the share barely moves is still estimated after a longer look", "[time_left]") {
+    // --rays 1125899906842624: the share grows by ~1e-9 per second and never by min_share_step; after long_window_s
+    // of steady growth the estimate is the remaining work over the rate (31.7 years here), not "measuring" for ever.
+    TimeLeft t;
+    const double rate = 1e-9;  // share per second
+    std::optional<double> left;
+    for (double s = 0.1; s <= TimeLeft::long_window_s + 1.0; s += 0.1) {
+        left = t.update(s, rate * s);
+        if (s < TimeLeft::startup_s + TimeLeft::long_window_s - 0.05) CHECK_FALSE(left.has_value());
+    }
+    REQUIRE(left.has_value());
+    CHECK(*left == Approx(1.0 / rate).epsilon(1e-3));
+}

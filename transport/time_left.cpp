@@ -18,7 +18,10 @@ double work_share(const Progress& p) {
 std::optional<double> TimeLeft::update(double elapsed_s, double share) {
     share_ = std::max(share_, std::clamp(share, 0.0, 1.0));
     if (!rate_from_ && share_ > 0.0 && elapsed_s > startup_s) rate_from_ = std::pair{elapsed_s, share_};
-    if (!rate_from_ || elapsed_s - rate_from_->first < min_window_s || share_ - rate_from_->second < min_share_step) {
+    const bool measured = rate_from_ && share_ > rate_from_->second &&
+                          ((elapsed_s - rate_from_->first >= min_window_s && share_ - rate_from_->second >= min_share_step) ||
+                           elapsed_s - rate_from_->first >= long_window_s);
+    if (!measured) {
         if (!last_) return std::nullopt;
         return std::max(0.0, last_->second - (elapsed_s - last_->first));  // the last estimate, counted down
     }

@@ -22,11 +22,12 @@ double work_share(const Progress& progress);
 class TimeLeft {
 public:
     // `elapsed_s` since the start, `share` of the work done in [0, 1]; the seconds left once they can be
-    // estimated (a share grown by at least `min_share_step` over at least `min_window_s` after start-up), else
-    // nothing; afterwards the last estimate counted down while the share stands still.
+    // estimated (a share grown by at least `min_share_step` over at least `min_window_s` after start-up, or by any
+    // amount over `long_window_s`: a budget so large that a second moves its share by 1e-9 is still estimated),
+    // else nothing; afterwards the last estimate counted down while the share stands still.
     std::optional<double> update(double elapsed_s, double share);
 
-    static constexpr double startup_s = 0.5, min_window_s = 1.0, min_share_step = 1e-3;
+    static constexpr double startup_s = 0.5, min_window_s = 1.0, min_share_step = 1e-3, long_window_s = 5.0;
     static constexpr double smoothing_s = 3.0;
 
 private:
