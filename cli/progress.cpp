@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "spectral/atomic_file.hpp"
+
 namespace skinspec::cli {
 namespace {
 
@@ -21,7 +23,10 @@ bool installed_for_process = false;  // InterruptGuard::install_for_process
 extern "C" void on_stop_signal(int signal) {
     // A second signal to this process exits at once (a stop passed on from a peer does not count: mpirun's own
     // SIGTERM after it must still let this process write what finished).
-    if (received_signal.load() != 0) _exit(128 + signal);
+    if (received_signal.load() != 0) {
+        remove_temporaries_in_progress();  // nothing half-written stays (a second Ctrl-C left lut.partial-PID.exr)
+        _exit(128 + signal);
+    }
     received_signal.store(signal);
     cancel_requested.store(true);
 }

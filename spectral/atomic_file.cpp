@@ -1,5 +1,6 @@
 #include "spectral/atomic_file.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -109,6 +110,33 @@ std::filesystem::path create_temporary(const std::filesystem::path& file) {
 // Whether `path` is a regular file of this user: what a writer leaves at the temporary's name (some, as OpenEXR's,
 // write a new file there rather than into the one created) and what may be published; not a symbolic link or
 // anything else put there meanwhile.
+// The temporaries being written, by name in static storage a signal handler may read: a slot is claimed (busy),
+// filled, then marked live; the handler removes the live ones.
+struct TemporarySlot {
+    std::atomic<int> state{0};  // 0 free, 1 being filled or emptied, 2 live
+    char name[4096] = {};
+};
+constexpr std::size_t temporary_slots = 16;
+TemporarySlot in_progress[temporary_slots];
+
+// The slot now holding `path` (nullptr when every slot is taken or the name is too long to keep).
+TemporarySlot* track(const std::filesystem::path& path) {
+    const std::string& name = path.native();
+    if (name.size() >= sizeof(TemporarySlot::name)) return nullptr;
+    for (auto& slot : in_progress) {
+        int free = 0;
+        if (!slot.state.compare_exchange_strong(free, 1)) continue;
+        std::memcpy(slot.name, name.c_str(), name.size() + 1);
+        slot.state.store(2);
+        return &slot;
+    }
+    return nullptr;
+}
+
+void untrack(TemporarySlot* slot) {
+    if (slot) slot->state.store(0);
+}
+
 bool own_regular_file(const std::filesystem::path& path) {
     struct stat now {};
     return ::lstat(path.c_str(), &now) == 0 && S_ISREG(now.st_mode) && now.st_uid == ::geteuid();
@@ -116,8 +144,20 @@ bool own_regular_file(const std::filesystem::path& path) {
 
 }  // namespace
 
+void remove_temporaries_in_progress() noexcept {
+    for (auto& slot : in_progress) {
+        if (slot.state.load() == 2) ::unlink(slot.name);
+    }
+}
+
 void write_atomically(const std::filesystem::path& file, const std::function<void(const std::filesystem::path& temporary)>& write, bool overwrite) {
     const auto temporary = create_temporary(file);
+    auto* slot = track(temporary);
+    // Published or removed, the name is no longer this run's to remove.
+    struct Untrack {
+        TemporarySlot* slot;
+        ~Untrack() { untrack(slot); }
+    } const untrack_at_end{slot};
     try {
         write(temporary);
         if (!own_regular_file(temporary)) {

@@ -44,6 +44,11 @@ inline constexpr std::size_t temporary_name_extra = 15;
 void write_atomically(const std::filesystem::path& file, const std::function<void(const std::filesystem::path& temporary)>& write,
                       bool overwrite = true);
 
+// For a process that must exit at once (a second stop signal): removes the temporaries being written now, so that
+// nothing half-written stays behind. Async-signal-safe (unlink on names kept in static storage); up to 16 at a time
+// are tracked (more are written, but not removed here).
+void remove_temporaries_in_progress() noexcept;
+
 // `text` as `file`, atomically; InputError when it exists and may not be replaced, or it cannot be written.
 void write_text_file(const std::filesystem::path& file, const std::string& text, bool overwrite);
 // The same with the text written by `write` as it is made (a large text is never held whole).

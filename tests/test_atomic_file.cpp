@@ -128,3 +128,26 @@ TEST_CASE("a temporary is created exclusively under an unpredictable name, and a
     CHECK(kept == "precious");
     fs::remove_all(dir);
 }
+
+TEST_CASE("a process that must exit at once removes the temporaries it is writing", "[atomic_file]") {
+    // What a second stop signal does before _exit (cli/progress.cpp): here called from inside the writer, as the handler
+    // would interrupt it. The temporary goes; nothing is published (the write then fails: its file is gone).
+    const auto dir = fs::temp_directory_path() / ("skinspec_atomic_exit_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const auto out = dir / "lut.exr";
+    fs::path seen;
+    CHECK_THROWS(write_atomically(out, [&](const fs::path& temporary) {
+        std::ofstream(temporary) << "half";
+        seen = temporary;
+        remove_temporaries_in_progress();
+        CHECK_FALSE(fs::exists(fs::symlink_status(temporary)));
+    }));
+    CHECK_FALSE(fs::exists(out));
+    CHECK(std::none_of(fs::directory_iterator(dir), fs::directory_iterator(), [](const fs::directory_entry&) { return true; }));
+    // After a write, nothing of it is tracked: a later call removes nothing of what was published.
+    write_atomically(out, [](const fs::path& temporary) { std::ofstream(temporary) << "whole"; });
+    remove_temporaries_in_progress();
+    CHECK(fs::is_regular_file(out));
+    fs::remove_all(dir);
+}
