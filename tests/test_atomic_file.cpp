@@ -16,6 +16,18 @@
 using namespace skinspec;
 namespace fs = std::filesystem;
 
+namespace {
+
+// An empty scratch folder of this test process.
+fs::path fresh_folder(const std::string& name) {
+    const auto dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+}  // namespace
+
 TEST_CASE("a failed write leaves neither the file nor a temporary, a good one replaces atomically", "[atomic_file]") {
     const auto dir = fs::temp_directory_path() / "skinspec_atomic_test";
     fs::remove_all(dir);
@@ -80,9 +92,7 @@ TEST_CASE("outputs replace only regular files, and only when claimed with overwr
 }
 
 TEST_CASE("a temporary is created exclusively under an unpredictable name, and a replaced one is never published", "[atomic_file]") {
-    const auto dir = fs::temp_directory_path() / ("skinspec_atomic_link_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const auto dir = fresh_folder("skinspec_atomic_link");
     const auto victim = dir / "victim.txt";
     std::ofstream(victim) << "precious\n";
     // The name a run used to write to (stem.partial-PID.ext), planted as a link to another file: never written through.
@@ -132,14 +142,10 @@ TEST_CASE("a temporary is created exclusively under an unpredictable name, and a
 TEST_CASE("a process that must exit at once removes the temporaries it is writing", "[atomic_file]") {
     // What a second stop signal does before _exit (cli/progress.cpp): here called from inside the writer, as the handler
     // would interrupt it. The temporary goes; nothing is published (the write then fails: its file is gone).
-    const auto dir = fs::temp_directory_path() / ("skinspec_atomic_exit_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const auto dir = fresh_folder("skinspec_atomic_exit");
     const auto out = dir / "lut.exr";
-    fs::path seen;
     CHECK_THROWS(write_atomically(out, [&](const fs::path& temporary) {
         std::ofstream(temporary) << "half";
-        seen = temporary;
         remove_temporaries_in_progress();
         CHECK_FALSE(fs::exists(fs::symlink_status(temporary)));
     }));
