@@ -2,19 +2,25 @@
 skinspec_cli_test("version" 0 "skinspec [0-9]+\\.[0-9]+\\.[0-9]+" --version)
 skinspec_cli_test("help" 0 "color" --help)
 skinspec_cli_test("color default example" 0 "sRGB hex +#[0-9A-F]+" color)
-skinspec_cli_test("color grey json" 0 "\"srgb_hex\": \"#" color grey18.csv --json)
-skinspec_cli_test("color extra space" 0 "Display P3" color grey18.csv --space "display p3")
+# A flat 18 % grey, by the published formulas alone: XYZ = 0.18 x the white, L* = 116 0.18^(1/3) - 16 = 49.4961,
+# a* = b* = 0 (CIE 015:2018); sRGB 1.055 0.18^(1/2.4) - 0.055 = 0.461356, #767676 (IEC 61966-2-1).
+skinspec_cli_test("color grey json" 0 "\"Lab\": \\[\n *49\\.49610[0-9]*,\n *-?(0\\.0|[0-9.]+e-1[0-9]),\n *-?(0\\.0|[0-9.]+e-1[0-9])\n *\\].*\"srgb\": \\[\n *0\\.461356,\n *0\\.461356,\n *0\\.461356\n *\\].*\"srgb_hex\": \"#767676\"" color grey18.csv --json)
+# Display P3 has sRGB's D65 white and transfer curve (SMPTE EG 432-1): the grey is 0.461356 in it too.
+skinspec_cli_test("color extra space" 0 "Display P3 +0\\.461356 +0\\.461356 +0\\.461356" color grey18.csv --space "display p3")
 skinspec_cli_test("over one allowed" 0 "XYZ" color over_one.csv --allow-over-one)
 skinspec_cli_test("materials list" 0 "biospec-lightly +layered.*jensen2001-skin1 +homogeneous" materials list)
 skinspec_cli_test("materials show" 0 "absorption coefficient mu_a \\[1/cm\\].*reticular_dermis" materials show biospec-moderately --wavelengths 400:700:100)
 skinspec_cli_test("materials show json" 0 "\"mu_a_per_cm\"" materials show biospec-heavily --json --wavelengths 550)
 skinspec_cli_test("materials show homogeneous" 0 "mu_s' \\[1/mm\\]" materials show jensen2001-marble)
 skinspec_cli_test("materials show override" 0 "epidermis +0.01 +1.4 +0.3" materials show biospec-lightly --set epidermis.melanosome_fraction=0.3)
+# The walk conserves energy: over the perfect white reflector every ray comes back, R = 1 exactly.
+skinspec_cli_test("spectrum of the white reflector is 1" 0 "500 +1\\.0000 \\+- 0\\.0000 +0\\.0000 \\+- 0\\.0000 +2000\n +550 +1\\.0000 \\+- 0\\.0000 .*\n +600 +1\\.0000 \\+- 0\\.0000 " spectrum --material white_reflector.toml --wavelengths 500:600:50 --rays 2000)
 skinspec_cli_test("spectrum small" 0 "biospec-lightly: 3 wavelengths, 6000 rays" spectrum --preset biospec-lightly --wavelengths 500:600:50 --rays 2000)
 skinspec_cli_test("spectrum json" 0 "\"schema\": \"skinspec-spectral-result/1\".*\"R_stderr\"" spectrum --preset biospec-heavily --wavelengths 550 --rays 1000 --json --quantities R,T,A)
 skinspec_cli_test("spectrum colour" 0 "colour of R under D65.*sRGB #" spectrum --preset biospec-lightly --wavelengths 400:700:20 --rays 2000)
 skinspec_cli_test("spectrum sub-stack" 0 "A_stratum_corneum.*A_epidermis  " spectrum --preset biospec-lightly --layers stratum_corneum,epidermis --reflector off --quantities R,T,A --wavelengths 500 --rays 2000)
-skinspec_cli_test("swatch white" 0 "1 patches.*at most 0.000" swatch --material white_reflector.toml -o ${CMAKE_CURRENT_BINARY_DIR}/white.png -o ${CMAKE_CURRENT_BINARY_DIR}/white.exr --overwrite)
+# The perfect white reflector has R = 1 at every wavelength (energy conservation; no absorber, index 1): L* 100, a* = b* = 0.
+skinspec_cli_test("swatch white" 0 "#FFFFFF +100\\.00 -?0\\.00 -?0\\.00 .*1 patches.*at most 0.000" swatch --material white_reflector.toml -o ${CMAKE_CURRENT_BINARY_DIR}/white.png -o ${CMAKE_CURRENT_BINARY_DIR}/white.exr --overwrite)
 skinspec_cli_test("swatch small" 0 "2 patches" swatch --vary epidermis.melanosome_fraction=0.02:0.2:2 --delta-e 2)
 skinspec_cli_test("phase-study json" 0 "\"cost_ratio_hg_over_lookup\"" phase-study --json)
 skinspec_cli_test("compare-phase small" 0 "colour difference CIEDE2000" compare-phase --preset biospec-lightly --wavelengths 400:700:50 --stderr 0.01)
