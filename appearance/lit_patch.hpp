@@ -1,7 +1,7 @@
 #pragma once
 // A flat patch of a translucent material under structured light, from a solver's radial profiles (by default the
 // exact transport, the volumetric walk; or a diffusion mode): the diffuse exitance is
-// the illumination convolved with the material's radial reflectance profile (seed 004 Eq. 5 and seed 002
+// the illumination convolved with the material's radial reflectance profile (Jensen et al. 2001 Eq. 5 and Donner & Jensen 2005
 // Eq. 17 integrated over the surface for uniform angular response), per wavelength or band. The convolution
 // runs through FFTW (real-to-complex 2-D transforms). The specular first-surface reflection is not included
 // (it depends on the viewing direction) unless the geometry is sci, which counts it as an integrating sphere does (the

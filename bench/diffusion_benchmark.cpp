@@ -1,5 +1,5 @@
 // Diffusion throughput (docs/PERFORMANCE.md), measured side by side in one run:
-//  - a total diffuse reflectance: the dipole's closed form (seed 004 Sec. 2.4) and the multipole's
+//  - a total diffuse reflectance: the dipole's closed form (Jensen et al. 2001 Sec. 2.4) and the multipole's
 //    closed-form series; aim < 1 microsecond;
 //  - a 1000-radius multipole profile (R(r) of a 10-mfp slab, 0-10 mm); aim < 5 ms;
 //  - a three-layer composed profile (epidermis, papillary and reticular dermis over the reflector, 1000

@@ -1,6 +1,6 @@
 // Accuracy of the diffusion models against the volumetric walk (a long run, not a test; docs/DIFFUSION.md):
 //  1. slabs of 2, 10 and 20 transport mean free paths (mfp 1 mm, reduced albedo 0.99, isotropic scattering),
-//     matched (n = 1) and mismatched (n = 1.4) boundaries, as in seed 002 Fig. 2 / Table 1: total R and T and
+//     matched (n = 1) and mismatched (n = 1.4) boundaries, as in Donner & Jensen 2005 Fig. 2 / Table 1: total R and T and
 //     R(r), T(r) at 0.5, 1, 2 and 4 mm, for the dipole and the multipole;
 //  2. a semi-infinite medium (a 200 mfp slab for the walk) at reduced albedo 0.99, 0.9 and 0.5, n = 1.3:
 //     where the dipole agrees and where diffusion breaks down.

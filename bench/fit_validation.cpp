@@ -1,4 +1,4 @@
-// The synthetic round trip of seed 001 Sec. 4.1 (compare with its Table 2) and a fit of a volumetric-walk
+// The synthetic round trip of Mukaigawa et al. 2009 Sec. 4.1 (compare with its Table 2) and a fit of a volumetric-walk
 // profile (docs/PROFILE_FIT.md). A long run, not a test.
 //  1. 64 x 64 = 4096 patches at 0.05 mm, non-uniform light, dipole sigma_s' 2.19, sigma_a 0.002 /mm, eta 1.3;
 //     quantisation steps 0.05-0.50 mm: grid estimate, refined estimate, PSNR of the re-synthesised image;

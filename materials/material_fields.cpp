@@ -40,7 +40,7 @@ const std::vector<NumberField<TissueLayer>>& layer_number_fields() {
         {"thickness_cm", "cm", positive, &L::thickness_cm, true, "layer thickness"},
         {"refractive_index", "1", refractive_index, &L::refractive_index, true, "refractive index of the layer"},
         {"melanosome_fraction", "1", fraction, &L::melanosome_fraction, false, "volume fraction of melanosomes (v_m)", true,
-         std::pair{0.001, 0.45}},  // shared spec: lightly 0.019 ... up to 0.42
+         std::pair{0.001, 0.45}},  // Krishnaswamy & Baranoski 2004: lightly 0.019 ... up to 0.42
         {"eumelanin_mg_per_ml", "mg/mL", non_negative, &L::eumelanin_mg_per_ml, false, "eumelanin inside the melanosomes", true},
         {"pheomelanin_mg_per_ml", "mg/mL", non_negative, &L::pheomelanin_mg_per_ml, false, "pheomelanin inside the melanosomes", true},
         {"blood_fraction", "1", fraction, &L::blood_fraction, false, "volume fraction of whole blood (v_b)", true, std::pair{0.0005, 0.2}},

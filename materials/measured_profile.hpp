@@ -2,7 +2,7 @@
 // Measured forward-scattering profiles of stratum corneum and epidermis (Bruls & van der Leun 1984), as
 // cumulative fractions C(theta) of transmitted light within polar angle theta, tabulated at a few
 // wavelengths (data/scattering/bruls_vanderleun_*.csv), and their randomized table look-up sampler
-// (Baranoski, Krishnaswamy & Kimmel 2005, seed 000 Sec. 4).
+// (Baranoski, Krishnaswamy & Kimmel 2005 Sec. 4).
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -13,7 +13,7 @@
 namespace skinspec {
 
 // Inverse-CDF table of the polar deflection: entry j holds C^-1((j + 1/2) / N), C piecewise-linear between
-// the measured angles. Sampling takes the entry at floor(u N) (seed 000 Sec. 4: "multiply this number by
+// the measured angles. Sampling takes the entry at floor(u N) (Baranoski et al. 2005 Sec. 4: "multiply this number by
 // the table size; the integer part ... is used to access the corresponding scattering angle").
 class InverseCdfTable {
 public:

@@ -1,6 +1,6 @@
 #pragma once
-// BioSpec model variants (docs/MATERIALS.md, shared spec "Model variants" and "Behaviours of the model authors'
-// current implementation"): named option sets whose every switch can also be set on its own.
+// BioSpec model variants (docs/MATERIALS.md "Model variants"; docs/BIOSPEC.md "The model authors' current code"):
+// named option sets whose every switch can also be set on its own.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -10,7 +10,7 @@
 namespace skinspec {
 
 // Where a ray Rayleigh-scattered in a dermal layer turns, and so which path its absorption is charged over
-// (shared spec "Where a Rayleigh-scattered ray turns", 2026-12).
+// (docs/BIOSPEC.md, "Where a Rayleigh-scattered ray turns").
 enum class RayleighTurn {
     sampled_depth,   // free path s ~ Exp(beta) along the incoming direction; turn at depth s |cos_in| (default)
     whole_crossing,  // the 2004 text: the whole crossing charged along the new direction
@@ -19,7 +19,7 @@ enum class RayleighTurn {
 std::string_view to_string(RayleighTurn turn);
 RayleighTurn parse_rayleigh_turn(std::string_view text, std::string_view what);
 
-// The skin-fold perturbation of the surface reflection (shared spec step 1 and authors' behaviour 5).
+// The skin-fold perturbation of the surface reflection (docs/BIOSPEC.md, "One ray" step 1 and the authors' behaviour 5).
 enum class FoldFormula {
     biospec_2004,  // theta = arccos(sqrt((sigma^2 / sqrt(sigma^4 + (1 - sigma^4) u) - 1) / (sigma^2 - 1)))
     authors_code,  // theta = arccos(sqrt((1 - u) / (u (sigma^2 - 1) + 1)))
@@ -37,7 +37,7 @@ struct ModelOptions {
     double bilirubin_molar_mass_g_per_mol = 585.0;
     double carotene_molar_mass_g_per_mol = 537.0;
     RayleighTurn rayleigh_turn = RayleighTurn::sampled_depth;
-    // The authors' code's behaviours (shared spec, numbered as there); the defaults are the specification's.
+    // The authors' code's behaviours (docs/BIOSPEC.md, "The model authors' current code", numbered as there); the defaults are the specification's.
     bool swapped_upward_indices = false;  // 1: upward crossings evaluate the interface with its indices swapped
     bool bottom_exit_fresnel = true;      // 3: false = light leaves the bottom (reflector off) with no Fresnel test
     bool redraw_reversals_in_stratum_corneum = true;  // 4: false = a reversing SC perturbation is kept (see walk)

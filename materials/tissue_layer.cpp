@@ -70,7 +70,7 @@ namespace {
 
 enum class Compartment { melanosomes, blood, background, whole_layer };
 
-// One chromophore's share of mu_a inside its compartment (shared spec "Absorption coefficients"). Adding a
+// One chromophore's share of mu_a inside its compartment (Krishnaswamy & Baranoski 2004; docs/MATERIALS.md, "Layers and stacks"). Adding a
 // chromophore is one row here, its data file (materials/chromophore.cpp) and its concentration field
 // (materials/material_fields.cpp).
 struct AbsorptionTerm {

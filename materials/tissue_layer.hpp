@@ -95,7 +95,7 @@ struct TissueLayer {
     bool operator==(const TissueLayer&) const = default;
 };
 
-// Absorption coefficient [1/cm] at a wavelength (shared spec "Absorption coefficients"):
+// Absorption coefficient [1/cm] at a wavelength (Krishnaswamy & Baranoski 2004; docs/MATERIALS.md, "Layers and stacks"):
 //   mu_a = v_m (mu_eu + mu_ph) + v_b (S mu_HbO2 + (1 - S) mu_Hb + mu_bili) + (1 - v_m - v_b) (mu_car + mu_base)
 //          + v_w mu_water + v_l mu_lipid,
 // the last two over the whole layer (Jacques 2013, Phys Med Biol 58:R37, Eq. 12; the haemoglobin tables hold no water).
@@ -106,7 +106,7 @@ struct TissueLayer {
 // packaged the same way in spheres (the sieve effect): v_m C_s mu_mel, C_s = sphere_packaging_factor.
 double absorption_per_cm(const TissueLayer& layer, double wavelength_nm, const ModelOptions& model);
 
-// Rayleigh coefficient of the collagen fibres [1/cm] (shared spec step 3):
+// Rayleigh coefficient of the collagen fibres [1/cm] (Krishnaswamy & Baranoski 2004; docs/BIOSPEC.md "One ray", step 2):
 //   beta = 8 pi^3 (eta^2 - 1)^2 / (3 N lambda^4), eta = n_fibre / n_layer, N = f / (4/3 pi r^3),
 // with lambda and r in cm.
 double rayleigh_coefficient_per_cm(const TissueLayer& layer, double wavelength_nm);

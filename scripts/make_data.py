@@ -432,7 +432,7 @@ def make_tissue(src, out):
                  "docs/HYPERSPECTRAL.md)"])
 
 
-BIOSPEC_PRESETS = (  # name, melanosome volume fraction (docs/biospec-model.md)
+BIOSPEC_PRESETS = (  # name, melanosome volume fraction (Krishnaswamy & Baranoski 2004; docs/MATERIALS.md)
     ("biospec-lightly", 0.019, "lightly pigmented"),
     ("biospec-moderately", 0.052, "moderately pigmented"),
     ("biospec-heavily", 0.12, "heavily pigmented"),
@@ -576,7 +576,7 @@ def make_profiles(reference, out):
 def make_van_gemert(out):
     """HG asymmetry factors fitted by van Gemert et al. 1989 to the Bruls & van der Leun profiles."""
     # van Gemert M.J.C., Jacques S.L., Sterenborg H.J.C.M., Star W.M. (1989), IEEE Trans. Biomed. Eng.
-    # 36(12):1146-1154, as quoted in Table 2 of Baranoski, Krishnaswamy & Kimmel 2005 (seed 000).
+    # 36(12):1146-1154, as quoted in Table 2 of Baranoski, Krishnaswamy & Kimmel 2005.
     rows = [[436.0, 0.900, 0.748], [546.0, 0.917, 0.781]]
     write_table(out / "scattering" / "hg_asymmetry_van_gemert_1989.csv",
                 "Henyey-Greenstein asymmetry factors of stratum corneum and epidermis (van Gemert et al. 1989)",

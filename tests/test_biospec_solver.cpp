@@ -172,7 +172,7 @@ TEST_CASE("more melanin lowers R at every wavelength, more blood deepens the hae
 
 TEST_CASE("the published shape of skin reflectance", "[biospec_solver]") {
     // Low in the blue, rising steeply above 600 nm; 0.45-0.7 at 700 nm for lightly pigmented skin
-    // (shared spec "Things to verify"; the corrected model sits at the low end).
+    // (the model's published curves, Krishnaswamy & Baranoski 2004; the corrected model sits at the low end).
     SpectralRequest request;
     request.wavelengths = WavelengthGrid::list({450.0, 560.0, 576.0, 600.0, 700.0});
     request.max_rays_per_wavelength = 100'000;
@@ -398,7 +398,7 @@ TEST_CASE("absorption replay refuses sets whose paths differ and the random esti
     CHECK_THROWS_WITH(solve_biospec_sets(sets, request, random), Catch::Contains("absorption replay needs the weighted estimator"));
 }
 
-// ---- The model authors' behaviours and the Rayleigh turn rules, each in isolation (shared spec 2026-12) ----
+// ---- The model authors' behaviours and the Rayleigh turn rules, each in isolation (docs/BIOSPEC.md) ----
 
 namespace {
 

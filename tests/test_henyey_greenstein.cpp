@@ -6,7 +6,7 @@
 
 using namespace skinspec;
 
-TEST_CASE("HG sampling (seed 000 Eq. 5) follows the HG CDF and has mean cosine g", "[henyey_greenstein]") {
+TEST_CASE("HG sampling (Baranoski et al. 2005 Eq. 5) follows the HG CDF and has mean cosine g", "[henyey_greenstein]") {
     for (const double g : {-0.5, 0.0, 0.3, 0.821, 0.943}) {
         INFO("g = " << g);
         auto random = RandomStream::for_batch(5, 546.0, static_cast<std::uint64_t>(g * 1000 + 1000));

@@ -10,7 +10,7 @@ using namespace skinspec;
 
 namespace {
 
-// Table 1 of seed 000 (Bruls & van der Leun 1984), cumulative percent at 0, 2.5, 7.5, ..., 62.5 deg.
+// Table 1 of Baranoski et al. 2005 (Bruls & van der Leun 1984), cumulative percent at 0, 2.5, 7.5, ..., 62.5 deg.
 const std::vector<double> sc_436{0, 17.6, 55.2, 70.9, 79.1, 84.1, 87.6, 90.3, 92.5, 94.4, 96.1, 97.6, 99.0, 100};
 const std::vector<double> ep_546{0, 4.0, 22.5, 39.7, 52.5, 62.4, 70.2, 76.7, 82.4, 87.2, 91.4, 94.9, 97.9, 100};
 

@@ -28,7 +28,7 @@ TEST_CASE("a semi-infinite multipole is Jensen's dipole", "[multipole]") {
     for (const auto& m : {DipoleMedium{2.19, 0.0021, 1.5}, DipoleMedium{0.74, 0.032, 1.3}, DipoleMedium{1.0, 0.5, 0.8}}) {
         const Dipole dipole(m);
         const Multipole multipole({m.reduced_scattering, m.absorption, inf, diffuse_fresnel_reflectance(m.eta), 0.0});
-        // The closed form of seed 004 Sec. 2.4 against the sum of source integrals.
+        // The closed form of Jensen et al. 2001 Sec. 2.4 against the sum of source integrals.
         CHECK(multipole.total_reflectance() == Approx(dipole.total_reflectance()).epsilon(1e-12));
         CHECK(multipole.total_transmittance() == 0.0);
         for (const double r : {0.0, 0.1, 1.0, 10.0}) CHECK(multipole.radial_reflectance(r) == Approx(dipole.radial_reflectance(r)).epsilon(1e-12));

@@ -26,7 +26,7 @@ TEST_CASE("a nearly smooth Torrance-Sparrow surface is the Fresnel interface", "
         INFO("n " << n);
         CHECK(s.internal_diffuse_reflectance() == Approx(smooth_average(n, 1.0)).margin(2e-3));
         for (const double mu : {1.0, 0.7, 0.3}) CHECK(s.entry_transmittance(mu) == Approx(1.0 - fresnel_reflectance(mu, 1.0, n)).margin(1e-3));
-        // The polynomial F_dr of seed 002 Eq. 8 approximates the same average.
+        // The polynomial F_dr of Donner & Jensen 2005 Eq. 8 approximates the same average.
         CHECK(diffuse_fresnel_reflectance(n) == Approx(smooth_average(n, 1.0)).margin(0.01));
     }
 }

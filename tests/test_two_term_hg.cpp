@@ -6,7 +6,7 @@
 
 using namespace skinspec;
 
-TEST_CASE("two-term HG sampling follows its CDF (seed 000 Eq. 2)", "[two_term_hg]") {
+TEST_CASE("two-term HG sampling follows its CDF (Baranoski et al. 2005 Eq. 2)", "[two_term_hg]") {
     auto random = RandomStream::for_batch(21, 500.0, 0);
     std::vector<double> c;
     double mean = 0.0;

@@ -1,7 +1,7 @@
 #pragma once
-// Henyey-Greenstein phase function (Henyey & Greenstein 1941; seed 000 Eq. 1):
+// Henyey-Greenstein phase function (Henyey & Greenstein 1941; Baranoski et al. 2005 Eq. 1):
 //   p(theta) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^(3/2)) per steradian,
-// sampled by seed 000 Eq. 5: cos theta = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g), and 1 - 2u at g = 0.
+// sampled by Baranoski et al. 2005 Eq. 5: cos theta = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g), and 1 - 2u at g = 0.
 #include <algorithm>
 #include <cmath>
 #include <numbers>

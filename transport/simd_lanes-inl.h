@@ -138,7 +138,7 @@ HWY_INLINE void Deflect(VF dx, VF dy, VF dz, VF c, VF s, VF cos_phi, VF sin_phi,
     oz = hn::IfThenElse(axial, hn::Mul(c, hn::CopySign(hn::Set(df, 1.0f), dz)), z);
 }
 
-// Henyey-Greenstein cos theta (seed 000 Eq. 5; henyey_greenstein.hpp), 1 - 2u near g = 0.
+// Henyey-Greenstein cos theta (Baranoski et al. 2005 Eq. 5; henyey_greenstein.hpp), 1 - 2u near g = 0.
 HWY_INLINE VF HgCos(VF g, VF u) {
     const DF df;
     const VF one = hn::Set(df, 1.0f);

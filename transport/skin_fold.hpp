@@ -1,6 +1,6 @@
 #pragma once
 // Skin-fold perturbation of the surface-reflected direction (BioSpec, Krishnaswamy & Baranoski 2004;
-// shared spec step 1): polar angle about the mirror direction
+// docs/BIOSPEC.md "One ray", step 1): polar angle about the mirror direction
 //   theta = arccos( sqrt( (sigma^2 / sqrt(sigma^4 + (1 - sigma^4) u) - 1) / (sigma^2 - 1) ) ),
 // azimuth 2 pi u2, with sigma in (0, 1] the fold aspect ratio. As sigma -> 1 the formula tends to
 // cos^2 theta = u (cosine-distributed); at sigma = 1 that limit is used.
@@ -36,7 +36,7 @@ inline double skin_fold_pdf_cos(double sigma, double c) {
     return -4.0 * s4 * c * (s2 - 1.0) / ((1.0 - s4) * m * m * m);
 }
 
-// The model authors' current code (shared spec "Behaviours of the model authors' current implementation", 5):
+// The model authors' current code (docs/BIOSPEC.md, "The model authors' current code", behaviour 5):
 //   theta = arccos( sqrt( (1 - u) / (u (sigma^2 - 1) + 1) ) ).
 inline double skin_fold_authors_sample_cos(double sigma, double u) {
     const double cos2 = (1.0 - u) / (u * (sigma * sigma - 1.0) + 1.0);

@@ -80,7 +80,7 @@ struct SpectralRequest {
     std::uint64_t rays_per_batch = 4096;               // each batch has its own random stream
     std::uint64_t initial_batches = 8;                 // first round with a target
     std::uint64_t seed = 1;
-    // Polar bin edges (deg) of the virtual goniometer: default 0, 2.5, 7.5, ..., 87.5, 90 (seed 000 Sec. 4).
+    // Polar bin edges (deg) of the virtual goniometer: default 0, 2.5, 7.5, ..., 87.5, 90 (Baranoski et al. 2005 Sec. 4).
     std::vector<double> angular_bin_edges_deg;
     std::function<void(const Progress&)> on_progress;  // called from worker threads, serialised by the solver
     const CancelFlag* cancel = nullptr;
@@ -97,7 +97,7 @@ struct WavelengthResult {
     Estimate transmittance;
     std::vector<Estimate> absorptance_layers;
     Estimate absorptance_surface;  // rays dropped by the skin-fold compatibility behaviour
-    std::vector<Estimate> brdf_per_sr;  // per polar bin, Eq. 10 of seed 000
+    std::vector<Estimate> brdf_per_sr;  // per polar bin, Eq. 10 of Baranoski et al. 2005
     std::vector<Estimate> btdf_per_sr;
     std::uint64_t rays = 0;
     std::uint64_t truncated_rays = 0;  // rays that hit the event limit (their weight counted as absorbed)

@@ -1,5 +1,5 @@
 #pragma once
-// Two-term Henyey-Greenstein phase function (seed 000 Eq. 2; Kattawar 1975):
+// Two-term Henyey-Greenstein phase function (Baranoski et al. 2005 Eq. 2; Kattawar 1975):
 //   p = u p_HG(g1) + (1 - u) p_HG(g2),
 // sampled by choosing a term with probability u, then HG warping (henyey_greenstein.hpp).
 #include "transport/henyey_greenstein.hpp"

@@ -1,8 +1,8 @@
 #pragma once
-// Fitting the dipole (seed 004 Eq. 4) to a radial profile (seed 001 Eq. 25): minimise
+// Fitting the dipole (Jensen et al. 2001 Eq. 4) to a radial profile (Mukaigawa et al. 2009 Eq. 25): minimise
 // sum_i (R'_i - R(d'_i))^2 over (sigma_s', sigma_a) at a known eta. The paper's exhaustive grid (Table 1:
 // sigma_s' 0.01-3.00 by 0.01, sigma_a 0-0.010 by 0.001, per mm), then a bounded local optimiser (NLopt
-// BOBYQA) from the grid's best within the grid's box. With a measured total diffuse reflectance (seed 004
+// BOBYQA) from the grid's best within the grid's box. With a measured total diffuse reflectance (Jensen et al. 2001
 // Sec. 3), sigma_a follows from sigma_s' through the closed-form R_d(alpha'), leaving a 1-D search.
 #include <optional>
 #include <limits>

@@ -1,5 +1,5 @@
 #pragma once
-// The whole estimation of seed 001 for one channel: quantised system, r = W^+ l, dipole fit, re-synthesis and
+// The whole estimation of Mukaigawa et al. 2009 for one channel: quantised system, r = W^+ l, dipole fit, re-synthesis and
 // PSNR; or, for a measured radial profile, the dipole fit alone.
 #include <optional>
 #include <string>

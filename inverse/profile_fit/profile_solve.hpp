@@ -1,5 +1,5 @@
 #pragma once
-// The profile at the distance bins from l = W r (seed 001 Eq. 24): r = W^+ l, the minimum-norm least-squares
+// The profile at the distance bins from l = W r (Mukaigawa et al. 2009 Eq. 24): r = W^+ l, the minimum-norm least-squares
 // solution (Eigen's complete orthogonal decomposition), as in the paper. Options, both off by default:
 // Tikhonov regularisation (min |W r - l|^2 + lambda^2 |r|^2) and non-negativity (r >= 0, bounded L-BFGS
 // through NLopt from the clipped unconstrained solution).

@@ -1,5 +1,5 @@
 #pragma once
-// The linear system of Mukaigawa, Suzuki & Yagi 2009 (seed 001 Sec. 3.2-3.3): the observed exitance of patch
+// The linear system of Mukaigawa, Suzuki & Yagi 2009 (Sec. 3.2-3.3): the observed exitance of patch
 // j is l_j = sum_k R(d_jk) c_k (Eq. 10); quantising distances into bins d'_i = i * step with linear weights
 // (Eq. 16-19) turns it into l = W r (Eq. 22-23) with r the profile at the bins.
 //
@@ -24,7 +24,7 @@ struct PlanarScene {
     std::vector<char> valid;       // 1: the pixel's l is used (its c is always used)
 };
 
-// A general surface patch (seed 001 Sec. 3.2).
+// A general surface patch (Mukaigawa et al. 2009 Sec. 3.2).
 struct SurfacePatch {
     glm::dvec3 position_mm{0.0};
     double incident = 0.0;  // c_k, Eq. 9
@@ -55,7 +55,7 @@ std::vector<double> render_planar(const PlanarScene& scene, const std::function<
 std::vector<double> render_patches(const std::vector<SurfacePatch>& patches, const std::function<double(double)>& profile);
 
 // Peak signal-to-noise ratio (dB) of `synthesised` against `observed` over the used entries; the peak is the
-// largest observed value (seed 001 Sec. 4.1).
+// largest observed value (Mukaigawa et al. 2009 Sec. 4.1).
 double psnr_db(const std::vector<double>& observed, const std::vector<double>& synthesised, const std::vector<char>& used);
 
 // Checks the scene (sizes, pitch, finite non-negative values, a non-empty mask); InputError otherwise.

@@ -1,5 +1,5 @@
 #pragma once
-// A synthetic planar scene for the round trip of seed 001 Sec. 4.1: a non-uniformly lit flat sample rendered
+// A synthetic planar scene for the round trip of Mukaigawa et al. 2009 Sec. 4.1: a non-uniformly lit flat sample rendered
 // with the dipole (Eq. 10 with the exact, unquantised profile), optionally with multiplicative Gaussian noise.
 #include <cstdint>
 

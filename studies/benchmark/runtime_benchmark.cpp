@@ -172,7 +172,7 @@ void adding_doubling_cases(Benchmark& bench, const std::vector<AddingDoublingSla
             request.cancel = bench.options().cancel;
             return solve_rte(request).diffuse_reflectance;
         });
-        // Similarity: sigma_s' = mu_s (1 - g) (transport-models.md Sec. 2); per cm, the slab 0.1 cm thick.
+        // Similarity: sigma_s' = mu_s (1 - g); per cm, the slab 0.1 cm thick.
         const auto layer = slab.stack().layers.front();
         const double n = slab.refractive_index;
         const double entry = 1.0 - fresnel_reflectance(1.0, 1.0, n);

@@ -1,6 +1,6 @@
 #pragma once
 // Fitting Henyey-Greenstein to the measured forward-scattering profiles (Baranoski, Krishnaswamy & Kimmel
-// 2005, seed 000 Sec. 4, Eq. 6-9): bin fractions of the measured data and of HG over the 13 goniometer
+// 2005, Sec. 4, Eq. 6-9): bin fractions of the measured data and of HG over the 13 goniometer
 // bins [0, 2.5], (2.5, 7.5], ..., (57.5, 62.5] deg, both normalised to the light within 62.5 deg, and the
 // g minimising their RMS difference by Nelder-Mead over [-1, 1] (NLopt's LN_NELDERMEAD).
 #include <span>

@@ -1,5 +1,5 @@
 #pragma once
-// Phantom sheets (seed 000 Sec. 4, Figs. 10-12): a Lambertian textured background seen through a thin
+// Phantom sheets (Baranoski et al. 2005 Sec. 4, Figs. 10-12): a Lambertian textured background seen through a thin
 // forward-scattering sheet at a separation s. Each viewing ray crosses the sheet along its normal, is
 // deflected once by the sheet's profile (polar angle theta, uniform azimuth) and meets the background at
 // a lateral offset s tan(theta); rays turned back (theta >= 90 deg) see nothing. Orthographic view.

@@ -1,5 +1,5 @@
 #pragma once
-// The sampling experiments of seed 000 Sec. 4-5: polar angles drawn by HG warping (Eq. 5) or by the
+// The sampling experiments of Baranoski et al. 2005 Sec. 4-5: polar angles drawn by HG warping (Eq. 5) or by the
 // randomized table look-up, binned into the 13 goniometer bins (samples beyond 62.5 deg discarded and the
 // rest renormalised, as the measurements stop there), relative errors against the measured fractions
 // (Table 3), and the BTDF of the virtual goniometer (Eq. 10).

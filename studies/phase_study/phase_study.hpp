@@ -1,5 +1,5 @@
 #pragma once
-// The experiments of Baranoski, Krishnaswamy & Kimmel 2005 (seed 000 Sec. 4-5) for the four measured
+// The experiments of Baranoski, Krishnaswamy & Kimmel 2005 (Sec. 4-5) for the four measured
 // profiles (stratum corneum and epidermis at 436 and 546 nm): HG fits (Table 2), sampling errors
 // (Table 3), the virtual goniometer (Figs. 6-9) and the cost of HG warping against table look-up.
 #include <cstdint>

@@ -51,7 +51,7 @@ skinspec_cli_test("profile bands" 0 "R_bandR_per_mm2,R_bandR_stderr_per_mm2,R_ba
 skinspec_cli_test("profile plot" 0 "wrote .*profile.svg" profile --preset jensen2001-marble --mode multipole --radii 0:10:0.1 --output ${CMAKE_CURRENT_BINARY_DIR}/profile.csv --plot ${CMAKE_CURRENT_BINARY_DIR}/profile.svg --overwrite)
 skinspec_cli_test("swatch lit edge" 0 "under shadow edge.*64x64 px" swatch --lit edge --pixels 64 --wavelengths 400:700:20 -o ${CMAKE_CURRENT_BINARY_DIR}/lit_edge.png -o ${CMAKE_CURRENT_BINARY_DIR}/lit_edge.exr --overwrite)
 skinspec_cli_test("swatch lit pattern" 0 "jensen2001-marble under projected pattern" swatch --lit pattern ${PROJECT_SOURCE_DIR}/data/images/phantom_background.png --preset jensen2001-marble --mode multipole --pixels 64 -o ${CMAKE_CURRENT_BINARY_DIR}/lit_pattern.png --overwrite)
-# fit-profile's synthetic scene is rendered at the paper's truth (seed 001 Sec. 4.1: sigma_s' 2.19, sigma_a 0.002 per mm,
+# fit-profile's synthetic scene is rendered at the paper's truth (Mukaigawa et al. 2009 Sec. 4.1: sigma_s' 2.19, sigma_a 0.002 per mm,
 # SyntheticSceneSpec): sigma_s' must come back within 5 % (2.08-2.30; the binning's bias, as tests/test_profile_fit.cpp
 # allows; measured 2.203), sigma_a is checked against its standard error there (a regex cannot), the resynthesis >= 40 dB.
 skinspec_cli_test("fit-profile synthetic" 0 "Y +2\\.(0[89]|1[0-9]|2[0-9])[0-9]* \\+- [0-9.e-]+ +0\\.00[0-9]* \\+- [0-9.e-]+ .* 4[0-9]\\.[0-9][0-9]" fit-profile --synthetic --output-dir ${CMAKE_CURRENT_BINARY_DIR}/fit --overwrite)

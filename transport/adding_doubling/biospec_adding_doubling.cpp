@@ -50,7 +50,7 @@ AdElement empty_layer(const AdChannels& c) {
     return AdElement{AdElement::Kind::layer, {}, {}, {}, AdMatrix::Zero(size, size), AdMatrix::Zero(size, size), {}, {}};
 }
 
-// Step 2 (SC, epidermis; shared spec): deflected by the redistribution `e` within the travel hemisphere (the walk
+// Step 2 (SC, epidermis; docs/BIOSPEC.md "One ray"): deflected by the redistribution `e` within the travel hemisphere (the walk
 // re-draws reversals), then exp(-mu_a d / cos). The same both ways.
 AdElement perturbing_layer(const AdChannels& c, const LayerOptics& o, const AdCache::Entry& e) {
     auto out = empty_layer(c);

@@ -1,5 +1,5 @@
 #pragma once
-// The BioSpec model (shared biospec-model.md, "One ray", with the 2026-12 Rayleigh clarification) solved
+// The BioSpec model (Krishnaswamy & Baranoski 2004; docs/BIOSPEC.md, "One ray" and "Where a Rayleigh-scattered ray turns") solved
 // deterministically by adding (transport/adding_doubling/ad_elements.hpp): every rule of the walk is a linear operator
 // on the flux per direction channel, and the walk's R, T and A are their adding.
 //  - SC and epidermis, each crossing: a deflection drawn from the layer's measured profile (or HG), re-drawn while it

@@ -182,7 +182,7 @@ MatchedVolumetric match_volumetric_to_biospec(const LayerStack& stack, const Rte
             dermal.push_back(k);
             continue;
         }
-        // One deflection per normal crossing by the crossing's own redistribution (biospec-model.md, step 2).
+        // One deflection per normal crossing by the crossing's own redistribution (Krishnaswamy & Baranoski 2004; docs/BIOSPEC.md, "One ray", step 2).
         layer.mu_s_per_cm = 1.0 / layer.thickness_cm;
         if (crossing == CrossingScattering::henyey_greenstein) {
             layer.phase = PhaseFunction::henyey_greenstein(stack.layers[k].hg_g);

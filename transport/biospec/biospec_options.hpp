@@ -32,7 +32,7 @@ struct BiospecOptions {
     // Interface and layer crossings per ray before it is stopped; its remaining weight is then counted as
     // absorbed in its current layer and the ray is reported in truncated_rays.
     std::uint32_t max_events_per_ray = 1'000'000;
-    std::size_t profile_table_entries = 1000;  // randomized table look-up size (seed 000 Sec. 4)
+    std::size_t profile_table_entries = 1000;  // randomized table look-up size (Baranoski et al. 2005 Sec. 4)
     std::optional<ThinLayerHg> thin_layer_hg;  // unset: the measured profiles (default)
 };
 

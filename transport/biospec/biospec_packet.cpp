@@ -1,6 +1,6 @@
 // The BioSpec walk's per-event step on SIMD packets (see biospec_packet.hpp). Compiled once per instruction set by
 // Highway's foreach_target and dispatched at run time; each formula is the one of the scalar specification
-// (shared biospec-model.md, "One ray"), in lane-parallel form.
+// (Krishnaswamy & Baranoski 2004; docs/BIOSPEC.md, "One ray"), in lane-parallel form.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "transport/biospec/biospec_packet.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep

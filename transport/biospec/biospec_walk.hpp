@@ -1,6 +1,6 @@
 #pragma once
-// One wavelength of the BioSpec walk (Krishnaswamy & Baranoski 2004, as specified in the shared
-// biospec-model.md "One ray"): directions only, every layer crossed as a whole, per-crossing scattering
+// One wavelength of the BioSpec walk (Krishnaswamy & Baranoski 2004, as docs/BIOSPEC.md "One ray" describes it):
+// directions only, every layer crossed as a whole, per-crossing scattering
 // (measured profile / Rayleigh + cosine / cosine / HG), absorption per crossing, Fresnel at every
 // interface, skin-fold perturbation of surface reflection, Lambertian bottom reflector or exit.
 //

@@ -27,7 +27,7 @@ struct SlabSpec {
     double mean_free_path_mm() const { return 1.0 / (sigma_a_per_mm + sigma_s_reduced_per_mm); }
 };
 
-// A smooth face's diffuse internal reflectance F_dr(eta) (seed 002 Eq. 8); exactly 0 for matched indices.
+// A smooth face's diffuse internal reflectance F_dr(eta) (Donner & Jensen 2005 Eq. 8); exactly 0 for matched indices.
 double face_reflectance(double n_inside, double n_outside) {
     return n_inside == n_outside ? 0.0 : diffuse_fresnel_reflectance(n_inside / n_outside);
 }
@@ -108,7 +108,7 @@ Surface surface(double n_above, double n_top, const DiffusionOptions& options, d
     const double mu = std::cos(incidence_deg * std::numbers::pi / 180.0);
     if (options.surface_roughness) {
         // Seed 002 Sec. 2.4: rho_d replaces F_dr (Eq. 24) and rho_dt the Fresnel transmittance (Eq. 25-26).
-        // rho_d depends only on the roughness and the two indices: computed once (seed 002: "once for a given
+        // rho_d depends only on the roughness and the two indices: computed once (Donner & Jensen 2005: "once for a given
         // material"), not per wavelength.
         thread_local std::optional<RoughSurface> rough;
         if (!rough || rough->roughness() != *options.surface_roughness || rough->n_outside() != n_above || rough->n_inside() != n_top) {

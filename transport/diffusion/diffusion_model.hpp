@@ -5,11 +5,11 @@
 // Per layer: sigma_a from the materials model (the same mu_a as the walks), sigma_s' from the layer's reduced
 // scattering description (Salomatina's measured epidermis/dermis tables or a power law; docs/DIFFUSION.md),
 // index of refraction per layer. Units: mm and 1/mm (profiles are per mm^2).
-//   multipole: every layer a slab (seed 002), composed in frequency space; layers thinner than 0.7 transport
+//   multipole: every layer a slab (Donner & Jensen 2005), composed in frequency space; layers thinner than 0.7 transport
 //              mean free paths are merged with the next (thickness-weighted coefficients) because diffusion
 //              cannot resolve them, layers of 0.7-1.4 are merged and kept, the two stacks blended smoothly (no
 //              jump in wavelength); the hypodermis reflector (ideal or measured) or the open bottom as the material says.
-//   dipole:    the whole material as one semi-infinite medium (seed 004) with depth-averaged coefficients.
+//   dipole:    the whole material as one semi-infinite medium (Jensen et al. 2001) with depth-averaged coefficients.
 // Trust (docs/DIFFUSION.md, backed by bench/diffusion_validation.cpp): reduced albedo >= 0.9 and, for
 // finite slabs, thickness >= 2 transport mean free paths; results outside carry warnings.
 #include <optional>

@@ -1,13 +1,13 @@
 #pragma once
-// The dipole diffusion approximation of Jensen, Marschner, Levoy & Hanrahan 2001 (seed 004) for a
+// The dipole diffusion approximation of Jensen, Marschner, Levoy & Hanrahan 2001 for a
 // semi-infinite homogeneous medium: radial diffuse reflectance R_d(r) (Eq. 4), total diffuse reflectance
 // (Sec. 2.4), the BRDF approximation (Sec. 2.4) and the single-scattering term (Eq. 3 with Hanrahan &
 // Krueger's BRDF). Lengths in any one unit: coefficients per unit, radii in the unit (mm for Jensen's table).
 namespace skinspec {
 
 // Diffuse Fresnel reflectance of the boundary for relative index eta = n_inside / n_outside:
-// eta >= 1 seed 004 (Egan & Hilgeman): -1.440/eta^2 + 0.710/eta + 0.668 + 0.0636 eta;
-// eta < 1 seed 002 (transport-models.md Sec. 2): -0.4399 + 0.7099/eta - 0.3319/eta^2 + 0.0636/eta^3.
+// eta >= 1 Jensen et al. 2001 (Egan & Hilgeman): -1.440/eta^2 + 0.710/eta + 0.668 + 0.0636 eta;
+// eta < 1 Donner & Jensen 2005: -0.4399 + 0.7099/eta - 0.3319/eta^2 + 0.0636/eta^3.
 // InputError for eta outside [0.4, 2.5], where the fits stay within 0.005 of the exact average.
 constexpr double min_fitted_relative_index = 0.4;
 constexpr double max_fitted_relative_index = 2.5;

@@ -1,5 +1,5 @@
 #pragma once
-// Diffusion through a stack of slabs (Donner & Jensen 2005, seed 002 Sec. 2.3): each slab's multipole
+// Diffusion through a stack of slabs (Donner & Jensen 2005, Sec. 2.3): each slab's multipole
 // response is combined with the next in frequency space, where the convolutions of the inter-layer series
 // become products (Eq. 19-22, Kubelka-Munk in frequency space):
 //   R_ab = R_a + T_a(down) R_b T_a(up) / (1 - R_a(up) R_b),   T_ab = T_a T_b / (1 - R_a(up) R_b),

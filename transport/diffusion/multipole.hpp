@@ -1,8 +1,8 @@
 #pragma once
-// Multipole diffusion for a slab (Donner & Jensen 2005, seed 002 Sec. 2.1-2.2): dipole pairs mirrored about
+// Multipole diffusion for a slab (Donner & Jensen 2005, Sec. 2.1-2.2): dipole pairs mirrored about
 // both extrapolated boundaries (Eq. 16), diffuse reflectance R(r) (Eq. 12) and transmittance T(r) (Eq. 13),
 // with different index mismatches (or a rough top, Sec. 2.4) at the two faces. A semi-infinite slab is the
-// dipole of seed 004. Lengths in any one unit (mm for the presets): coefficients per unit, radii in the unit.
+// dipole of Jensen et al. 2001. Lengths in any one unit (mm for the presets): coefficients per unit, radii in the unit.
 //
 // Profiles sum pairs i = 0, +-1, +-2, ... until the next pair changes the sum by less than the relative
 // tolerance (and the pairs lie beyond r); totals and transforms sum the infinite series in closed form
@@ -19,7 +19,7 @@ struct DiffusionSlab {
     double absorption = 0.0;          // sigma_a per unit length
     double thickness = 1.0;           // in the unit; infinity for a semi-infinite medium (the dipole)
     // Diffuse reflectance, seen from inside, of the top and bottom faces: F_dr(eta) of a smooth interface
-    // (diffuse_fresnel_reflectance, seed 002 Eq. 8) or rho_d of a rough one (seed 002 Sec. 2.4).
+    // (diffuse_fresnel_reflectance, Donner & Jensen 2005 Eq. 8) or rho_d of a rough one (Donner & Jensen 2005 Sec. 2.4).
     double top_internal_reflectance = 0.0;
     double bottom_internal_reflectance = 0.0;
 };

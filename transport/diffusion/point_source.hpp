@@ -1,8 +1,8 @@
 #pragma once
 // The building block of the dipole and multipole models: the diffuse flux leaving a flat boundary due to an
 // isotropic point source of unit power in an infinite medium, seen from the boundary at signed distance w
-// (positive on the medium's side) and lateral distance r (Farrell, Patterson & Wilson 1992; seed 004 Eq. 4
-// and seed 002 Eq. 12-13 are sums of this term):
+// (positive on the medium's side) and lateral distance r (Farrell, Patterson & Wilson 1992; Jensen et al. 2001 Eq. 4
+// and Donner & Jensen 2005 Eq. 12-13 are sums of this term):
 //   E(r) = w (1 + sigma_tr rho) exp(-sigma_tr rho) / (4 pi rho^3),  rho = sqrt(r^2 + w^2).
 // Its 2-D Fourier (Hankel) transform, 2 pi int E(r) J0(k r) r dr, is sgn(w) exp(-|w| s) / 2 with
 // s = sqrt(sigma_tr^2 + k^2): E = -d/dw [exp(-sigma_tr rho) / (4 pi rho)], and the transform of

@@ -1,5 +1,5 @@
 #pragma once
-// A rough dielectric boundary for the diffusion models (Donner & Jensen 2005, seed 002 Sec. 2.4): a
+// A rough dielectric boundary for the diffusion models (Donner & Jensen 2005, Sec. 2.4): a
 // Torrance-Sparrow microfacet BRDF (Eq. 23) with the Beckmann facet distribution of RMS slope m, the V-cavity
 // shadowing term and unpolarised Fresnel reflection. Its average diffuse reflectance rho_d, seen from inside,
 // replaces F_dr in A = (1 + rho_d) / (1 - rho_d) (Eq. 24); the light it does not reflect from outside,

@@ -1,5 +1,5 @@
 #pragma once
-// Plane-parallel layers for the volumetric walk (radiative transfer, MCML-class; transport-models.md Sec. 1).
+// Plane-parallel layers for the volumetric walk (radiative transfer, MCML-class; docs/RTE.md).
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -84,7 +84,7 @@ std::uint64_t RteStepImpl(const RtePacketModel& model, RtePacket& p) {
             VF g = gs.at(k);
             const MF two_term = hn::And(turns, kind_is(kind, PacketPhase::two_term_hg));
             if (!hn::AllFalse(df, two_term)) {
-                // Two-term HG (seed 000 Eq. 2; two_term_hg.hpp): the first term with its probability, then HG.
+                // Two-term HG (Baranoski et al. 2005 Eq. 2; two_term_hg.hpp): the first term with its probability, then HG.
                 const VF u_term = random.uniform(two_term);
                 g = hn::IfThenElse(hn::And(two_term, u_term >= first_weights.at(k)), g2s.at(k), g);
             }
