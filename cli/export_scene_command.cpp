@@ -1,4 +1,4 @@
-// `skinspec export pbrt|mitsuba`: the layered skin as a renderer's media in a minimal lit-slab scene, written and
+// `skinspec export pbrt|mitsuba`: the layered skin as a renderer's media in a scene that renders as it is, written and
 // read back by formats/scene_export.hpp.
 #include <cmath>
 #include <iostream>
@@ -107,13 +107,15 @@ void run_export_scene(const SceneOptions& o, SceneRenderer renderer) {
         std::cout << "the media are the skin's volumetric description; its BioSpec description is not solved exactly (" << exported.description_gap_why_not
                   << "), so their difference is not stated\n";
     }
+    std::cout << fmt::format("scene: uniform D65 light, camera straight down over {} x {} mm, {} x {} px; {}\n", format_number(scene_view_mm),
+                             format_number(scene_view_mm), scene_pixels, scene_pixels, scene_pixel_note(exported.expected_pixel));
 }
 
 void add_scene_command(CLI::App& exporter, SceneRenderer renderer) {
     auto o = std::make_shared<SceneOptions>();
     const bool pbrt = renderer == SceneRenderer::pbrt;
-    auto* cmd = exporter.add_subcommand(pbrt ? "pbrt" : "mitsuba", pbrt ? "The layered skin as pbrt-v4 media in a lit-slab scene (.pbrt and .spd files)"
-                                                                        : "The layered skin as Mitsuba 3 media in a lit-slab scene (.xml and .spd files)");
+    auto* cmd = exporter.add_subcommand(pbrt ? "pbrt" : "mitsuba", pbrt ? "The layered skin as pbrt-v4 media in a scene that renders as it is: uniform D65 light, camera straight down (.pbrt and .spd files)"
+                                                                        : "The layered skin as Mitsuba 3 media in a scene that renders as it is: uniform D65 light, camera straight down (.xml and .spd files)");
     add_base_material_options(*cmd, o->preset, o->material_file, o->overrides);
     cmd->add_option("--wavelengths", o->wavelengths, "Spectral media at these wavelengths (nm), one .spd file per layer and coefficient")->capture_default_str();
     cmd->add_option("--rgb", o->rgb, "RGB media instead: three wavelengths (nm) whose coefficients are taken as R, G, B, e.g. 650,550,450 (pbrt: the absorption then scaled per channel so that pbrt-v4's smooth spectra of it give the spectral media's colour)");

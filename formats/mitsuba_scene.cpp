@@ -104,7 +104,7 @@ std::vector<std::filesystem::path> mitsuba_scene_files(const RendererMedia& medi
     return scene_files(media, scene, {"sigma_t", "albedo"});
 }
 
-void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path& scene_file) {
+void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path& scene_file, std::string_view note) {
     if (!media.rgb) {
         std::filesystem::create_directories(spectra_folder(scene_file));
         for (const auto& l : media.layers) {
@@ -120,29 +120,31 @@ void write_mitsuba_scene(const RendererMedia& media, const std::filesystem::path
     double depth_mm = 0.0;
     for (const auto& l : media.layers) depth_mm += l.thickness_mm;
     doc.append_child(pugi::node_comment)
-        .set_value(fmt::format(" skinspec {}: {} as Mitsuba 3 media, a lit slab. Scene units mm; sigma_t in 1/mm as written times the medium's scale. {} Phase functions at {} nm. "
-                               "Layers top to bottom from z = 0 (total {} mm). ",
+        .set_value(fmt::format(" skinspec {}: {} as Mitsuba 3 media under uniform D65 light, seen straight down. Scene units mm; sigma_t in 1/mm as written times "
+                               "the medium's scale. {} Phase functions at {} nm. Layers top to bottom from z = 0 (total {} mm). {}",
                                version, media.material,
                                media.rgb ? fmt::format("RGB media: the coefficients at {} nm taken as R, G, B.", joined(media.wavelengths_nm, ", "))
                                          : fmt::format("Spectral media: {} wavelengths, {}-{} nm (spectral variants).", media.wavelengths_nm.size(),
                                                        format_number(media.wavelengths_nm.front()), format_number(media.wavelengths_nm.back())),
-                               fmt::format("{:.6g}", media.phase_wavelength_nm), fmt::format("{:.6g}", depth_mm))
+                               fmt::format("{:.6g}", media.phase_wavelength_nm), fmt::format("{:.6g}", depth_mm), note.empty() ? std::string() : std::string(note) + " ")
                        .c_str());
     auto scene = child(doc, "scene", {{"version", "3.0.0"}});
     auto integrator = child(scene, "integrator", {{"type", "volpath"}});
     child(integrator, "integer", {{"name", "max_depth"}, {"value", "-1"}});
-    auto sensor = child(scene, "sensor", {{"type", "perspective"}});
-    child(sensor, "float", {{"name", "fov"}, {"value", "30"}});
+    // A light a path tracer reaches through the specular interfaces (a directional one is not, issue 65): a uniform
+    // environment; the orthographic camera sees [-1, 1]^2 scaled, scene_view_mm of the slab.
+    auto sensor = child(scene, "sensor", {{"type", "orthographic"}});
     auto camera = child(sensor, "transform", {{"name", "to_world"}});
-    child(camera, "lookat", {{"origin", "0, -60, 60"}, {"target", "0, 0, -1"}, {"up", "0, 0, 1"}});
+    const auto half_view = format_number(scene_view_mm / 2);
+    child(camera, "scale", {{"x", half_view}, {"y", half_view}});
+    child(camera, "lookat", {{"origin", "0, 0, 50"}, {"target", "0, 0, 0"}, {"up", "0, 1, 0"}});
     auto sampler = child(sensor, "sampler", {{"type", "independent"}});
-    child(sampler, "integer", {{"name", "sample_count"}, {"value", "256"}});
+    child(sampler, "integer", {{"name", "sample_count"}, {"value", std::to_string(scene_samples_per_pixel)}});
     auto film = child(sensor, "film", {{"type", "hdrfilm"}});
-    child(film, "integer", {{"name", "width"}, {"value", "400"}});
-    child(film, "integer", {{"name", "height"}, {"value", "400"}});
-    auto light = child(scene, "emitter", {{"type", "directional"}});
-    child(light, "vector", {{"name", "direction"}, {"value", "0, 1, -2"}});
-    child(light, "spectrum", {{"name", "irradiance"}, {"type", "d65"}});
+    child(film, "integer", {{"name", "width"}, {"value", std::to_string(scene_pixels)}});
+    child(film, "integer", {{"name", "height"}, {"value", std::to_string(scene_pixels)}});
+    auto light = child(scene, "emitter", {{"type", "constant"}});
+    child(light, "spectrum", {{"name", "radiance"}, {"type", "d65"}});
 
     for (const auto& l : media.layers) {
         auto medium = child(scene, "medium", {{"type", "homogeneous"}, {"id", l.name}});

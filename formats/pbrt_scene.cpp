@@ -156,7 +156,7 @@ std::vector<std::filesystem::path> pbrt_scene_files(const RendererMedia& media, 
     return scene_files(media, scene, {"sigma_a", "sigma_s"});
 }
 
-void write_pbrt_scene(const RendererMedia& media, const std::filesystem::path& scene) {
+void write_pbrt_scene(const RendererMedia& media, const std::filesystem::path& scene, std::string_view note) {
     for (const auto& l : media.layers) {
         if (l.phase.kind == RendererPhase::Kind::tabulated) {
             throw InputError("layer '" + l.name + "' has a measured (tabulated) phase function; pbrt-v4 media take Henyey-Greenstein only "
@@ -174,16 +174,23 @@ void write_pbrt_scene(const RendererMedia& media, const std::filesystem::path& s
     }
     double depth_mm = 0.0;
     for (const auto& l : media.layers) depth_mm += l.thickness_mm;
-    std::string text = fmt::format("# skinspec {}: {} as pbrt-v4 media, a lit slab. Scene units mm; sigma_a, sigma_s in 1/mm.\n", version, media.material);
+    std::string text = fmt::format("# skinspec {}: {} as pbrt-v4 media under uniform D65 light, seen straight down. Scene units mm; sigma_a, sigma_s in 1/mm.\n",
+                                   version, media.material);
     text += media.rgb ? fmt::format("# RGB media: the coefficients at {} nm taken as R, G, B.\n", number_list(media.wavelengths_nm))
                       : fmt::format("# Spectral media: {} wavelengths, {}-{} nm, in {}/.\n", media.wavelengths_nm.size(), format_number(media.wavelengths_nm.front()),
                                     format_number(media.wavelengths_nm.back()), spectra_folder(scene).filename().string());
     text += fmt::format("# Phase functions at {:.6g} nm. Layers top to bottom from z = 0 (total {:.6g} mm); index above {:.6g}.\n",
                         media.phase_wavelength_nm, depth_mm, media.above_refractive_index);
-    text += "LookAt 0 -60 60  0 0 -1  0 0 1\nCamera \"perspective\" \"float fov\" [ 30 ]\n";
-    text += fmt::format("Sampler \"zsobol\" \"integer pixelsamples\" [ 256 ]\nIntegrator \"volpath\" \"integer maxdepth\" [ {} ]\n", max_path_depth);
-    text += fmt::format("Film \"rgb\" \"string filename\" [ \"{}.exr\" ] \"integer xresolution\" [ 400 ] \"integer yresolution\" [ 400 ]\n", scene.stem().string());
-    text += "WorldBegin\nLightSource \"distant\" \"point3 from\" [ 0 -1 2 ] \"point3 to\" [ 0 0 0 ] \"spectrum L\" \"stdillum-D65\"\n\n";
+    if (!note.empty()) text += fmt::format("# {}\n", note);
+    // A light a path tracer reaches through the specular interfaces (a distant light rendered black, issue 65): a uniform
+    // environment, which pbrt-v4 scales to 1 nit; the camera straight down over scene_view_mm of the slab.
+    text += fmt::format("LookAt 0 0 50  0 0 0  0 1 0\nCamera \"orthographic\" \"float screenwindow\" [ {0} {1} {0} {1} ]\n", format_number(-scene_view_mm / 2),
+                        format_number(scene_view_mm / 2));
+    text += fmt::format("Sampler \"zsobol\" \"integer pixelsamples\" [ {} ]\nIntegrator \"volpath\" \"integer maxdepth\" [ {} ]\n", scene_samples_per_pixel,
+                        max_path_depth);
+    text += fmt::format("Film \"rgb\" \"string filename\" [ \"{0}.exr\" ] \"integer xresolution\" [ {1} ] \"integer yresolution\" [ {1} ]\n",
+                        scene.stem().string(), scene_pixels);
+    text += "WorldBegin\nLightSource \"infinite\" \"spectrum L\" \"stdillum-D65\"\n\n";
     for (const auto& l : media.layers) {
         text += fmt::format("# {}: {:.6g} mm, index {:.6g}, phase HG g {:.6g}\n", l.name, l.thickness_mm, l.refractive_index, l.phase.g);
         text += fmt::format("MakeNamedMedium \"{}\" \"string type\" \"homogeneous\"\n    {}\n    {}\n    \"float g\" [ {} ] \"float scale\" [ 1 ]\n", l.name,

@@ -55,6 +55,12 @@ std::string_view to_string(PhaseExport phase);  // "own", "hg"
 // 0 outside its range in both, so narrower media vanish there), as --wavelengths text.
 inline constexpr std::string_view renderer_sampled_wavelengths = "360:830:10";
 
+// The scene both exports write around the media (docs/EXPORT.md): a uniform D65 environment and an orthographic
+// camera straight down over scene_view_mm x scene_view_mm of the slab, scene_pixels square, scene_samples_per_pixel.
+inline constexpr double scene_view_mm = 20.0;
+inline constexpr int scene_pixels = 64;
+inline constexpr int scene_samples_per_pixel = 256;
+
 struct MediaRequest {
     std::vector<double> wavelengths_nm;  // spectral export, or exactly three (R, G, B) with rgb
     bool rgb = false;

@@ -14,7 +14,9 @@
 #include "spectral/ciede2000.hpp"
 #include "spectral/colorimetry.hpp"
 #include "spectral/input_error.hpp"
+#include "spectral/rgb_uplift.hpp"
 #include "spectral/text_fields.hpp"
+#include "spectral/wavelength_grid.hpp"
 #include "transport/adding_doubling/adding_doubling.hpp"
 #include "transport/adding_doubling/biospec_adding_doubling.hpp"
 #include "transport/rte/rte_model.hpp"
@@ -129,7 +131,43 @@ PhaseApproximationError phase_approximation_error(const LayerStack& stack, const
     return out;
 }
 
+// R of the media as written at each exported wavelength is the description's plus the phase approximation's
+// difference (both solved above); its colour is the pixel's (ScenePixel).
+ScenePixel expected_pixel(const RendererMedia& point, const std::vector<double>& described, const PhaseApproximationError& phase_error,
+                          const std::optional<PbrtRgbMatch>& rgb_match) {
+    ScenePixel out;
+    if (rgb_match) {
+        out.linear_srgb = rgb_match->matched_srgb;
+        out.how = "the matched RGB media's colour (rgb_match)";
+        return out;
+    }
+    std::vector<double> written(described.size());
+    for (std::size_t i = 0; i < described.size(); ++i) written[i] = described[i] + phase_error.R_differences[i];
+    if (point.rgb) {
+        out.linear_srgb = std::array<double, 3>{written[0], written[1], written[2]};
+        out.how = "R of each channel's coefficients (an RGB variant transports each channel on its own)";
+        return out;
+    }
+    const auto sampled = WavelengthGrid::parse(renderer_sampled_wavelengths, "the renderers' wavelengths");
+    if (point.wavelengths_nm.front() > sampled.nm().front() || point.wavelengths_nm.back() < sampled.nm().back()) {
+        out.why_not = fmt::format("the media cover {}-{} nm; outside them the renderer's media are empty (export {} nm for a prediction)",
+                                  format_number(point.wavelengths_nm.front()), format_number(point.wavelengths_nm.back()), renderer_sampled_wavelengths);
+        return out;
+    }
+    const TristimulusWeights weights(point.wavelengths_nm, IlluminantKind::d65, ObserverKind::cie1931_2deg, OutOfRangePolicy::hold);
+    out.linear_srgb = linear_srgb(weights.integrate(written));
+    out.how = "R of the spectral media at the exported wavelengths, linear between them";
+    return out;
+}
+
 }  // namespace
+
+std::string scene_pixel_note(const ScenePixel& pixel) {
+    if (!pixel.linear_srgb) return "no expected pixel value: " + pixel.why_not;
+    const auto& c = *pixel.linear_srgb;
+    return fmt::format("every pixel should read linear sRGB {:.4f} {:.4f} {:.4f} (R with the specular, normal incidence, D65: {}; adding-doubling)", c[0],
+                       c[1], c[2], pixel.how);
+}
 
 std::string_view to_string(SceneRenderer renderer) { return renderer == SceneRenderer::pbrt ? "pbrt" : "mitsuba"; }
 
@@ -168,19 +206,22 @@ SceneExport export_scene(const LayerStack& stack, const MediaRequest& request, S
         out.rgb_match = match_pbrt_rgb(stack, request, point);
         out.media = out.rgb_match->media;
     }
-    if (pbrt) write_pbrt_scene(out.media, scene);
-    else write_mitsuba_scene(out.media, scene);
+    // The description's R at every exported wavelength: the reference of both statements and, with the phase
+    // approximation's difference, of the pixel the scene should show (written into it).
+    AdCache cache;
+    std::vector<double> described;
+    for (const double nm : point.wavelengths_nm) described.push_back(volumetric_reflectance(rte_stack_from(stack, nm), cache));
+    out.phase_error = phase_approximation_error(stack, point, described, cache);
+    out.expected_pixel = expected_pixel(point, described, out.phase_error, out.rgb_match);
+    const auto note = scene_pixel_note(out.expected_pixel);
+    if (pbrt) write_pbrt_scene(out.media, scene, note);
+    else write_mitsuba_scene(out.media, scene, note);
     const auto back = pbrt ? read_pbrt_scene(scene, out.media.above_refractive_index) : read_mitsuba_scene(scene);
     out.read_back_difference = largest_difference(out.media, back);
     if (!(out.read_back_difference <= 1e-12)) {
         throw std::runtime_error("the written scene does not read back as the media given (difference " + format_number(out.read_back_difference) + ")");
     }
     out.mean_cosine_spread = mean_cosine_spread(stack, request.wavelengths_nm);
-    // The description's R at every exported wavelength: the reference of both statements.
-    AdCache cache;
-    std::vector<double> described;
-    for (const double nm : point.wavelengths_nm) described.push_back(volumetric_reflectance(rte_stack_from(stack, nm), cache));
-    out.phase_error = phase_approximation_error(stack, point, described, cache);
     try {
         out.description_gap = description_gap(stack, point.wavelengths_nm, described, cache);
     } catch (const InputError& e) {
@@ -263,7 +304,14 @@ nlohmann::ordered_json scene_export_json(const SceneExport& exported, SceneRende
                                                              "at {} nm, in place of each layer's own at each wavelength",
                                                              phase_error_channels, format_number(media.phase_wavelength_nm))}}},
             {"description_gap", description_gap_json(exported)},
-            {"rgb_match", rgb_match_json(exported)}};
+            {"rgb_match", rgb_match_json(exported)},
+            {"expected_pixel", exported.expected_pixel.linear_srgb
+                                   ? nlohmann::ordered_json{{"linear_srgb", *exported.expected_pixel.linear_srgb},
+                                                            {"how", exported.expected_pixel.how},
+                                                            {"meaning", "every pixel of the scene as written (uniform D65 light of luminance 1, camera "
+                                                                        "straight down): the slab's R for light along the normal, specular included, "
+                                                                        "in linear sRGB (D65, CIE 1931), by adding-doubling"}}
+                                   : nlohmann::ordered_json{{"why_not", exported.expected_pixel.why_not}}}};
 }
 
 }  // namespace skinspec

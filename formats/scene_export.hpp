@@ -1,8 +1,9 @@
 #pragma once
 // A layered skin written as a renderer's scene and read back (`skinspec export pbrt|mitsuba`, skinspec.export_scene):
-// the media (formats/renderer_media.hpp) as a pbrt-v4 or Mitsuba 3 lit-slab scene (formats/pbrt_scene.hpp,
+// the media (formats/renderer_media.hpp) as a pbrt-v4 or Mitsuba 3 scene (uniform D65 light, camera straight down) (formats/pbrt_scene.hpp,
 // formats/mitsuba_scene.hpp), every output checked before anything is written, and the written files read back to
 // check that they hold the coefficients they were given.
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -50,6 +51,17 @@ struct DescriptionGap {
     std::optional<double> delta_e2000;  // their colours (D65, 2 degrees) when the wavelengths cover 400-700 nm
 };
 
+// What every pixel of the written scene should read. Under a uniform environment that both renderers scale to a
+// luminance of 1 (pbrt-v4 lights.cpp "equivalent to 1 nit"; Mitsuba 3's d65 spectrum), the radiance seen along the
+// normal is, by reciprocity, the slab's reflectance for light arriving along the normal, specular included (R,
+// geometry sci): here the media as written, solved by adding-doubling (phase_error_channels channels), in linear sRGB
+// (D65, CIE 1931; the RGB film's output). Unset, with why_not, where the renderer would not hold those media.
+struct ScenePixel {
+    std::optional<std::array<double, 3>> linear_srgb;
+    std::string how;      // how the value follows from the media (pbrt-v4's matched RGB, Mitsuba's RGB channels, spectral)
+    std::string why_not;  // when linear_srgb is unset
+};
+
 struct SceneExport {
     RendererMedia media;
     std::vector<std::filesystem::path> files;                       // the scene, then its spectrum files
@@ -59,7 +71,11 @@ struct SceneExport {
     std::optional<DescriptionGap> description_gap;
     std::string description_gap_why_not;  // when description_gap is unset
     std::optional<PbrtRgbMatch> rgb_match;  // pbrt-v4's RGB media: their absorption matched to the spectral media's colour
+    ScenePixel expected_pixel;
 };
+
+// The sentence the scene's comment and the export's summary carry: every pixel's expected linear sRGB, or why none.
+std::string scene_pixel_note(const ScenePixel& pixel);
 
 // Writes `stack` as `renderer`'s scene at `scene` and reads it back. InputError, before anything is written, for a
 // wrong extension, a missing or read-only folder, or an existing file unless `overwrite` (the scene's and each

@@ -222,9 +222,9 @@ void bind_exports(py::module_& m) {
     // Both renderers: one function each, named and described by the renderer (pybind11 keeps the pointers: static).
     static const std::array<std::string, 2> names{"export_pbrt", "export_mitsuba"};
     static const std::array<std::string, 2> docs{
-        std::string("The layered skin as pbrt-v4 media in a lit-slab scene, as `skinspec export pbrt` writes it (phase default \"hg\": "
+        std::string("The layered skin as pbrt-v4 media in a scene that renders as it is (uniform D65 light, camera straight down), as `skinspec export pbrt` writes it (phase default \"hg\": "
                     "pbrt-v4 media take Henyey-Greenstein only).") + scene_doc,
-        std::string("The layered skin as Mitsuba 3 media in a lit-slab scene, as `skinspec export mitsuba` writes it (phase default \"own\": "
+        std::string("The layered skin as Mitsuba 3 media in a scene that renders as it is (uniform D65 light, camera straight down), as `skinspec export mitsuba` writes it (phase default \"own\": "
                     "HG, isotropic, measured phases as tabphase).") + scene_doc};
     for (const auto renderer : {SceneRenderer::pbrt, SceneRenderer::mitsuba}) {
         const std::size_t i = renderer == SceneRenderer::pbrt ? 0 : 1;

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "formats/scene_export.hpp"
 #include "materials/material_file.hpp"
 #include "scratch_folder.hpp"
 #include "solvers/spectral_solver.hpp"
+#include "spectral/wavelength_grid.hpp"
 
 using namespace skinspec;
 
@@ -96,5 +99,41 @@ TEST_CASE("an export states how far its volumetric description is from the BioSp
     const auto unstated = export_scene(authors, MediaRequest{nm}, SceneRenderer::mitsuba, folder / "authors.xml", true);
     CHECK(!unstated.description_gap);
     CHECK_THAT(unstated.description_gap_why_not, Catch::Contains("swapped_upward_indices"));
+    std::filesystem::remove_all(folder);
+}
+
+TEST_CASE("the written scene is lit so that a path tracer reaches the light, and states every pixel's value", "[scene_export]") {
+    const auto folder = testing::scratch_folder();
+    const auto grid = WavelengthGrid::parse(renderer_sampled_wavelengths, "test");
+    const std::vector<double> nm(grid.nm().begin(), grid.nm().end());
+    // A lossless layer over the white reflector reflects everything, whatever its index or scattering (energy
+    // conservation): every pixel is the white of D65 in sRGB, (1, 1, 1), within the colorimetry's own 3e-4 (D65 and
+    // the CIE functions sampled at 10 nm against the 4-decimal sRGB matrix).
+    for (const char* index : {"1.0", "1.4"}) {
+        const auto lossless = std::get<LayerStack>(load_material(std::string(SKINSPEC_TEST_INPUT_DIR) + "/white_reflector.toml",
+                                                                 {{"clear.refractive_index", index},
+                                                                  {"clear.volumetric_scattering", "power_law"},
+                                                                  {"clear.volumetric_mu_s_per_cm_at_500nm", "50"},
+                                                                  {"clear.volumetric_g", "0.8"}}));
+        for (const auto renderer : {SceneRenderer::pbrt, SceneRenderer::mitsuba}) {
+            const auto scene = folder / (std::string("lossless") + std::string(scene_extension(renderer)));
+            const auto exported = export_scene(lossless, MediaRequest{nm, false, 550.0, PhaseExport::hg}, renderer, scene, true);
+            REQUIRE(exported.expected_pixel.linear_srgb);
+            INFO(to_string(renderer) << ", index " << index);
+            for (const double c : *exported.expected_pixel.linear_srgb) CHECK(c == Approx(1.0).margin(3e-4));
+            // The light is one a path tracer reaches through specular interfaces: an environment, not a delta light
+            // (a distant or directional light rendered black, issue 65); the scene says what its pixels should read.
+            std::ifstream in(scene);
+            const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            CHECK_THAT(text, Catch::Contains(renderer == SceneRenderer::pbrt ? "LightSource \"infinite\"" : "<emitter type=\"constant\">"));
+            CHECK_THAT(text, !Catch::Contains("distant") && !Catch::Contains("directional"));
+            CHECK_THAT(text, Catch::Contains("every pixel should read linear sRGB "));
+        }
+    }
+    // Media narrower than the renderers' 360-830 nm vanish outside it: no value, and why.
+    const auto skin = std::get<LayerStack>(load_material("biospec-lightly"));
+    const auto narrow = export_scene(skin, MediaRequest{{400.0, 550.0, 700.0}}, SceneRenderer::mitsuba, folder / "narrow.xml", true);
+    CHECK(!narrow.expected_pixel.linear_srgb);
+    CHECK_THAT(narrow.expected_pixel.why_not, Catch::Contains("the media cover 400-700 nm"));
     std::filesystem::remove_all(folder);
 }
