@@ -108,4 +108,9 @@ std::string to_table(const ColorSummary& s) {
     return out;
 }
 
+std::string delta_e_target_text(double worst, double target, std::uint64_t rays) {
+    if (worst <= target) return fmt::format("target {}", target);
+    return fmt::format("target {} NOT met: {}", target, rays == 0 ? "the solver's own stated error" : "the ray budget (--max-rays) was spent");
+}
+
 }  // namespace skinspec::cli

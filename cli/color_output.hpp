@@ -1,6 +1,7 @@
 #pragma once
 // Colour summaries shared by every command that reports colours: one computation, two renderings
 // (a readable table and JSON).
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -45,5 +46,9 @@ ColorSummary summarize_color(const XYZ& xyz, const TristimulusWeights& weights, 
 
 nlohmann::ordered_json to_json(const ColorSummary& summary);
 std::string to_table(const ColorSummary& summary);
+
+// "target T", or "target T NOT met: " and why, for a chart's or a texture's worst colour uncertainty: above the target a
+// deterministic solver's stated error (no rays to add) or a spent ray budget is the cause.
+std::string delta_e_target_text(double worst, double target, std::uint64_t rays);
 
 }  // namespace skinspec::cli

@@ -10,6 +10,7 @@
 #include <tbb/global_control.h>
 
 #include "appearance/lut_export.hpp"
+#include "cli/color_output.hpp"
 #include "cli/common_options.hpp"
 #include "cli/export_command.hpp"
 #include "cli/material_options.hpp"
@@ -97,9 +98,9 @@ void run_export_lut(const LutOptions& o) {
         std::cout << lut_summary_json(chart, request, files, summary, seconds, process_count()).dump(2) << '\n';
     } else {
         std::cout << fmt::format("{} x {} texels ({} x {}), {} rays in {:.2f} s on {} process(es); colour uncertainty (CIEDE2000, RMS) at "
-                                 "most {:.3f} (target {}); {} {}{}\n",
+                                 "most {:.3f} ({}); {} {}{}\n",
                                  chart.columns, chart.rows, u.field, v.field, summary.rays, seconds, process_count(), summary.worst_delta_e,
-                                 request.delta_e, files.space, to_string(request.geometry),
+                                 delta_e_target_text(summary.worst_delta_e, request.delta_e, summary.rays), files.space, to_string(request.geometry),
                                  chart.partial ? fmt::format("; PARTIAL (interrupted): {} of {} texels", chart.patches.size(), chart.columns * chart.rows)
                                                : std::string());
     }

@@ -164,8 +164,7 @@ void run_fit_profile(const FitOptions& o) {
     if (!o.output_dir.empty()) write_outputs(o, names, reports, geometry);
     for (std::size_t c = 0; c < reports.size(); ++c) {
         for (const auto& b : reports[c].fit.at_bounds) {
-            std::cerr << "skinspec: warning: channel " << names[c] << ": " << b
-                      << " (the best fit may lie beyond it: widen --grid-scattering / --grid-absorption; or the profile does not constrain it)\n";
+            std::cerr << "skinspec: warning: channel " << names[c] << ": " << b << "\n";
         }
     }
     if (o.json) {

@@ -100,7 +100,7 @@ void write_profile_plot(const std::string& file, const SpectralProfiles& p) {
             any_t = true;
         }
     }
-    write_line_plot(file, fmt::format("{} ({}): radial diffusion profiles", p.material, p.model), "Radius r (mm)",
+    write_line_plot(file, fmt::format("{} ({}): radial reflectance profiles", p.material, p.model), "Radius r (mm)",
                     any_t ? "R(r), T(r) (1/mm^2)" : "R(r) (1/mm^2)", curves, {.log_y = true});
 }
 

@@ -217,10 +217,7 @@ void run_swatch(const SwatchOptions& o) {
                                      tone ? fmt::format("{:.1f} ({})", tone->ita_deg, to_string(tone->category)) : std::string("-"),
                                      p.uncertainty.delta_e2000, p.rays);
         }
-        // Above the target a deterministic solver's stated error (no rays to add) or a spent ray budget is the cause.
-        const auto target = worst <= request.delta_e ? fmt::format("target {}", request.delta_e)
-                                                     : fmt::format("target {} NOT met: {}", request.delta_e,
-                                                                   rays == 0 ? "the solver's own stated error" : "the ray budget (--max-rays) was spent");
+        const auto target = delta_e_target_text(worst, request.delta_e, rays);
         std::cout << fmt::format("{} patches, {} rays in {:.2f} s; colour uncertainty (CIEDE2000, RMS) at most {:.3f} "
                                  "({}); wavelengths {}{}\n",
                                  chart.patches.size(), rays, seconds, worst, target,

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -10,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "materials/material_fields.hpp"
@@ -541,6 +544,67 @@ Material relabelled(Material material, std::string name, const std::vector<Mater
     return material;
 }
 
+namespace {
+
+// toml++ writes a double with 17 significant digits (0.05 as 0.050000000000000003). Every float literal outside
+// strings and comments is rewritten as the shortest decimal that reads back as the same double (fmt's "{}"), with a
+// decimal point kept so that it stays a TOML float.
+bool starts_number(const std::string& text, std::size_t i) {
+    const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+    const auto word = [&](char c) { return digit(c) || std::isalpha(static_cast<unsigned char>(c)) || c == '_' || c == '.'; };
+    if (i > 0 && word(text[i - 1])) return false;  // a digit inside a bare key (per_cm_at_500nm)
+    return digit(text[i]) || ((text[i] == '-' || text[i] == '+') && i + 1 < text.size() && digit(text[i + 1]));
+}
+
+std::string shortest_float(const std::string& literal) {
+    if (literal.find_first_of(".eE") == std::string::npos || literal.find('_') != std::string::npos) return literal;  // an integer
+    double value = 0.0;
+    const char* first = literal.data() + (literal.front() == '+' ? 1 : 0);
+    const auto [end, error] = std::from_chars(first, literal.data() + literal.size(), value);
+    if (error != std::errc() || end != literal.data() + literal.size()) return literal;
+    auto text = fmt::format("{}", value);
+    if (text.find_first_of(".e") == std::string::npos) text += ".0";
+    return text;
+}
+
+std::string with_shortest_floats(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    std::size_t i = 0;
+    const auto copy_until = [&](std::size_t end) {
+        out.append(text, i, end - i);
+        i = end;
+    };
+    while (i < text.size()) {
+        const char c = text[i];
+        if (c == '#') {
+            copy_until(std::min(text.find('\n', i), text.size()));
+        } else if (c == '"' || c == '\'') {
+            const std::string triple(3, c);
+            const bool multi = text.compare(i, 3, triple) == 0;
+            std::size_t end = i + (multi ? 3 : 1);
+            while (end < text.size() && text.compare(end, multi ? 3 : 1, multi ? triple : std::string(1, c)) != 0) {
+                end += (c == '"' && text[end] == '\\') ? 2 : 1;  // a basic string's escape, \" included
+            }
+            copy_until(std::min(end + (multi ? 3 : 1), text.size()));
+        } else if (starts_number(text, i)) {
+            std::size_t end = i + 1;
+            while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '.' || text[end] == '_' ||
+                                         ((text[end] == '-' || text[end] == '+') && (text[end - 1] == 'e' || text[end - 1] == 'E')))) {
+                ++end;
+            }
+            out += shortest_float(text.substr(i, end - i));
+            i = end;
+        } else {
+            out += c;
+            ++i;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
 std::string to_toml(const Material& material) {
     std::ostringstream out;
     out << "# skinspec material, written by skinspec " << "(units in the key names; see docs/MATERIALS.md)\n";
@@ -551,7 +615,7 @@ std::string to_toml(const Material& material) {
         },
         material);
     out << '\n';
-    return out.str();
+    return with_shortest_floats(out.str());
 }
 
 void write_material(const Material& material, const std::filesystem::path& file, bool overwrite) {

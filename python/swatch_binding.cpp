@@ -225,7 +225,7 @@ void bind_swatch(py::module_& m) {
           py::arg("half") = false, py::arg("display") = "sRGB", py::arg("view") = "Standard", py::arg("overwrite") = false,
           py::arg("progress") = py::none(), py::arg("rays") = py::none(), py::arg("stderr") = py::none(), py::arg("max_rays") = py::none(),
           py::arg("seed") = py::none(), py::arg("geometry") = std::string(to_string(image_geometry)));
-    m.def("swatch", &swatch, R"doc(The colours of a material over one or two swept fields, as `skinspec swatch` computes them (no image is written).
+    m.def("swatch", &swatch, R"doc(The colours of a material over one or two swept fields, as `skinspec swatch` computes them (the chart image too when `output` is given).
 
     material: a preset name or .toml path; vary: "FIELD=FIRST:LAST:STEPS[:log]" strings (first: columns, second:
     rows; default for a skin: melanosome fraction 0.01-0.42 in 8 log steps by dermal blood 0.002-0.05 in 5); set:

@@ -80,6 +80,23 @@ TEST_CASE("every preset survives load -> save -> load unchanged", "[material_fil
     CHECK(std::get<LayerStack>(read_material(temp_path("roundtrip2.toml"))) == stack);
 }
 
+TEST_CASE("a saved material writes each number as the shortest decimal that reads back as the same double", "[material_file]") {
+    // 0.05 was written 0.050000000000000003 (17 digits). 0.1 + 0.2 has no shorter form than 0.30000000000000004; text
+    // with numbers (the description, a key with digits) is left as it is.
+    auto stack = std::get<LayerStack>(load_material("biospec-lightly", {{"epidermis.melanosome_fraction", "0.05"}}));
+    stack.layers[2].blood_fraction = 0.1 + 0.2;
+    stack.layers[3].blood_fraction = 1e-5;
+    stack.description = "melanosome fraction 0.050000000000000003 # not a comment";
+    const auto text = to_toml(stack);
+    CHECK_THAT(text, Catch::Contains("melanosome_fraction = 0.05\n"));
+    CHECK_THAT(text, Catch::Contains("blood_fraction = 0.30000000000000004\n"));
+    CHECK_THAT(text, Catch::Contains("blood_fraction = 1e-05\n"));
+    CHECK_THAT(text, Catch::Contains("eumelanin_mg_per_ml = 80.0\n"));  // a whole number stays a TOML float
+    CHECK_THAT(text, Catch::Contains("mie_reduced_scattering_per_cm_at_500nm = 0.0\n"));
+    CHECK_THAT(text, Catch::Contains("'melanosome fraction 0.050000000000000003 # not a comment'"));
+    CHECK(parse_material(text, "text") == Material(stack));
+}
+
 TEST_CASE("a saved material still follows a later --variant, switches set by hand stay pinned", "[material_file]") {
     const auto saved = temp_path("variant.toml");
     write_material(load_material("biospec-lightly"), saved, true);

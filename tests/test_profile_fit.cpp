@@ -65,6 +65,13 @@ TEST_CASE("a fit that ends on an edge of the search says so", "[profile-fit]") {
     const auto inside = fit_dipole(d, r, use, wide);
     CHECK(inside.at_bounds.empty());
     CHECK(inside.reduced_scattering_per_mm == Approx(5.0).epsilon(1e-5));
+    // A medium without absorption ends on sigma_a = 0: the physical bound, not a search range to widen below 0.
+    const Dipole lossless({1.0, 0.0, 1.3});
+    const auto [d0, r0, use0] = sampled_profile(lossless);
+    const auto at_zero = fit_dipole(d0, r0, use0, {});
+    REQUIRE(at_zero.at_bounds.size() == 1);
+    CHECK_THAT(at_zero.at_bounds.front(), Catch::Contains("sigma_a = 0 /mm, the physical lower bound"));
+    CHECK_THAT(at_zero.at_bounds.front(), !Catch::Contains("widen"));
 }
 
 TEST_CASE("a best fit on the grid's last value refines inside the box (fuzz finding)", "[profile-fit]") {

@@ -184,10 +184,17 @@ DipoleFitResult fit_on_grid_and_refine(std::span<const double> distances_mm, std
 DipoleFitResult fit_dipole(std::span<const double> distances_mm, std::span<const double> profile_per_mm2, std::span<const char> use,
                            const DipoleFitOptions& options) {
     auto result = fit_on_grid_and_refine(distances_mm, profile_per_mm2, use, options);
+    constexpr std::string_view beyond = ": the best fit may lie beyond it (widen the search grid: --grid-scattering, --grid-absorption or their keywords), or the profile does not constrain it";
     const auto edge = [&](const char* name, double value, const ParameterGrid& grid) {
         const double tolerance = 1e-6 * std::max(grid.step, 1e-12);
-        if (std::abs(value - grid.first) <= tolerance) result.at_bounds.push_back(fmt::format("{} = {} /mm, the search's lower bound", name, format_number(value)));
-        else if (std::abs(value - grid.last) <= tolerance) result.at_bounds.push_back(fmt::format("{} = {} /mm, the search's upper bound", name, format_number(value)));
+        if (std::abs(value - grid.first) <= tolerance && grid.first == 0.0) {
+            // Nothing below 0: a coefficient there is the physical bound, not a search range to widen.
+            result.at_bounds.push_back(fmt::format("{} = 0 /mm, the physical lower bound (the profile shows no {} the fit can resolve)", name,
+                                                   std::string_view(name) == "sigma_a" ? "absorption" : "scattering"));
+        } else if (std::abs(value - grid.first) <= tolerance) {
+            result.at_bounds.push_back(fmt::format("{} = {} /mm, the search's lower bound{}", name, format_number(value), beyond));
+        }
+        else if (std::abs(value - grid.last) <= tolerance) result.at_bounds.push_back(fmt::format("{} = {} /mm, the search's upper bound{}", name, format_number(value), beyond));
     };
     edge("sigma_s'", result.reduced_scattering_per_mm, options.reduced_scattering_per_mm);
     if (!options.total_diffuse_reflectance) edge("sigma_a", result.absorption_per_mm, options.absorption_per_mm);
