@@ -12,7 +12,6 @@
 #include <set>
 #include <sstream>
 
-#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "materials/material_fields.hpp"
@@ -547,7 +546,7 @@ Material relabelled(Material material, std::string name, const std::vector<Mater
 namespace {
 
 // toml++ writes a double with 17 significant digits (0.05 as 0.050000000000000003). Every float literal outside
-// strings and comments is rewritten as the shortest decimal that reads back as the same double (fmt's "{}"), with a
+// strings and comments is rewritten as the shortest decimal that reads back as the same double (format_number), with a
 // decimal point kept so that it stays a TOML float.
 bool starts_number(const std::string& text, std::size_t i) {
     const auto digit = [](char c) { return c >= '0' && c <= '9'; };
@@ -562,7 +561,7 @@ std::string shortest_float(const std::string& literal) {
     const char* first = literal.data() + (literal.front() == '+' ? 1 : 0);
     const auto [end, error] = std::from_chars(first, literal.data() + literal.size(), value);
     if (error != std::errc() || end != literal.data() + literal.size()) return literal;
-    auto text = fmt::format("{}", value);
+    auto text = format_number(value);
     if (text.find_first_of(".e") == std::string::npos) text += ".0";
     return text;
 }
